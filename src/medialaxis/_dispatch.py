@@ -1,0 +1,141 @@
+"""Route an input to its domain (planar, mesh, volume) and method.
+
+The domains never import one another; this module only knows where their
+entry points live (``"module:function"`` strings, imported on first use).
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import os
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
+
+__all__ = ["METHODS", "DEFAULT_METHOD", "classify", "resolve", "repruner"]
+
+#: Entry points per domain and method name.
+METHODS: dict[str, dict[str, str]] = {
+    "planar": {
+        "voronoi": "medialaxis.planar.pipeline:voronoi_medial_axis",
+    },
+    "mesh": {},
+    "volume": {},
+}
+
+#: Default method per domain.
+DEFAULT_METHOD = {"planar": "voronoi", "mesh": "voronoi", "volume": "midsurface"}
+
+#: Re-pruning entry points, keyed by domain.
+REPRUNERS: dict[str, str] = {
+    "planar": "medialaxis.planar.pipeline:reprune",
+}
+
+#: File extensions per domain. ``.tif``/``.tiff``/``.npy`` are resolved by peeking.
+EXTENSIONS: dict[str, tuple[str, ...]] = {
+    "planar": (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".svg", ".geojson", ".json", ".wkt"),
+    "mesh": (".obj", ".ply", ".off", ".stl", ".glb", ".gltf"),
+    "volume": (".nrrd", ".nhdr", ".nii", ".nii.gz", ".raw", ".dcm"),
+}
+
+
+def _suffix(path: Path) -> str:
+    name = path.name.lower()
+    return ".nii.gz" if name.endswith(".nii.gz") else path.suffix.lower()
+
+
+def _classify_path(path: Path, method: str | None) -> str:
+    if not path.exists():
+        raise InputFileError(f"no such file or folder: {str(path)!r}")
+    if path.is_dir():
+        return "volume"  # TIFF slices or a DICOM series
+    ext = _suffix(path)
+    for domain, exts in EXTENSIONS.items():
+        if ext in exts:
+            return domain
+    if ext in (".tif", ".tiff"):
+        if method in METHODS["volume"] or method in ("midsurface", "voxels"):
+            return "volume"
+        try:
+            from PIL import Image
+
+            with Image.open(path) as im:
+                return "volume" if getattr(im, "n_frames", 1) > 1 else "planar"
+        except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
+            raise InputFileError(f"cannot read TIFF {str(path)!r}: {exc}") from exc
+    if ext == ".npy":
+        try:
+            arr = np.load(path, mmap_mode="r", allow_pickle=False)
+        except Exception as exc:  # noqa: BLE001
+            raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
+        return _classify_ndim(arr.ndim, arr.shape, arr.dtype)
+    raise UnsupportedFormatError(f"unsupported file type {ext or '(none)'!r} for {str(path)!r}")
+
+
+def _classify_ndim(ndim: int, shape: tuple[int, ...], dtype: np.dtype) -> str:
+    if ndim == 2:
+        return "planar"
+    if ndim == 3:
+        return "volume"
+    raise InvalidInputError(f"expected a 2D image, an (n, 2) boundary loop or a 3D volume, got an array of shape {shape}")
+
+
+def classify(shape: Any, method: str | None = None) -> str:
+    """Return the domain (``"planar"``, ``"mesh"`` or ``"volume"``) of an input."""
+    if isinstance(shape, (str, os.PathLike)):
+        return _classify_path(Path(shape), method)
+    module = type(shape).__module__ or ""
+    if module.startswith("shapely"):
+        return "planar"
+    if hasattr(shape, "vertices") and hasattr(shape, "faces"):
+        return "mesh"
+    if isinstance(shape, (list, tuple)) and shape and all(hasattr(s, "geom_type") for s in shape):
+        return "planar"
+    try:
+        arr = np.asarray(shape)
+    except Exception as exc:  # noqa: BLE001
+        raise InvalidInputError(f"cannot interpret input of type {type(shape).__name__}") from exc
+    if arr.dtype == object:
+        raise InvalidInputError(f"cannot interpret input of type {type(shape).__name__} as a shape")
+    return _classify_ndim(arr.ndim, arr.shape, arr.dtype)
+
+
+def _load(entry: str) -> Callable[..., Any]:
+    module, _, name = entry.partition(":")
+    return getattr(importlib.import_module(module), name)
+
+
+def resolve(domain: str, method: str | None) -> tuple[str, Callable[..., Any]]:
+    """Entry point of ``method`` (or the domain's default) for ``domain``."""
+    name = DEFAULT_METHOD[domain] if method is None else method
+    available = METHODS[domain]
+    if name not in available:
+        known = ", ".join(sorted(available)) or "none yet"
+        raise InvalidInputError(f"method {name!r} does not apply to {domain} input (available: {known})")
+    return name, _load(available[name])
+
+
+def call_checked(fn: Callable[..., Any], shape: Any, options: Mapping[str, Any]) -> Any:
+    """Call ``fn(shape, **options)`` after checking the option names."""
+    sig = inspect.signature(fn)
+    try:
+        sig.bind(shape, **options)
+    except TypeError as exc:
+        accepted = [p for p in sig.parameters if p != next(iter(sig.parameters))]
+        bad = [k for k in options if k not in sig.parameters]
+        detail = f"unknown option(s) {', '.join(map(repr, bad))}" if bad else str(exc)
+        raise InvalidInputError(f"{detail}; {fn.__name__} accepts {', '.join(accepted)}") from None
+    return fn(shape, **options)
+
+
+def repruner(metadata: Mapping[str, Any]) -> Callable[..., Any]:
+    """The re-pruning function of the domain that produced ``metadata``."""
+    domain = metadata.get("domain")
+    if domain not in REPRUNERS:
+        raise InvalidInputError(f"results of domain {domain!r} cannot be re-pruned")
+    return _load(REPRUNERS[domain])

@@ -1,0 +1,1 @@
+"""Shared core: the result type, graph utilities, I/O, metrics."""

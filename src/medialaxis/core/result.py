@@ -1,0 +1,265 @@
+"""The :class:`MedialAxis` result type shared by every method."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from functools import cached_property
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+
+from medialaxis.core import graph as _graph
+from medialaxis.errors import InvalidInputError
+
+__all__ = ["MedialAxis", "Branch"]
+
+
+def _frozen(array: Any, dtype: Any, width: int | None, name: str) -> np.ndarray:
+    """Copy ``array`` to a read-only C-contiguous array of ``dtype``."""
+    out = np.array(array, dtype=dtype, copy=True)
+    if width is not None:
+        if out.size == 0:
+            out = out.reshape(0, width)
+        if out.ndim != 2 or out.shape[1] != width:
+            raise InvalidInputError(f"{name} must have shape (n, {width}), got {out.shape}")
+    out = np.ascontiguousarray(out)
+    out.setflags(write=False)
+    return out
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Branch:
+    """A chain of the axis between two nodes that are junctions or endpoints.
+
+    Attributes
+    ----------
+    indices : (p,) int64 ndarray
+        Point indices along the chain, in order. For a closed loop without
+        junctions the first index is repeated at the end.
+    points : (p, d) float64 ndarray
+        The chain's coordinates.
+    radii : (p,) float64 ndarray
+        The radius function along the chain.
+    """
+
+    indices: np.ndarray
+    points: np.ndarray
+    radii: np.ndarray
+
+    @property
+    def length(self) -> float:
+        """Polyline length of the chain."""
+        return float(np.linalg.norm(np.diff(self.points, axis=0), axis=1).sum())
+
+    @property
+    def is_cycle(self) -> bool:
+        """True when the chain closes on itself."""
+        return len(self.indices) > 1 and self.indices[0] == self.indices[-1]
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class MedialAxis:
+    """The medial axis transform of a shape: axis geometry plus radius function.
+
+    Every method of :func:`medialaxis.medial_axis` returns this type. Arrays are
+    read-only copies; derived quantities are computed once and cached.
+
+    Attributes
+    ----------
+    points : (n, d) float64 ndarray
+        Axis points. For array inputs, array index order times ``spacing``
+        (row, col[, plane]); for vector inputs, the input's own coordinates.
+    radii : (n,) float64 ndarray
+        Radius of the medial ball at each point (distance to the boundary).
+    edges : (m, 2) int64 ndarray
+        The axis as a graph over ``points`` (curve pieces and face boundaries).
+    faces : (k, 3) int64 ndarray
+        Triangles of medial surface pieces; empty for curve skeletons.
+    extras : mapping of str to ndarray
+        Documented per-method extra arrays, also reachable as attributes
+        (``ma.correspondence``). The planar methods store
+        ``edge_contact_diameter`` (m,) here.
+    metadata : mapping
+        Method name, parameters actually used (``lam``, ``tolerance``...),
+        ``spacing`` and, for raster inputs, ``image_shape``.
+    shape : object, optional
+        The input region the axis belongs to, when the method keeps it: a
+        shapely geometry for planar inputs. Used by :meth:`reconstruct` and
+        the plots.
+    raw : MedialAxis, optional
+        The unpruned axis the result was pruned from, which :meth:`prune`
+        re-prunes without recomputing.
+    """
+
+    points: np.ndarray
+    radii: np.ndarray
+    edges: np.ndarray = dataclasses.field(default_factory=lambda: np.empty((0, 2), np.int64))
+    faces: np.ndarray = dataclasses.field(default_factory=lambda: np.empty((0, 3), np.int64))
+    extras: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    metadata: Mapping[str, Any] = dataclasses.field(default_factory=dict)
+    shape: Any = None
+    raw: MedialAxis | None = dataclasses.field(default=None, repr=False)
+
+    def __post_init__(self) -> None:
+        points = np.asarray(self.points, dtype=np.float64)
+        dim = points.shape[1] if points.ndim == 2 else None
+        if dim not in (2, 3):
+            raise InvalidInputError(f"points must have shape (n, 2) or (n, 3), got {points.shape}")
+        set_ = object.__setattr__
+        set_(self, "points", _frozen(points, np.float64, dim, "points"))
+        n = len(self.points)
+        radii = _frozen(self.radii, np.float64, None, "radii").reshape(-1)
+        if radii.shape != (n,):
+            raise InvalidInputError(f"radii must have shape ({n},), got {radii.shape}")
+        set_(self, "radii", radii)
+        for name, width in (("edges", 2), ("faces", 3)):
+            arr = _frozen(self.__dict__[name], np.int64, width, name)
+            if arr.size and (arr.min() < 0 or arr.max() >= n):
+                raise InvalidInputError(f"{name} index out of range for {n} points")
+            set_(self, name, arr)
+        extras = {}
+        for key, value in dict(self.extras).items():
+            arr = np.array(value, copy=True)
+            arr.setflags(write=False)
+            extras[key] = arr
+        set_(self, "extras", MappingProxyType(extras))
+        set_(self, "metadata", MappingProxyType(dict(self.metadata)))
+
+    def __getattr__(self, name: str) -> Any:
+        # Only called when normal lookup fails: expose documented extras.
+        extras = self.__dict__.get("extras", {})
+        if name in extras:
+            return extras[name]
+        raise AttributeError(f"{type(self).__name__!s} has no attribute {name!r}")
+
+    def __repr__(self) -> str:
+        method = self.metadata.get("method", "?")
+        return (
+            f"MedialAxis(method={method!r}, dim={self.dim}, points={len(self.points)}, "
+            f"edges={len(self.edges)}, faces={len(self.faces)})"
+        )
+
+    # ------------------------------------------------------------------ graph
+    @property
+    def dim(self) -> int:
+        """Spatial dimension of the points (2 or 3)."""
+        return int(self.points.shape[1])
+
+    @cached_property
+    def degree(self) -> np.ndarray:
+        """(n,) int64: number of axis edges at each point."""
+        out = _graph.degree(len(self.points), self.edges)
+        out.setflags(write=False)
+        return out
+
+    @cached_property
+    def junctions(self) -> np.ndarray:
+        """Indices of points where three or more branches meet."""
+        out = np.flatnonzero(self.degree >= 3)
+        out.setflags(write=False)
+        return out
+
+    @cached_property
+    def endpoints(self) -> np.ndarray:
+        """Indices of points where a branch ends (degree 1)."""
+        out = np.flatnonzero(self.degree == 1)
+        out.setflags(write=False)
+        return out
+
+    @cached_property
+    def n_components(self) -> int:
+        """Number of connected components of the axis (points, edges and faces)."""
+        return _graph.n_components(len(self.points), self._all_edges)
+
+    @cached_property
+    def n_cycles(self) -> int:
+        """First Betti number of the edge graph (independent cycles), curves only."""
+        return _graph.cycle_rank(len(self.points), self.edges)
+
+    @cached_property
+    def _all_edges(self) -> np.ndarray:
+        if len(self.faces) == 0:
+            return self.edges
+        f = self.faces
+        return np.concatenate([self.edges, f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+
+    def branches(self) -> list[Branch]:
+        """Chains of the edge graph between junctions and endpoints.
+
+        Returns
+        -------
+        list of Branch
+            Every edge belongs to exactly one branch. A component that is a
+            single loop comes back as one closed branch.
+        """
+        chains = _graph.branches(len(self.points), self.edges)
+        return [Branch(c, self.points[c], self.radii[c]) for c in chains]
+
+    def to_networkx(self) -> Any:
+        """The axis as a :class:`networkx.Graph`.
+
+        Nodes carry ``pos`` (tuple) and ``radius``; edges carry ``length``.
+        """
+        return _graph.to_networkx(self.points, self.radii, self._all_edges)
+
+    # ------------------------------------------------------------- derived
+    def prune(self, lam: float | None = None, **options: Any) -> MedialAxis:
+        """Re-prune the axis with another ``lam`` without recomputing it.
+
+        Parameters
+        ----------
+        lam : float, optional
+            New lambda (smallest contact-set diameter kept, output units).
+            ``None`` keeps the value used for this result.
+        **options
+            Other pruning parameters of the method that built the axis.
+
+        Returns
+        -------
+        MedialAxis
+
+        Raises
+        ------
+        InvalidInputError
+            If the result does not carry its unpruned axis.
+        """
+        if self.raw is None:
+            raise InvalidInputError(
+                f"this {self.metadata.get('method', '?')!r} result keeps no unpruned axis to re-prune"
+            )
+        from medialaxis._dispatch import repruner
+
+        return repruner(self.metadata)(self, lam=lam, **options)
+
+    def reconstruct(self, *, raster: bool = False, resolution: int = 64) -> Any:
+        """Union of the medial balls.
+
+        Parameters
+        ----------
+        raster : bool
+            For image inputs, return a boolean image of the input's shape
+            (pixels whose centre lies in a disc) instead of a geometry.
+        resolution : int
+            Segments per quarter circle of each disc (geometry output).
+
+        Returns
+        -------
+        shapely geometry or (rows, cols) bool ndarray
+        """
+        from medialaxis.core.reconstruct import reconstruct
+
+        return reconstruct(self, raster=raster, resolution=resolution)
+
+    def save(self, path: Any) -> None:
+        """Write the result; the format follows the extension.
+
+        ``.json`` and ``.npz`` are lossless (read back with
+        :func:`medialaxis.load`); ``.graphml``, ``.geojson`` export the graph;
+        ``.svg`` draws the axis over the shape; ``.png`` plots it coloured by
+        radius. The file is written to a temporary name, then renamed.
+        """
+        from medialaxis.core.io import save
+
+        save(self, path)

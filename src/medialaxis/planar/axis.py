@@ -1,0 +1,156 @@
+"""The raw (unpruned) inner Voronoi axis of a boundary sample.
+
+Nodes are the Delaunay triangles inside the region, placed at their
+circumcentres (the Voronoi vertices); two nodes are joined when their
+triangles share an edge (the Voronoi edge dual to that Delaunay edge). For a
+conforming sample this graph is the dual of a triangulation of the region,
+so it has one component per polygon and one independent cycle per hole.
+
+Every edge records the two sample points of its dual Delaunay edge, i.e. its
+contact set: its diameter (for the lambda-medial axis) and the boundary arc
+between the two contacts (for the detour test of :mod:`.pruning`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+import shapely
+from scipy.spatial import cKDTree
+
+from medialaxis.planar.delaunay import Triangulation
+from medialaxis.planar.sampling import BoundarySample
+
+__all__ = ["RawAxis", "inner_triangles", "raw_axis", "boundary_distance"]
+
+
+@dataclasses.dataclass(frozen=True)
+class RawAxis:
+    """Inner Voronoi graph with contact data per edge.
+
+    Attributes
+    ----------
+    points : (n, 2) float ndarray
+    radii : (n,) float ndarray
+        Distance from each point to the sampled boundary.
+    edges : (m, 2) int ndarray
+    contact : (m, 2) int ndarray
+        Sample indices of the contact points of each edge.
+    contact_diameter : (m,) float ndarray
+        Distance between the two contacts.
+    contact_arc : (m,) float ndarray
+        Boundary arc length between the two contacts (inf across rings).
+    triangle : (n,) int ndarray
+        Delaunay triangle of each node.
+    """
+
+    points: np.ndarray
+    radii: np.ndarray
+    edges: np.ndarray
+    contact: np.ndarray
+    contact_diameter: np.ndarray
+    contact_arc: np.ndarray
+    triangle: np.ndarray
+
+
+def inner_triangles(tri: Triangulation, region: Any) -> np.ndarray:
+    """(T,) bool: proper triangles whose centroid lies inside ``region``.
+
+    Triangles thinner than ``1e-7`` of the extent are the slivers the
+    triangulation's jitter makes of collinear samples; they lie on the
+    boundary and belong to neither side.
+    """
+    pts = tri.points[tri.simplices]
+    centroid = pts.mean(axis=1)
+    u = pts[:, 1] - pts[:, 0]
+    v = pts[:, 2] - pts[:, 0]
+    twice_area = np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+    longest = np.sqrt(np.max([(u**2).sum(1), (v**2).sum(1), ((u - v) ** 2).sum(1)], axis=0))
+    extent = float(np.ptp(tri.points, axis=0).max())
+    proper = twice_area > 1e-7 * extent * longest
+    shapely.prepare(region)
+    inside = np.zeros(len(pts), bool)
+    inside[proper] = shapely.contains_xy(region, centroid[proper, 0], centroid[proper, 1])
+    return inside
+
+
+def boundary_distance(query: np.ndarray, smp: BoundarySample, tree: cKDTree | None = None, k: int = 8) -> np.ndarray:
+    """Distance from ``query`` points to the sampled boundary polyline.
+
+    The nearest boundary point lies on a segment next to one of the ``k``
+    nearest samples whenever the sampling is finer than the distance, which
+    the adaptive sampling ensures; the value never exceeds the distance to the
+    nearest sample.
+    """
+    if len(query) == 0:
+        return np.empty(0)
+    tree = cKDTree(smp.points) if tree is None else tree
+    k = min(k, len(smp.points))
+    _, idx = tree.query(query, k=k)
+    idx = idx.reshape(len(query), k)
+    prev = smp.prev
+    best = np.full(len(query), np.inf)
+    for start in (idx, prev[idx]):
+        a = smp.points[start]
+        b = smp.points[smp.next[start]]
+        ab = b - a
+        q = query[:, None, :]
+        denom = np.maximum((ab**2).sum(-1), 1e-300)
+        t = np.clip(((q - a) * ab).sum(-1) / denom, 0.0, 1.0)
+        d = np.linalg.norm(q - (a + t[..., None] * ab), axis=-1)
+        best = np.minimum(best, d.min(axis=1))
+    return best
+
+
+def _enclosing_centre(tri_pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Centre and diameter of the smallest circle enclosing each triangle."""
+    sides = np.stack([tri_pts[:, 1] - tri_pts[:, 2], tri_pts[:, 2] - tri_pts[:, 0], tri_pts[:, 0] - tri_pts[:, 1]], 1)
+    sq = (sides**2).sum(2)
+    k = np.argmax(sq, axis=1)
+    rows = np.arange(len(k))
+    longest = sq[rows, k]
+    others = sq.sum(1) - longest
+    obtuse = longest >= others
+    mid = 0.5 * (tri_pts[rows, (k + 1) % 3] + tri_pts[rows, (k + 2) % 3])
+    return mid, np.sqrt(longest), obtuse
+
+
+def raw_axis(tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region: Any) -> RawAxis:
+    """Build the inner Voronoi graph (see module docstring)."""
+    t_in = np.flatnonzero(inside)
+    node_of = np.full(len(tri.simplices), -1, np.int64)
+    node_of[t_in] = np.arange(len(t_in))
+    pos = tri.centers[t_in].copy()
+
+    # Voronoi vertices outside the region (obtuse triangles at sparse spots) are
+    # moved to the centre of the triangle's smallest enclosing circle, or its
+    # centroid, so every axis point lies in the shape.
+    shapely.prepare(region)
+    outside = ~shapely.contains_xy(region, pos[:, 0], pos[:, 1])
+    if outside.any():
+        tri_pts = tri.points[tri.simplices[t_in[outside]]]
+        mid, _, _ = _enclosing_centre(tri_pts)
+        ok = shapely.contains_xy(region, mid[:, 0], mid[:, 1])
+        pos[outside] = np.where(ok[:, None], mid, tri_pts.mean(1))
+
+    # Dual edges between inner triangles.
+    nb = tri.neighbors[t_in]
+    t_rep = np.repeat(t_in, 3)
+    k_rep = np.tile(np.arange(3), len(t_in))
+    n_rep = nb.ravel()
+    valid = n_rep >= 0
+    valid[valid] &= inside[n_rep[valid]]
+    valid &= t_rep < np.where(n_rep < 0, -1, n_rep)
+    t_rep, k_rep, n_rep = t_rep[valid], k_rep[valid], n_rep[valid]
+    s = tri.simplices[t_rep]
+    rows = np.arange(len(t_rep))
+    ca = s[rows, (k_rep + 1) % 3]
+    cb = s[rows, (k_rep + 2) % 3]
+    edges = np.c_[node_of[t_rep], node_of[n_rep]]
+    contact = np.c_[ca, cb]
+    diameter = np.linalg.norm(tri.points[ca] - tri.points[cb], axis=1)
+    arc = smp.arc_between(ca, cb)
+    radii = boundary_distance(pos, smp)
+    return RawAxis(pos, radii, edges, contact, diameter, arc, t_in)

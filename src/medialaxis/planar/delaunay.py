@@ -1,0 +1,108 @@
+"""Delaunay triangulation of boundary samples and its Voronoi (circumcentre) data.
+
+SciPy's Qhull is used (BSD licence, always available with SciPy). Points on a
+closed curve are nearly co-circular, which makes Qhull slow (about 66 s for
+one million points); a deterministic jitter of ``1e-9`` of the extent removes
+the degeneracy (0.35 s for 100,000 points here). The adaptive sampling keeps
+the point count to what the axis needs, so even million-vertex polygons
+reach Qhull with a few ten thousand points.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from scipy.spatial import Delaunay, QhullError
+
+from medialaxis.errors import ComputationError
+
+__all__ = ["Triangulation", "triangulate", "edge_keys"]
+
+
+@dataclasses.dataclass(frozen=True)
+class Triangulation:
+    """Triangles of a Delaunay triangulation with their circumcircles.
+
+    Attributes
+    ----------
+    points : (N, 2) float ndarray
+        The (unjittered) sample points.
+    simplices : (T, 3) int ndarray
+    neighbors : (T, 3) int ndarray
+        ``neighbors[t, k]`` shares the edge opposite vertex ``k``; -1 on the hull.
+    centers : (T, 2) float ndarray
+        Circumcentres (the Voronoi vertices).
+    radii : (T,) float ndarray
+        Circumradii.
+    """
+
+    points: np.ndarray
+    simplices: np.ndarray
+    neighbors: np.ndarray
+    centers: np.ndarray
+    radii: np.ndarray
+
+
+def edge_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
+    """Order-independent integer key of the edges ``(a, b)`` over ``n`` points."""
+    lo = np.minimum(a, b).astype(np.int64)
+    hi = np.maximum(a, b).astype(np.int64)
+    return lo * n + hi
+
+
+def circumcircles(p: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Circumcentres and radii of triangles (computed relative to the first vertex)."""
+    a = p[simplices[:, 0]]
+    b = p[simplices[:, 1]] - a
+    c = p[simplices[:, 2]] - a
+    d = 2.0 * (b[:, 0] * c[:, 1] - b[:, 1] * c[:, 0])
+    b2 = (b**2).sum(1)
+    c2 = (c**2).sum(1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ux = (c[:, 1] * b2 - b[:, 1] * c2) / d
+        uy = (b[:, 0] * c2 - c[:, 0] * b2) / d
+    centre = np.c_[ux, uy]
+    radius = np.hypot(ux, uy)
+    flat = ~np.isfinite(radius)
+    if flat.any():  # collinear: use the midpoint of the longest side
+        tri = p[simplices[flat]]
+        sides = np.stack([tri[:, 1] - tri[:, 2], tri[:, 2] - tri[:, 0], tri[:, 0] - tri[:, 1]], 1)
+        k = np.argmax((sides**2).sum(2), axis=1)
+        rows = np.arange(len(k))
+        mid = 0.5 * (tri[rows, (k + 1) % 3] + tri[rows, (k + 2) % 3]) - a[flat]
+        centre[flat] = mid
+        radius[flat] = 0.5 * np.sqrt((sides[rows, k] ** 2).sum(1))
+    return centre + a, radius
+
+
+def triangulate(points: np.ndarray, *, seed: int = 0) -> Triangulation:
+    """Delaunay triangulation of ``points`` (jittered by 1e-9 of their extent).
+
+    Triangles touching the four helper points far outside are dropped.
+    """
+    if len(points) < 3:
+        raise ComputationError(f"need at least 3 boundary samples, got {len(points)}")
+    lo = points.min(0)
+    extent = float(np.ptp(points, axis=0).max())
+    if extent <= 0:
+        raise ComputationError("all boundary samples coincide")
+    rng = np.random.default_rng(seed)
+    work = (points - lo) / extent + rng.uniform(-1e-9, 1e-9, points.shape)
+    # Far corners make the hull a big square, so collinear boundary samples
+    # are never hull points (Qhull would join them by zero-area slivers).
+    far = np.array([[-10.0, -10.0], [11.0, -10.0], [11.0, 11.0], [-10.0, 11.0]])
+    try:
+        tri = Delaunay(np.vstack([work, far]))
+    except QhullError as exc:
+        raise ComputationError(f"Delaunay triangulation failed: {str(exc).splitlines()[0]}") from exc
+    simplices = tri.simplices.astype(np.int64)
+    neighbors = tri.neighbors.astype(np.int64)
+    real = (simplices < len(points)).all(axis=1)
+    new_index = np.full(len(simplices), -1, np.int64)
+    new_index[real] = np.arange(int(real.sum()))
+    simplices = simplices[real]
+    neighbors = neighbors[real]
+    neighbors = np.where(neighbors >= 0, new_index[neighbors], -1)
+    centers, radii = circumcircles(points, simplices)
+    return Triangulation(points, simplices, neighbors, centers, radii)

@@ -1,0 +1,425 @@
+"""Turn every planar input into one region: a shapely (Multi)Polygon in output units.
+
+Raster inputs (masks, grey images, image files) go through a sub-pixel
+iso-contour (:func:`skimage.measure.find_contours`) in array index order
+scaled by ``spacing``; vector inputs (shapely, WKT, GeoJSON, SVG, boundary
+loops) keep their own coordinates.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+from medialaxis.errors import (
+    EmptyShapeError,
+    InputFileError,
+    InvalidInputError,
+    ResourceLimitError,
+    UnsupportedFormatError,
+)
+
+__all__ = ["PlanarInput", "load_planar", "max_pixels"]
+
+#: Bytes of working memory per pixel of a raster input (float64 copy, padded
+#: copy, contour bookkeeping), used to refuse images too large before reading.
+BYTES_PER_PIXEL = 48
+
+IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff")
+
+
+@dataclasses.dataclass(frozen=True)
+class PlanarInput:
+    """A planar shape ready for sampling.
+
+    Attributes
+    ----------
+    region : shapely Polygon or MultiPolygon
+        Valid, non-empty, in output units.
+    spacing : (2,) float ndarray
+        Pixel size per array axis (ones for vector inputs).
+    image : (rows, cols) ndarray or None
+        The grey or bool image for raster inputs.
+    foreground : (rows, cols) bool ndarray or None
+        The thresholded mask for raster inputs.
+    threshold : float or None
+        Grey level used for raster inputs.
+    repaired : str or None
+        How an invalid polygon was repaired, if it was.
+    """
+
+    region: Any
+    spacing: np.ndarray
+    image: np.ndarray | None = None
+    foreground: np.ndarray | None = None
+    threshold: float | None = None
+    repaired: str | None = None
+
+    @property
+    def is_raster(self) -> bool:
+        return self.image is not None
+
+
+def max_pixels() -> int:
+    """Largest image (in pixels) processed: half the physical memory / BYTES_PER_PIXEL."""
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):  # pragma: no cover - non-POSIX
+        total = 8 << 30
+    return int(total // 2 // BYTES_PER_PIXEL)
+
+
+def _spacing(spacing: Any) -> np.ndarray:
+    if spacing is None:
+        return np.ones(2)
+    sp = np.asarray(spacing, dtype=np.float64).reshape(-1)
+    if sp.size == 1:
+        sp = np.repeat(sp, 2)
+    if sp.size != 2 or not np.all(np.isfinite(sp)) or np.any(sp <= 0):
+        raise InvalidInputError(f"spacing must be one or two positive finite numbers, got {spacing!r}")
+    return sp
+
+
+# ----------------------------------------------------------------- rasters
+def _check_pixels(n_pixels: int, what: str) -> None:
+    limit = max_pixels()
+    if n_pixels > limit:
+        raise ResourceLimitError(
+            f"{what} has {n_pixels:,} pixels; at most {limit:,} fit in memory here "
+            f"(about {BYTES_PER_PIXEL} bytes per pixel are needed)"
+        )
+
+
+def _read_image(path: Path) -> np.ndarray:
+    from PIL import Image
+
+    Image.MAX_IMAGE_PIXELS = None  # our own limit below, checked before decoding
+    try:
+        with Image.open(path) as im:
+            _check_pixels(im.width * im.height, f"image {str(path)!r}")
+            if getattr(im, "n_frames", 1) > 1:
+                raise InvalidInputError(
+                    f"{str(path)!r} has {im.n_frames} pages: a 3D stack; use a volume method"
+                )
+            if im.mode in ("1", "L", "I", "I;16", "F"):
+                arr = np.asarray(im)
+            else:
+                arr = np.asarray(im.convert("L"))
+    except (ResourceLimitError, InvalidInputError):
+        raise
+    except Exception as exc:  # noqa: BLE001 - PIL raises many types for bad files
+        raise InputFileError(f"cannot read image {str(path)!r}: {exc}") from exc
+    return arr
+
+
+def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, float]:
+    if image.dtype == bool:
+        return image, 0.5
+    if threshold is None:
+        lo, hi = float(image.min()), float(image.max())
+        if lo == hi:
+            raise EmptyShapeError(f"the image is constant ({lo}): no foreground/background contrast")
+        from skimage.filters import threshold_otsu
+
+        threshold = float(threshold_otsu(image))
+        if not lo <= threshold < hi:  # Otsu can land on the max for two-level images
+            threshold = 0.5 * (lo + hi)
+    else:
+        threshold = float(threshold)
+        if not np.isfinite(threshold):
+            raise InvalidInputError(f"threshold must be finite, got {threshold!r}")
+    return image > threshold, threshold
+
+
+def _rings_to_region(rings: list[np.ndarray]) -> Any:
+    """Assemble closed rings (shells counter-clockwise, holes clockwise) into polygons."""
+    shells, holes = [], []
+    for ring in rings:
+        if len(ring) < 4:
+            continue
+        x, y = ring[:, 0], ring[:, 1]
+        area = 0.5 * np.sum(x[:-1] * y[1:] - x[1:] * y[:-1])
+        if area > 0:
+            shells.append(Polygon(ring))
+        elif area < 0:
+            holes.append(ring)
+    if not shells:
+        raise EmptyShapeError("the foreground has no area")
+    shell_tree = shapely.STRtree(shells)
+    shell_holes: list[list[np.ndarray]] = [[] for _ in shells]
+    areas = np.array([s.area for s in shells])
+    for ring in holes:
+        probe = shapely.Point(ring[0])
+        cand = shell_tree.query(probe, predicate="covers")
+        if len(cand) == 0:  # a hole outside every shell cannot come from one contour set
+            continue
+        shell_holes[int(cand[np.argmin(areas[cand])])].append(ring)
+    polys = [Polygon(s.exterior.coords, h) for s, h in zip(shells, shell_holes)]
+    region = polys[0] if len(polys) == 1 else MultiPolygon(polys)
+    if not region.is_valid:
+        region = shapely.make_valid(region)
+        region = shapely.union_all([g for g in getattr(region, "geoms", [region]) if g.area > 0])
+    return region
+
+
+def contour_region(image: np.ndarray, level: float, spacing: np.ndarray) -> Any:
+    """Sub-pixel iso-contour of ``image`` at ``level`` as polygons in index order * spacing."""
+    from skimage.measure import find_contours
+
+    img = np.asarray(image, dtype=np.float64)
+    low = min(float(img.min()), level) - 1.0
+    padded = np.pad(img, 1, mode="constant", constant_values=low)
+    rings = find_contours(padded, level, positive_orientation="high")
+    rings = [(r - 1.0) * spacing for r in rings]
+    return _rings_to_region(rings)
+
+
+def _from_array(arr: np.ndarray, threshold: float | None, spacing: np.ndarray) -> PlanarInput:
+    if arr.ndim != 2:
+        raise InvalidInputError(
+            f"the planar method needs a 2D image, got an array of shape {arr.shape}"
+            + (" (a 3D volume: use method='midsurface' or 'voxels')" if arr.ndim == 3 else "")
+        )
+    if 0 in arr.shape:
+        raise EmptyShapeError(f"the image is empty (shape {arr.shape})")
+    _check_pixels(arr.size, f"image of shape {arr.shape}")
+    if arr.dtype.kind not in "biuf":
+        raise InvalidInputError(f"image dtype must be bool, integer or float, got {arr.dtype}")
+    if arr.dtype.kind == "f" and not np.all(np.isfinite(arr)):
+        raise InvalidInputError("the image contains NaN or infinite values")
+    foreground, level = _threshold(arr, threshold)
+    count = int(np.count_nonzero(foreground))
+    if count == 0:
+        raise EmptyShapeError("the mask is empty: no foreground pixels")
+    if count == foreground.size:
+        raise EmptyShapeError(
+            "the mask is all foreground: the shape has no boundary inside the image"
+        )
+    if arr.dtype == bool:
+        region = contour_region(arr.astype(np.float64), 0.5, spacing)
+    else:
+        region = contour_region(arr, level, spacing)
+    return PlanarInput(region, spacing, image=arr, foreground=foreground, threshold=level)
+
+
+# ----------------------------------------------------------------- vectors
+def _validate_polygonal(geom: Any, where: str) -> tuple[Any, str | None]:
+    if geom.geom_type not in ("Polygon", "MultiPolygon", "GeometryCollection"):
+        raise InvalidInputError(f"{where}: expected a Polygon or MultiPolygon, got a {geom.geom_type}")
+    coords = shapely.get_coordinates(geom)
+    if len(coords) == 0 or geom.is_empty:
+        raise EmptyShapeError(f"{where}: the geometry is empty")
+    if not np.all(np.isfinite(coords)):
+        raise InvalidInputError(f"{where}: coordinates contain NaN or infinity")
+    repaired = None
+    if not geom.is_valid:
+        reason = shapely.is_valid_reason(geom)
+        fixed = shapely.make_valid(geom)
+        parts = [g for g in shapely.get_parts(fixed) if g.geom_type in ("Polygon", "MultiPolygon")]
+        fixed = shapely.union_all(parts) if parts else Polygon()
+        repaired = f"invalid input ({reason}) repaired with shapely.make_valid"
+        geom = fixed
+    if geom.geom_type == "GeometryCollection":
+        parts = [g for g in shapely.get_parts(geom) if g.area > 0]
+        geom = shapely.union_all(parts) if parts else Polygon()
+    if geom.is_empty or geom.area <= 0:
+        raise EmptyShapeError(f"{where}: the polygon has zero area")
+    return shapely.normalize(geom), repaired
+
+
+def _from_loop(loop: np.ndarray) -> Any:
+    if loop.ndim != 2 or loop.shape[1] != 2:
+        raise InvalidInputError(f"a boundary loop must have shape (n, 2), got {loop.shape}")
+    if not np.all(np.isfinite(loop)):
+        bad = np.argwhere(~np.isfinite(loop))[0]
+        raise InvalidInputError(f"boundary loop has a non-finite coordinate at row {bad[0]}")
+    if len(np.unique(loop, axis=0)) < 3:
+        raise EmptyShapeError(f"a boundary loop needs at least 3 distinct points, got {len(loop)}")
+    return Polygon(loop)
+
+
+_SVG_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
+
+def _read_svg(path: Path) -> Any:
+    """Filled shapes of an SVG (polygon, rect, circle, ellipse, path with straight or curved segments)."""
+    import xml.etree.ElementTree as ET
+
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError) as exc:
+        raise InputFileError(f"cannot parse SVG {str(path)!r}: {exc}") from exc
+    rings: list[np.ndarray] = []
+    for el in root.iter():
+        tag = el.tag.rsplit("}", 1)[-1]
+        a = el.attrib
+        try:
+            if tag in ("polygon", "polyline"):
+                nums = [float(v) for v in re.findall(_SVG_NUM, a.get("points", ""))]
+                rings.append(np.array(nums).reshape(-1, 2))
+            elif tag == "rect":
+                x, y = float(a.get("x", 0)), float(a.get("y", 0))
+                w, h = float(a["width"]), float(a["height"])
+                rings.append(np.array([[x, y], [x + w, y], [x + w, y + h], [x, y + h]]))
+            elif tag in ("circle", "ellipse"):
+                cx, cy = float(a.get("cx", 0)), float(a.get("cy", 0))
+                rx = float(a.get("r", a.get("rx", 0)))
+                ry = float(a.get("r", a.get("ry", 0)))
+                t = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+                rings.append(np.c_[cx + rx * np.cos(t), cy + ry * np.sin(t)])
+            elif tag == "path":
+                rings.extend(_svg_path_rings(a.get("d", "")))
+        except (KeyError, ValueError) as exc:
+            raise InputFileError(f"malformed <{tag}> in SVG {str(path)!r}: {exc}") from exc
+    rings = [r for r in rings if len(r) >= 3]
+    if not rings:
+        raise EmptyShapeError(f"SVG {str(path)!r} contains no closed shape")
+    # Even-odd fill: symmetric difference of all rings.
+    geom = Polygon()
+    for r in rings:
+        geom = geom.symmetric_difference(shapely.make_valid(Polygon(r)))
+    return geom
+
+
+def _svg_path_rings(d: str) -> list[np.ndarray]:
+    """Rings of an SVG path: M/L/H/V/C/Q/Z, absolute and relative; curves are sampled."""
+    tokens = re.findall(r"[MmLlHhVvCcQqZz]|" + _SVG_NUM, d)
+    rings, cur, pos, start = [], [], np.zeros(2), np.zeros(2)
+    i, cmd = 0, None
+    while i < len(tokens):
+        if re.fullmatch(r"[A-Za-z]", tokens[i]):
+            cmd = tokens[i]
+            i += 1
+            if cmd in "Zz":
+                if len(cur) >= 3:
+                    rings.append(np.array(cur))
+                cur, pos = [], start.copy()
+                continue
+        if cmd is None:
+            raise ValueError(f"path data starts with a number: {d[:30]!r}")
+
+        def take(k: int) -> np.ndarray:
+            nonlocal i
+            vals = np.array([float(t) for t in tokens[i : i + k]])
+            if len(vals) != k:
+                raise ValueError("truncated path data")
+            i += k
+            return vals
+
+        rel = cmd.islower()
+        c = cmd.upper()
+        if c == "M":
+            pos = take(2) + (pos if rel else 0)
+            if len(cur) >= 3:
+                rings.append(np.array(cur))
+            cur, start = [pos.copy()], pos.copy()
+            cmd = "l" if rel else "L"
+        elif c == "L":
+            pos = take(2) + (pos if rel else 0)
+            cur.append(pos.copy())
+        elif c == "H":
+            x = take(1)[0]
+            pos = np.array([x + (pos[0] if rel else 0), pos[1]])
+            cur.append(pos.copy())
+        elif c == "V":
+            y = take(1)[0]
+            pos = np.array([pos[0], y + (pos[1] if rel else 0)])
+            cur.append(pos.copy())
+        elif c in "CQ":
+            k = 3 if c == "C" else 2
+            ctrl = take(2 * k).reshape(k, 2) + (pos if rel else 0)
+            pts = np.vstack([pos, ctrl])
+            t = np.linspace(0, 1, 17)[1:, None]
+            if c == "C":
+                curve = ((1 - t) ** 3 * pts[0] + 3 * (1 - t) ** 2 * t * pts[1]
+                         + 3 * (1 - t) * t**2 * pts[2] + t**3 * pts[3])
+            else:
+                curve = (1 - t) ** 2 * pts[0] + 2 * (1 - t) * t * pts[1] + t**2 * pts[2]
+            cur.extend(curve)
+            pos = pts[-1].copy()
+        else:  # pragma: no cover - regex admits only the commands above
+            raise ValueError(f"unsupported path command {cmd!r}")
+    if len(cur) >= 3:
+        rings.append(np.array(cur))
+    return rings
+
+
+def _read_vector(path: Path) -> Any:
+    ext = path.suffix.lower()
+    if ext == ".svg":
+        return _read_svg(path)
+    try:
+        text = path.read_text()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
+    if ext == ".wkt":
+        try:
+            return shapely.from_wkt(text.strip())
+        except shapely.errors.GEOSException as exc:
+            raise InputFileError(f"cannot parse WKT in {str(path)!r}: {exc}") from exc
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputFileError(f"cannot parse JSON in {str(path)!r}: {exc}") from exc
+    geoms = []
+    feats = doc.get("features") if isinstance(doc, dict) else None
+    items = feats if feats is not None else [doc]
+    for item in items:
+        g = item.get("geometry", item) if isinstance(item, dict) else None
+        if g is None:
+            continue
+        try:
+            geoms.append(shapely.geometry.shape(g))
+        except Exception as exc:  # noqa: BLE001 - shapely raises several types
+            raise InputFileError(f"bad GeoJSON geometry in {str(path)!r}: {exc}") from exc
+    polys = [g for g in geoms if g.geom_type in ("Polygon", "MultiPolygon")]
+    if not polys:
+        raise EmptyShapeError(f"{str(path)!r} holds no Polygon or MultiPolygon")
+    return shapely.union_all(polys)
+
+
+# ------------------------------------------------------------------ entry
+def load_planar(shape: Any, *, threshold: float | None = None, spacing: Any = None) -> PlanarInput:
+    """Read and validate any planar input.
+
+    Raises
+    ------
+    InvalidInputError, EmptyShapeError, InputFileError, ResourceLimitError
+    """
+    if isinstance(shape, (str, os.PathLike)):
+        path = Path(shape)
+        if not path.is_file():
+            raise InputFileError(f"no such file: {str(path)!r}")
+        ext = path.suffix.lower()
+        if ext in IMAGE_EXTENSIONS:
+            return _from_array(_read_image(path), threshold, _spacing(spacing))
+        if ext in (".svg", ".wkt", ".geojson", ".json"):
+            geom, repaired = _validate_polygonal(_read_vector(path), str(path))
+            return PlanarInput(geom, np.ones(2), repaired=repaired)
+        if ext == ".npy":
+            try:
+                arr = np.load(path, allow_pickle=False)
+            except Exception as exc:  # noqa: BLE001
+                raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
+            return load_planar(arr, threshold=threshold, spacing=spacing)
+        raise UnsupportedFormatError(f"unsupported planar file type {ext!r} for {str(path)!r}")
+    if hasattr(shape, "geom_type"):
+        if spacing is not None:
+            raise InvalidInputError("spacing applies to arrays only; vector inputs keep their coordinates")
+        geom, repaired = _validate_polygonal(shape, "polygon")
+        return PlanarInput(geom, np.ones(2), repaired=repaired)
+    if isinstance(shape, (list, tuple)) and shape and all(hasattr(s, "geom_type") for s in shape):
+        return load_planar(shapely.union_all(list(shape)), threshold=threshold, spacing=spacing)
+    arr = np.asarray(shape)
+    if arr.ndim == 2 and arr.shape[1] == 2 and arr.dtype != bool and arr.dtype.kind in "iuf":
+        geom, repaired = _validate_polygonal(_from_loop(arr.astype(np.float64)), "boundary loop")
+        return PlanarInput(geom, np.ones(2), repaired=repaired)
+    return _from_array(arr, threshold, _spacing(spacing))

@@ -1,0 +1,285 @@
+"""The planar pipeline: input -> boundary sample -> Delaunay -> Voronoi axis -> pruning.
+
+This follows paper 000 (image, boundary points, Delaunay triangulation,
+axis from circumcentres, pruning of the outside parts, radius per point,
+edge structure, validation by rebuilding the shape) with the
+lambda-medial axis of paper 001 (Algorithm 5) and a topology-preserving
+pruning (:mod:`medialaxis.planar.pruning`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any, Literal
+
+import numpy as np
+
+from medialaxis.core.result import MedialAxis
+from medialaxis.errors import ComputationError, InvalidInputError
+from medialaxis.planar.axis import RawAxis, inner_triangles, raw_axis
+from medialaxis.planar.delaunay import Triangulation, edge_keys, triangulate
+from medialaxis.planar.inputs import PlanarInput, load_planar
+from medialaxis.planar.pruning import merge_close_nodes, prune_graph
+from medialaxis.planar.sampling import BoundarySample, Rings, initial_arcs, refine_arcs, sample, simplify_rings
+
+__all__ = ["voronoi_medial_axis", "planar_stages", "reprune", "Stages", "DEFAULT_DETOUR"]
+
+#: Default detour ratio of the pruning (see :mod:`medialaxis.planar.pruning`).
+DEFAULT_DETOUR = 0.25
+#: Default lambda in units of the tolerance.
+LAM_PER_TOLERANCE = 8.0
+MAX_REFINEMENTS = 12
+
+
+@dataclasses.dataclass(frozen=True)
+class Stages:
+    """Every intermediate of one planar run, for figures and debugging.
+
+    Attributes
+    ----------
+    source : PlanarInput
+    rings : Rings
+        The simplified boundary.
+    samples : BoundarySample
+    triangulation : Triangulation
+    inside : (T,) bool ndarray
+        Triangles inside the shape.
+    raw : MedialAxis
+        The unpruned inner Voronoi axis.
+    result : MedialAxis
+        The pruned axis.
+    """
+
+    source: PlanarInput
+    rings: Rings
+    samples: BoundarySample
+    triangulation: Triangulation
+    inside: np.ndarray
+    raw: MedialAxis
+    result: MedialAxis
+
+
+def _positive(value: Any, name: str) -> float:
+    try:
+        out = float(value)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{name} must be a number, got {value!r}") from None
+    if not np.isfinite(out) or out < 0:
+        raise InvalidInputError(f"{name} must be finite and >= 0, got {value!r}")
+    return out
+
+
+def _piece_state(tri: Triangulation, inside: np.ndarray, smp: BoundarySample) -> tuple[np.ndarray, np.ndarray]:
+    """For each boundary piece (i, next[i]): is it a Delaunay edge, and its inner circumradius."""
+    n = len(smp.points)
+    s = tri.simplices
+    keys = np.concatenate([edge_keys(s[:, 1], s[:, 2], n), edge_keys(s[:, 2], s[:, 0], n), edge_keys(s[:, 0], s[:, 1], n)])
+    owner = np.tile(np.arange(len(s)), 3)
+    order = np.argsort(keys, kind="stable")
+    keys, owner = keys[order], owner[order]
+    piece = edge_keys(np.arange(n), smp.next, n)
+    lo = np.searchsorted(keys, piece, "left")
+    hi = np.searchsorted(keys, piece, "right")
+    conforming = hi > lo
+    radius = np.full(n, np.inf)
+    for off in (0, 1):  # an edge has at most two triangles
+        j = lo + off
+        has = j < hi
+        t = owner[np.minimum(j, len(owner) - 1)]
+        use = has & inside[t]
+        radius[use] = np.minimum(radius[use], tri.radii[t[use]])
+    return conforming, radius
+
+
+def _sample_and_triangulate(
+    rings: Rings, region: Any, tolerance: float, min_length: float
+) -> tuple[BoundarySample, Triangulation, np.ndarray]:
+    area = max(region.area, 1e-300)
+    start = max(min_length, np.sqrt(area) / 8.0)
+    arcs = initial_arcs(rings, start)
+    for _ in range(MAX_REFINEMENTS):
+        smp = sample(rings, arcs)
+        tri = triangulate(smp.points)
+        inside = inner_triangles(tri, region)
+        conforming, radius = _piece_state(tri, inside, smp)
+        new = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length)
+        if new is None:
+            break
+        arcs = new
+    return smp, tri, inside
+
+
+def _result(
+    points: np.ndarray,
+    radii: np.ndarray,
+    edges: np.ndarray,
+    extras: dict[str, np.ndarray],
+    metadata: dict[str, Any],
+    shape: Any,
+    raw: MedialAxis | None,
+) -> MedialAxis:
+    return MedialAxis(points, radii, edges, extras=extras, metadata=metadata, shape=shape, raw=raw)
+
+
+def _pruned(raw: MedialAxis, lam: float, detour: float, merge_length: float) -> MedialAxis:
+    """Prune ``raw`` (which carries contact data as extras) with ``lam`` and ``detour``."""
+    diameter = raw.extras["edge_contact_diameter"]
+    arc = raw.extras["edge_contact_arc"]
+    old, edges = prune_graph(len(raw.points), raw.edges, diameter, arc, lam, detour)
+    points, radii = raw.points[old], raw.radii[old]
+    rep, edges = merge_close_nodes(points, edges, merge_length)
+    old2, edges = _compact_rep(rep, edges)
+    metadata = dict(raw.metadata, lam=lam, detour=detour, pruned=True)
+    return _result(points[old2], radii[old2], edges, {}, metadata, raw.shape, raw)
+
+
+def _compact_rep(rep: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    keep = np.unique(rep)
+    new_of_old = np.full(len(rep), -1, np.int64)
+    new_of_old[keep] = np.arange(len(keep))
+    return keep, new_of_old[edges].reshape(-1, 2)
+
+
+def planar_stages(
+    shape: Any,
+    *,
+    lam: float | None = None,
+    threshold: float | None = None,
+    spacing: Any = None,
+    tolerance: float | None = None,
+    detour: float = DEFAULT_DETOUR,
+    boundary: Literal["contour", "canny"] = "contour",
+) -> Stages:
+    """Run the planar pipeline and keep every stage (see :func:`voronoi_medial_axis`)."""
+    if boundary not in ("contour", "canny"):
+        raise InvalidInputError(f"boundary must be 'contour' or 'canny', got {boundary!r}")
+    src = load_planar(shape, threshold=threshold, spacing=spacing)
+    region = src.region
+    minx, miny, maxx, maxy = region.bounds
+    diag = float(np.hypot(maxx - minx, maxy - miny))
+    if tolerance is None:
+        tolerance = 0.25 * float(src.spacing.min()) if src.is_raster else 1e-4 * diag
+    tolerance = _positive(tolerance, "tolerance")
+    if tolerance == 0:
+        tolerance = 1e-9 * diag
+    lam = LAM_PER_TOLERANCE * tolerance if lam is None else _positive(lam, "lam")
+    detour = _positive(detour, "detour")
+    if boundary == "canny":
+        if not src.is_raster:
+            raise InvalidInputError("boundary='canny' needs an image input")
+        from medialaxis.planar.canny import canny_stages
+
+        smp, rings, tri, inside = canny_stages(src, tolerance)
+    else:
+        rings = simplify_rings(region, tolerance)
+        min_length = max(tolerance, lam / 8.0)
+        smp, tri, inside = _sample_and_triangulate(rings, rings.region, tolerance, min_length)
+    if not inside.any():
+        raise ComputationError("no Delaunay triangle lies inside the shape; is it degenerate?")
+    ax: RawAxis = raw_axis(tri, inside, smp, rings.region)
+    metadata = {
+        "domain": "planar",
+        "method": "voronoi",
+        "boundary": boundary,
+        "tolerance": tolerance,
+        "lam": lam,
+        "detour": detour,
+        "spacing": tuple(float(s) for s in src.spacing),
+        "n_samples": int(len(smp.points)),
+        "n_polygons": int(len(getattr(region, "geoms", [region]))),
+        "n_holes": int(sum(len(p.interiors) for p in getattr(region, "geoms", [region]))),
+    }
+    if src.is_raster:
+        metadata["image_shape"] = tuple(int(s) for s in src.image.shape)
+        metadata["threshold"] = src.threshold
+    if src.repaired:
+        metadata["repaired"] = src.repaired
+    raw = _result(
+        ax.points,
+        ax.radii,
+        ax.edges,
+        {"edge_contact_diameter": ax.contact_diameter, "edge_contact_arc": ax.contact_arc},
+        dict(metadata, pruned=False),
+        region,
+        None,
+    )
+    result = _pruned(raw, lam, detour, merge_length=tolerance)
+    return Stages(src, rings, smp, tri, inside, raw, result)
+
+
+def voronoi_medial_axis(
+    shape: Any,
+    *,
+    lam: float | None = None,
+    threshold: float | None = None,
+    spacing: Any = None,
+    tolerance: float | None = None,
+    detour: float = DEFAULT_DETOUR,
+    boundary: Literal["contour", "canny"] = "contour",
+) -> MedialAxis:
+    """Medial axis of a planar shape from the Voronoi diagram of boundary samples.
+
+    Parameters
+    ----------
+    shape : array_like, path or shapely geometry
+        2D bool mask, 2D grey image, ``(n, 2)`` boundary loop, shapely
+        ``Polygon``/``MultiPolygon`` (holes allowed), or a PNG / JPEG / TIFF /
+        BMP / SVG / GeoJSON / WKT file.
+    lam : float, optional
+        Lambda of the lambda-medial axis: the smallest contact-set diameter
+        kept, in output units. Default ``8 * tolerance`` (2 pixels for
+        images): contact sets of sampling noise are below it, and noise
+        branches with larger contacts are removed by the ``detour`` test.
+    threshold : float, optional
+        Grey level of the foreground (default Otsu) for grey images.
+    spacing : float or (2,) floats, optional
+        Pixel size along (rows, cols) for raster inputs.
+    tolerance : float, optional
+        The one accuracy parameter: the boundary is simplified to within
+        ``tolerance`` and sampled so that each Voronoi vertex lies within
+        about ``tolerance`` of the axis of the simplified shape. Default: a
+        quarter pixel for images, ``1e-4`` of the bounding-box diagonal for
+        polygons. Larger is faster and coarser.
+    detour : float
+        An edge is significant only if the boundary arc between its contacts
+        is at least ``1 + detour`` times their distance (scale-invariant noise
+        test). Default 0.25.
+    boundary : {"contour", "canny"}
+        ``"contour"``: sub-pixel iso-contour (default). ``"canny"``: the
+        paper's route, Canny edge pixels as the point set with inside and
+        outside taken from the filled region.
+
+    Returns
+    -------
+    MedialAxis
+        ``points`` (n, 2), ``radii`` (distance to the boundary), ``edges``;
+        ``metadata`` holds the parameters used; ``raw`` the unpruned axis
+        (extras ``edge_contact_diameter`` and ``edge_contact_arc``).
+
+    Raises
+    ------
+    InvalidInputError, EmptyShapeError, InputFileError, ResourceLimitError
+
+    References
+    ----------
+    Paper 000 (Voronoi/Delaunay medial computation from boundary points) and
+    paper 001 (lambda-medial axis, Lemma 10, Algorithm 5).
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> ma = voronoi_medial_axis(box(0, 0, 4, 2))
+    >>> len(ma.endpoints), len(ma.junctions)
+    (4, 2)
+    """
+    return planar_stages(
+        shape, lam=lam, threshold=threshold, spacing=spacing, tolerance=tolerance, detour=detour, boundary=boundary
+    ).result
+
+
+def reprune(ma: MedialAxis, *, lam: float | None = None, detour: float | None = None) -> MedialAxis:
+    """Re-prune a planar result from its unpruned axis (``ma.raw``)."""
+    raw = ma.raw if ma.raw is not None else ma
+    lam = float(ma.metadata["lam"]) if lam is None else _positive(lam, "lam")
+    detour = float(ma.metadata["detour"]) if detour is None else _positive(detour, "detour")
+    return _pruned(raw, lam, detour, merge_length=float(ma.metadata["tolerance"]))
