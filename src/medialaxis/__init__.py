@@ -10,7 +10,7 @@ from __future__ import annotations
 from medialaxis._version import __version__
 from medialaxis.api import medial_axis
 from medialaxis.core.io import load
-from medialaxis.core.metrics import reconstruction_error
+from medialaxis.metrics import reconstruction_error
 from medialaxis.core.result import Branch, MedialAxis
 from medialaxis.errors import (
     Cancelled,

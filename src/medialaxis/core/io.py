@@ -1,2 +1,363 @@
-def load(path): raise NotImplementedError
-def save(ma, path): raise NotImplementedError
+"""Reading and writing :class:`MedialAxis` results.
+
+Lossless: ``.json`` and ``.npz`` (read back by :func:`load`, including the
+unpruned axis so :meth:`MedialAxis.prune` still works). Exports: ``.graphml``,
+``.geojson``, ``.svg`` (axis over the shape), ``.png`` (plot coloured by
+radius), ``.ply`` (vertices with radius, edges, faces) and ``.obj``.
+Every file is written to a temporary name in the target folder, then renamed,
+so a failure never leaves a half-written file.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import tempfile
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import IO, Any
+
+import numpy as np
+
+from medialaxis.core.result import MedialAxis
+from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
+
+__all__ = ["save", "load", "atomic_write", "WRITERS", "LOSSLESS"]
+
+FORMAT_VERSION = 1
+
+
+@contextlib.contextmanager
+def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO[Any]]:
+    """Open a temporary file next to ``path``; rename it over ``path`` on success."""
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise InputFileError(f"output folder does not exist: {str(folder)!r}")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, mode) as fh:
+            yield fh
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+# ------------------------------------------------------------- lossless
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    return value
+
+
+def _shape_wkt(ma: MedialAxis) -> str | None:
+    return ma.shape.wkt if hasattr(ma.shape, "wkt") else None
+
+
+def _to_dict(ma: MedialAxis) -> dict[str, Any]:
+    return {
+        "format": "medialaxis",
+        "version": FORMAT_VERSION,
+        "points": ma.points.tolist(),
+        "radii": ma.radii.tolist(),
+        "edges": ma.edges.tolist(),
+        "faces": ma.faces.tolist(),
+        # Infinite values (contacts on different rings) are kept as JSON
+        # ``Infinity``, which Python's json module reads back.
+        "extras": {k: {"dtype": str(v.dtype), "shape": list(v.shape), "data": v.tolist()} for k, v in ma.extras.items()},
+        "metadata": _jsonable(dict(ma.metadata)),
+        "shape": _shape_wkt(ma),
+        "raw": _to_dict(ma.raw) if ma.raw is not None else None,
+    }
+
+
+def _extra_from_json(spec: dict[str, Any]) -> np.ndarray:
+    return np.asarray(spec["data"], dtype=spec["dtype"]).reshape(spec["shape"])
+
+
+def _from_dict(d: dict[str, Any]) -> MedialAxis:
+    if d.get("format") != "medialaxis":
+        raise InputFileError("not a medialaxis result file")
+    shape = None
+    if d.get("shape"):
+        import shapely
+
+        shape = shapely.from_wkt(d["shape"])
+    meta = d.get("metadata", {})
+    for key in ("spacing", "image_shape"):
+        if key in meta and isinstance(meta[key], list):
+            meta[key] = tuple(meta[key])
+    dim = len(d["points"][0]) if d["points"] else int(meta.get("dim", 2))
+    return MedialAxis(
+        np.asarray(d["points"], np.float64).reshape(-1, dim),
+        np.asarray(d["radii"], np.float64),
+        np.asarray(d["edges"], np.int64).reshape(-1, 2),
+        np.asarray(d["faces"], np.int64).reshape(-1, 3),
+        extras={k: _extra_from_json(v) for k, v in d.get("extras", {}).items()},
+        metadata=meta,
+        shape=shape,
+        raw=_from_dict(d["raw"]) if d.get("raw") else None,
+    )
+
+
+def _write_json(ma: MedialAxis, path: Path) -> None:
+    d = _to_dict(ma)
+    d["metadata"]["dim"] = ma.dim
+    with atomic_write(path, "w") as fh:
+        json.dump(d, fh)
+
+
+def _npz_arrays(ma: MedialAxis, prefix: str) -> dict[str, np.ndarray]:
+    meta = _jsonable(dict(ma.metadata))
+    meta["dim"] = ma.dim
+    out = {
+        f"{prefix}points": ma.points,
+        f"{prefix}radii": ma.radii,
+        f"{prefix}edges": ma.edges,
+        f"{prefix}faces": ma.faces,
+        f"{prefix}metadata": np.asarray(json.dumps(meta)),
+        f"{prefix}shape": np.asarray(_shape_wkt(ma) or ""),
+    }
+    for k, v in ma.extras.items():
+        out[f"{prefix}extra__{k}"] = v
+    if ma.raw is not None:
+        out.update(_npz_arrays(ma.raw, prefix + "raw__"))
+    return out
+
+
+def _write_npz(ma: MedialAxis, path: Path) -> None:
+    with atomic_write(path, "wb") as fh:
+        np.savez_compressed(fh, format=np.asarray("medialaxis"), version=np.asarray(FORMAT_VERSION), **_npz_arrays(ma, ""))
+
+
+def _from_npz(z: Any, prefix: str) -> MedialAxis:
+    meta = json.loads(str(z[f"{prefix}metadata"]))
+    for key in ("spacing", "image_shape"):
+        if key in meta and isinstance(meta[key], list):
+            meta[key] = tuple(meta[key])
+    wkt = str(z[f"{prefix}shape"])
+    shape = None
+    if wkt:
+        import shapely
+
+        shape = shapely.from_wkt(wkt)
+    extras = {k[len(prefix) + 7 :]: z[k] for k in z.files if k.startswith(f"{prefix}extra__")}
+    has_raw = f"{prefix}raw__points" in z.files
+    return MedialAxis(
+        z[f"{prefix}points"].reshape(-1, int(meta.get("dim", 2))),
+        z[f"{prefix}radii"],
+        z[f"{prefix}edges"],
+        z[f"{prefix}faces"],
+        extras=extras,
+        metadata=meta,
+        shape=shape,
+        raw=_from_npz(z, prefix + "raw__") if has_raw else None,
+    )
+
+
+def load(path: str | os.PathLike[str]) -> MedialAxis:
+    """Read a result written by :meth:`MedialAxis.save` as ``.json`` or ``.npz``.
+
+    Raises
+    ------
+    InputFileError
+        Missing, unreadable or corrupt file.
+    UnsupportedFormatError
+        Any other extension.
+    """
+    path = Path(path)
+    ext = path.suffix.lower()
+    if ext not in LOSSLESS:
+        raise UnsupportedFormatError(f"cannot load {ext!r}; lossless formats are {', '.join(LOSSLESS)}")
+    if not path.is_file():
+        raise InputFileError(f"no such file: {str(path)!r}")
+    try:
+        if ext == ".json":
+            with open(path) as fh:
+                return _from_dict(json.load(fh))
+        with np.load(path, allow_pickle=False) as z:
+            if "format" not in z.files or str(z["format"]) != "medialaxis":
+                raise InputFileError(f"{str(path)!r} is not a medialaxis result file")
+            return _from_npz(z, "")
+    except InputFileError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - corrupt files raise many types
+        raise InputFileError(f"cannot read {str(path)!r}: {type(exc).__name__}: {exc}") from exc
+
+
+# -------------------------------------------------------------- exports
+def _write_graphml(ma: MedialAxis, path: Path) -> None:
+    from medialaxis._optional import require
+
+    nx = require("networkx", "networkx")
+    g = nx.Graph()
+    names = "xyz"
+    for i, (p, r) in enumerate(zip(ma.points.tolist(), ma.radii.tolist())):
+        g.add_node(i, radius=float(r), **{names[k]: float(c) for k, c in enumerate(p)})
+    for a, b in ma._all_edges.tolist():
+        g.add_edge(int(a), int(b))
+    with atomic_write(path, "wb") as fh:
+        nx.write_graphml(g, fh)
+
+
+def _write_geojson(ma: MedialAxis, path: Path) -> None:
+    feats = []
+    for br in ma.branches():
+        feats.append(
+            {
+                "type": "Feature",
+                "geometry": {"type": "LineString", "coordinates": br.points.tolist()},
+                "properties": {"kind": "branch", "radii": br.radii.tolist(), "length": br.length},
+            }
+        )
+    isolated = np.flatnonzero(ma.degree == 0)
+    for kind, idx in (("junction", ma.junctions), ("endpoint", ma.endpoints), ("point", isolated)):
+        for i in idx.tolist():
+            feats.append(
+                {
+                    "type": "Feature",
+                    "geometry": {"type": "Point", "coordinates": ma.points[i].tolist()},
+                    "properties": {"kind": kind, "radius": float(ma.radii[i]), "index": i},
+                }
+            )
+    doc = {"type": "FeatureCollection", "features": feats, "properties": _jsonable(dict(ma.metadata))}
+    with atomic_write(path, "w") as fh:
+        json.dump(doc, fh)
+
+
+def _display_xy(ma: MedialAxis, xy: np.ndarray) -> np.ndarray:
+    """Map axis coordinates to picture (x right, y down) coordinates."""
+    if "image_shape" in ma.metadata:  # (row, col): col is x, row is y (down)
+        return xy[:, ::-1]
+    return np.c_[xy[:, 0], -xy[:, 1]]
+
+
+def _write_svg(ma: MedialAxis, path: Path) -> None:
+    if ma.dim != 2:
+        raise UnsupportedFormatError("SVG export is for planar axes; use .ply, .obj or .png for 3D")
+    parts: list[np.ndarray] = [ma.points]
+    outline: list[np.ndarray] = []
+    if ma.shape is not None:
+        import shapely
+
+        for poly in shapely.get_parts(ma.shape):
+            for ring in [poly.exterior, *poly.interiors]:
+                outline.append(np.asarray(ring.coords))
+        parts.extend(outline)
+    allxy = _display_xy(ma, np.vstack(parts)) if len(np.vstack(parts)) else np.zeros((1, 2))
+    lo, hi = allxy.min(0), allxy.max(0)
+    size = max(float((hi - lo).max()), 1e-12)
+    pad = 0.05 * size
+    scale = 800.0 / (size + 2 * pad)
+    w, h = ((hi - lo) + 2 * pad) * scale
+
+    def tr(xy: np.ndarray) -> np.ndarray:
+        return (_display_xy(ma, xy) - lo + pad) * scale
+
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w:.1f}" height="{h:.1f}" viewBox="0 0 {w:.1f} {h:.1f}">']
+    if outline:
+        d = " ".join("M " + " L ".join(f"{x:.2f},{y:.2f}" for x, y in tr(r)) + " Z" for r in outline)
+        out.append(f'<path d="{d}" fill="#dde6f0" stroke="#445" stroke-width="1" fill-rule="evenodd"/>')
+    for br in ma.branches():
+        pts = " ".join(f"{x:.2f},{y:.2f}" for x, y in tr(br.points))
+        out.append(f'<polyline points="{pts}" fill="none" stroke="#c0392b" stroke-width="1.5"/>')
+    for i in ma.junctions.tolist():
+        x, y = tr(ma.points[i : i + 1])[0]
+        out.append(f'<circle cx="{x:.2f}" cy="{y:.2f}" r="3" fill="#2c3e50"/>')
+    for i in ma.endpoints.tolist():
+        x, y = tr(ma.points[i : i + 1])[0]
+        out.append(f'<circle cx="{x:.2f}" cy="{y:.2f}" r="3" fill="#27ae60"/>')
+    out.append("</svg>")
+    with atomic_write(path, "w") as fh:
+        fh.write("\n".join(out))
+
+
+def _write_png(ma: MedialAxis, path: Path) -> None:
+    from medialaxis.core.plot import plot_axis
+
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    fig = plot_axis(ma)
+    try:
+        with atomic_write(path, "wb") as fh:
+            fig.savefig(fh, format="png", dpi=120, bbox_inches="tight")
+    finally:
+        plt.close(fig)
+
+
+def _write_ply(ma: MedialAxis, path: Path) -> None:
+    n, d = ma.points.shape
+    pts = ma.points if d == 3 else np.c_[ma.points, np.zeros(n)]
+    header = [
+        "ply",
+        "format binary_little_endian 1.0",
+        "comment medialaxis result",
+        f"element vertex {n}",
+        "property double x",
+        "property double y",
+        "property double z",
+        "property double radius",
+        f"element edge {len(ma.edges)}",
+        "property int vertex1",
+        "property int vertex2",
+        f"element face {len(ma.faces)}",
+        "property list uchar int vertex_indices",
+        "end_header",
+    ]
+    vert = np.empty(n, dtype=[("x", "<f8"), ("y", "<f8"), ("z", "<f8"), ("r", "<f8")])
+    vert["x"], vert["y"], vert["z"], vert["r"] = pts[:, 0], pts[:, 1], pts[:, 2], ma.radii
+    face = np.empty(len(ma.faces), dtype=[("k", "u1"), ("v", "<i4", (3,))])
+    face["k"], face["v"] = 3, ma.faces
+    with atomic_write(path, "wb") as fh:
+        fh.write(("\n".join(header) + "\n").encode("ascii"))
+        fh.write(vert.tobytes())
+        fh.write(ma.edges.astype("<i4").tobytes())
+        fh.write(face.tobytes())
+
+
+def _write_obj(ma: MedialAxis, path: Path) -> None:
+    n, d = ma.points.shape
+    pts = ma.points if d == 3 else np.c_[ma.points, np.zeros(n)]
+    with atomic_write(path, "w") as fh:
+        fh.write("# medialaxis result; radius per vertex in the 'vr' comment lines are not standard OBJ\n")
+        np.savetxt(fh, pts, fmt="v %.10g %.10g %.10g")
+        if len(ma.edges):
+            np.savetxt(fh, ma.edges + 1, fmt="l %d %d")
+        if len(ma.faces):
+            np.savetxt(fh, ma.faces + 1, fmt="f %d %d %d")
+
+
+WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
+    ".json": _write_json,
+    ".npz": _write_npz,
+    ".graphml": _write_graphml,
+    ".geojson": _write_geojson,
+    ".svg": _write_svg,
+    ".png": _write_png,
+    ".ply": _write_ply,
+    ".obj": _write_obj,
+}
+LOSSLESS = (".json", ".npz")
+
+
+def save(ma: MedialAxis, path: str | os.PathLike[str]) -> None:
+    """Write ``ma`` to ``path``; the extension picks the format (see module docstring)."""
+    if not isinstance(ma, MedialAxis):
+        raise InvalidInputError(f"expected a MedialAxis, got {type(ma).__name__}")
+    path = Path(path)
+    ext = path.suffix.lower()
+    if ext not in WRITERS:
+        raise UnsupportedFormatError(f"unsupported output format {ext or '(none)'!r}; choose one of {', '.join(WRITERS)}")
+    WRITERS[ext](ma, path)

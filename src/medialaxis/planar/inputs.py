@@ -33,6 +33,9 @@ __all__ = ["PlanarInput", "load_planar", "max_pixels"]
 #: copy, contour bookkeeping), used to refuse images too large before reading.
 BYTES_PER_PIXEL = 48
 
+#: Gaussian sigma (pixels) applied to binary masks before contouring.
+BINARY_SMOOTHING = 1.0
+
 IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff")
 
 
@@ -204,7 +207,14 @@ def _from_array(arr: np.ndarray, threshold: float | None, spacing: np.ndarray) -
             "the mask is all foreground: the shape has no boundary inside the image"
         )
     if arr.dtype == bool:
-        region = contour_region(arr.astype(np.float64), 0.5, spacing)
+        # A binary mask is a sampled smooth shape: its staircase is noise.
+        # The 0.5 level of the mask blurred by one pixel is the smooth
+        # boundary the mask most likely came from (corners round off by
+        # about one pixel).
+        from scipy.ndimage import gaussian_filter
+
+        smooth = gaussian_filter(arr.astype(np.float64), sigma=BINARY_SMOOTHING, mode="constant")
+        region = contour_region(smooth, 0.5, spacing)
     else:
         region = contour_region(arr, level, spacing)
     return PlanarInput(region, spacing, image=arr, foreground=foreground, threshold=level)

@@ -7,8 +7,9 @@ depending on the rotation. Here an edge is *significant* when
 
 * its contact diameter is at least ``lam`` (the lambda-medial axis), and
 * the boundary between its two contacts detours: the arc length between them
-  is at least ``(1 + detour)`` times their distance. Contacts on different
-  rings (around a hole) have an infinite arc.
+  exceeds their distance by at least ``detour`` times that distance and by at
+  least ``2 * lam``. Contacts on different rings (around a hole) have an
+  infinite arc.
 
 The second test is scale invariant: a bump of height ``e`` between contacts
 ``c`` apart adds only about ``8 e**2 / (3 c)`` of arc, so pixel noise on a wide
@@ -34,7 +35,8 @@ __all__ = ["significant_edges", "prune_graph", "merge_close_nodes"]
 
 def significant_edges(contact_diameter: np.ndarray, contact_arc: np.ndarray, lam: float, detour: float) -> np.ndarray:
     """(m,) bool: edges kept by the lambda and detour tests (see module docstring)."""
-    return (contact_diameter >= lam) & (contact_arc >= (1.0 + detour) * contact_diameter)
+    excess = contact_arc - contact_diameter
+    return (contact_diameter >= lam) & (excess >= detour * contact_diameter) & (excess >= 2.0 * lam)
 
 
 def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,7 @@
+"""``python -m medialaxis`` runs the command line."""
+
+import sys
+
+from medialaxis.cli import main
+
+sys.exit(main())

@@ -1,0 +1,191 @@
+"""The ``medialaxis`` command line.
+
+Exit codes: 0 success, 1 failure (bad or unreadable input, computation
+failed), 2 usage error (bad arguments). Errors print one line on stderr,
+never a traceback. Outputs are written atomically and never over the input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+from medialaxis._version import __version__
+from medialaxis.errors import Cancelled, MedialAxisError, UnsupportedFormatError
+
+__all__ = ["main", "SUBCOMMANDS"]
+
+
+class UsageError(Exception):
+    """A command-line usage problem (exit code 2)."""
+
+
+def _parse_option(text: str) -> tuple[str, Any]:
+    key, sep, value = text.partition("=")
+    if not sep or not key:
+        raise UsageError(f"--option expects KEY=VALUE, got {text!r}")
+    try:
+        return key.replace("-", "_"), json.loads(value)
+    except json.JSONDecodeError:
+        return key.replace("-", "_"), value
+
+
+def _check_outputs(inputs: Sequence[Path], outputs: Sequence[Path]) -> None:
+    from medialaxis.core.io import WRITERS
+
+    resolved = {p.resolve() for p in inputs if p.exists()}
+    for out in outputs:
+        if out.resolve() in resolved or (out.exists() and any(out.samefile(p) for p in inputs if p.exists())):
+            raise UsageError(f"refusing to overwrite the input file {str(out)!r}")
+        if out.suffix.lower() not in WRITERS:
+            raise UsageError(f"unsupported output format {out.suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(WRITERS)}")
+
+
+def _summary(ma: Any) -> str:
+    meta = ma.metadata
+    parts = [
+        f"method={meta.get('method')}",
+        f"points={len(ma.points)}",
+        f"edges={len(ma.edges)}",
+        f"faces={len(ma.faces)}",
+    ]
+    if ma.dim == 2 or len(ma.faces) == 0:
+        parts += [f"endpoints={len(ma.endpoints)}", f"junctions={len(ma.junctions)}", f"cycles={ma.n_cycles}"]
+    parts.append(f"components={ma.n_components}")
+    if "lam" in meta:
+        parts.append(f"lam={meta['lam']:.4g}")
+    if len(ma.radii):
+        parts.append(f"radius=[{ma.radii.min():.4g}, {ma.radii.max():.4g}]")
+    return " ".join(parts)
+
+
+# ------------------------------------------------------------ compute
+def _add_compute(sub: Any) -> None:
+    p = sub.add_parser(
+        "compute",
+        help="medial axis of one shape",
+        description="Compute the medial axis of an image, polygon file, mesh or volume.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+    )
+    p.add_argument("input", type=Path, help="image, SVG/GeoJSON/WKT, mesh or volume file (or folder)")
+    p.add_argument("-o", "--output", type=Path, action="append", default=[],
+                   help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj); repeatable")
+    p.add_argument("--method", default=None, help="method within the input's domain (default: the domain's default)")
+    p.add_argument("--lam", type=float, default=None, help="lambda: smallest contact-set diameter kept (output units)")
+    p.add_argument("--threshold", type=float, default=None, help="grey level of the foreground (default: Otsu)")
+    p.add_argument("--spacing", type=float, nargs="+", default=None, help="pixel/voxel size per array axis")
+    p.add_argument("--tolerance", type=float, default=None, help="planar accuracy parameter (output units)")
+    p.add_argument("--detour", type=float, default=None, help="planar pruning detour ratio")
+    p.add_argument("--boundary", choices=["contour", "canny"], default=None, help="planar boundary extraction")
+    p.add_argument("--steps", type=Path, default=None, help="planar: save the pipeline stages as one figure (PNG/SVG/PDF)")
+    p.add_argument("--option", action="append", default=[], metavar="KEY=VALUE",
+                   help="extra method option (value parsed as JSON when possible); repeatable")
+    p.set_defaults(run=_run_compute)
+
+
+def _run_compute(args: argparse.Namespace) -> int:
+    import medialaxis as mx
+
+    outputs = list(args.output) + ([args.steps] if args.steps else [])
+    _check_outputs([args.input], list(args.output))
+    if args.steps is not None:
+        _check_outputs([args.input], [args.steps.with_suffix(".png")])
+        if args.steps.suffix.lower() not in (".png", ".svg", ".pdf"):
+            raise UsageError(f"--steps needs a .png, .svg or .pdf file, got {str(args.steps)!r}")
+    options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
+    for name in ("tolerance", "detour", "boundary"):
+        value = getattr(args, name)
+        if value is not None:
+            options[name] = value
+    spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
+    if args.steps is not None:
+        from medialaxis.planar.pipeline import planar_stages
+        from medialaxis.planar.plotting import save_stages_figure
+
+        if mx._dispatch.classify(str(args.input), args.method) != "planar":
+            raise UsageError("--steps is available for planar inputs")
+        stages = planar_stages(str(args.input), lam=args.lam, threshold=args.threshold, spacing=spacing, **options)
+        ma = stages.result
+        save_stages_figure(stages, args.steps)
+    else:
+        ma = mx.medial_axis(str(args.input), method=args.method, lam=args.lam, threshold=args.threshold,
+                            spacing=spacing, **options)
+    for out in args.output:
+        ma.save(out)
+    print(f"{args.input}: {_summary(ma)}")
+    for out in outputs:
+        print(f"wrote {out}")
+    return 0
+
+
+# --------------------------------------------------------------- demo
+def _add_demo(sub: Any) -> None:
+    p = sub.add_parser(
+        "demo",
+        help="run on the bundled sample shapes",
+        description="Compute the medial axis of every bundled sample shape and write results and plots to a folder.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+    )
+    p.add_argument("outdir", type=Path, nargs="?", default=Path("medialaxis-demo"), help="output folder")
+    p.set_defaults(run=_run_demo)
+
+
+def _run_demo(args: argparse.Namespace) -> int:
+    from medialaxis.demo import run_demo
+
+    for line in run_demo(args.outdir):
+        print(line)
+    return 0
+
+
+#: Subcommand builders; each adds a parser whose ``run`` default handles it.
+SUBCOMMANDS: list[Callable[[Any], None]] = [_add_compute, _add_demo]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="medialaxis",
+        description="Medial axis transforms of images, polygons, meshes and volumes.",
+    )
+    parser.add_argument("--version", action="version", version=f"medialaxis {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for add in SUBCOMMANDS:
+        add(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``medialaxis`` console script; returns the exit code."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # argparse: --help/--version exit 0, errors exit 2
+        return int(exc.code or 0)
+    if not getattr(args, "run", None):
+        parser.print_help(sys.stderr)
+        return 2
+    try:
+        return int(args.run(args))
+    except UsageError as exc:
+        print(f"medialaxis: error: {exc}", file=sys.stderr)
+        return 2
+    except UnsupportedFormatError as exc:
+        print(f"medialaxis: error: {exc}", file=sys.stderr)
+        return 2
+    except (Cancelled, KeyboardInterrupt):
+        print("medialaxis: cancelled", file=sys.stderr)
+        return 1
+    except MedialAxisError as exc:
+        print(f"medialaxis: error: {exc}", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print("medialaxis: error: out of memory", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""3D volumes (CT scans): medial voxels and mid-surfaces of thin-plate parts."""
