@@ -12,12 +12,8 @@ settings.register_profile("ci", max_examples=25, deadline=None, suppress_health_
 settings.load_profile("ci")
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def kimia_dir():
     from pathlib import Path
 
-    here = Path(__file__).resolve().parents[1]
-    for cand in (here / ".." / "shared" / "data" / "kimia99", here / "tests" / "data" / "kimia99"):
-        if cand.is_dir():
-            return cand.resolve()
-    pytest.skip("Kimia-99 data not found")
+    return Path(__file__).resolve().parent / "data" / "kimia99"
