@@ -23,7 +23,7 @@ from scipy.spatial import cKDTree
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
 
-__all__ = ["RawAxis", "inner_triangles", "raw_axis", "boundary_distance"]
+__all__ = ["RawAxis", "proper_triangles", "inner_triangles", "raw_axis", "boundary_distance"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -55,24 +55,29 @@ class RawAxis:
     triangle: np.ndarray
 
 
-def inner_triangles(tri: Triangulation, region: Any) -> np.ndarray:
-    """(T,) bool: proper triangles whose centroid lies inside ``region``.
+def proper_triangles(tri: Triangulation) -> np.ndarray:
+    """(T,) bool: triangles that are not jitter slivers.
 
     Triangles thinner than ``1e-7`` of the extent are the slivers the
     triangulation's jitter makes of collinear samples; they lie on the
     boundary and belong to neither side.
     """
     pts = tri.points[tri.simplices]
-    centroid = pts.mean(axis=1)
     u = pts[:, 1] - pts[:, 0]
     v = pts[:, 2] - pts[:, 0]
     twice_area = np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
     longest = np.sqrt(np.max([(u**2).sum(1), (v**2).sum(1), ((u - v) ** 2).sum(1)], axis=0))
     extent = float(np.ptp(tri.points, axis=0).max())
-    proper = twice_area > 1e-7 * extent * longest
+    return twice_area > 1e-7 * extent * longest
+
+
+def inner_triangles(tri: Triangulation, region: Any) -> np.ndarray:
+    """(T,) bool: proper triangles whose centroid lies inside ``region``."""
+    proper = proper_triangles(tri)
+    centroid = tri.points[tri.simplices[proper]].mean(axis=1)
     shapely.prepare(region)
-    inside = np.zeros(len(pts), bool)
-    inside[proper] = shapely.contains_xy(region, centroid[proper, 0], centroid[proper, 1])
+    inside = np.zeros(len(proper), bool)
+    inside[proper] = shapely.contains_xy(region, centroid[:, 0], centroid[:, 1])
     return inside
 
 
