@@ -42,6 +42,9 @@ class RawAxis:
         Distance between the two contacts.
     contact_arc : (m,) float ndarray
         Boundary arc length between the two contacts (inf across rings).
+    adjacent : (m,) bool ndarray
+        The contacts are consecutive samples: the edge is dual to a boundary
+        piece and runs towards the boundary, never along the medial axis.
     triangle : (n,) int ndarray
         Delaunay triangle of each node.
     """
@@ -52,6 +55,7 @@ class RawAxis:
     contact: np.ndarray
     contact_diameter: np.ndarray
     contact_arc: np.ndarray
+    adjacent: np.ndarray
     triangle: np.ndarray
 
 
@@ -157,5 +161,6 @@ def raw_axis(tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region
     contact = np.c_[ca, cb]
     diameter = np.linalg.norm(tri.points[ca] - tri.points[cb], axis=1)
     arc = smp.arc_between(ca, cb)
+    adjacent = (smp.next[ca] == cb) | (smp.next[cb] == ca)
     radii = boundary_distance(pos, smp)
-    return RawAxis(pos, radii, edges, contact, diameter, arc, t_in)
+    return RawAxis(pos, radii, edges, contact, diameter, arc, adjacent, t_in)

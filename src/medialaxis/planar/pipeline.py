@@ -123,9 +123,15 @@ def _result(
 
 def _pruned(raw: MedialAxis, lam: float, detour: float, merge_length: float) -> MedialAxis:
     """Prune ``raw`` (which carries contact data as extras) with ``lam`` and ``detour``."""
-    diameter = raw.extras["edge_contact_diameter"]
-    arc = raw.extras["edge_contact_arc"]
-    old, edges = prune_graph(len(raw.points), raw.edges, diameter, arc, lam, detour)
+    old, edges = prune_graph(
+        len(raw.points),
+        raw.edges,
+        raw.extras["edge_contact_diameter"],
+        raw.extras["edge_contact_arc"],
+        raw.extras["edge_adjacent_contacts"],
+        lam,
+        detour,
+    )
     points, radii = raw.points[old], raw.radii[old]
     rep, edges = merge_close_nodes(points, edges, merge_length)
     old2, edges = _compact_rep(rep, edges)
@@ -198,7 +204,11 @@ def planar_stages(
         ax.points,
         ax.radii,
         ax.edges,
-        {"edge_contact_diameter": ax.contact_diameter, "edge_contact_arc": ax.contact_arc},
+        {
+            "edge_contact_diameter": ax.contact_diameter,
+            "edge_contact_arc": ax.contact_arc,
+            "edge_adjacent_contacts": ax.adjacent,
+        },
         dict(metadata, pruned=False),
         region,
         None,
@@ -254,7 +264,8 @@ def voronoi_medial_axis(
     MedialAxis
         ``points`` (n, 2), ``radii`` (distance to the boundary), ``edges``;
         ``metadata`` holds the parameters used; ``raw`` the unpruned axis
-        (extras ``edge_contact_diameter`` and ``edge_contact_arc``).
+        (extras ``edge_contact_diameter``, ``edge_contact_arc`` and
+        ``edge_adjacent_contacts``).
 
     Raises
     ------

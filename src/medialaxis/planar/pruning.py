@@ -20,6 +20,15 @@ Insignificant edges are then removed only while they hang off the graph
 (leaf peeling, :func:`medialaxis.core.graph.peel_leaves`), so the result
 keeps the homotopy type of the raw axis: one component per connected shape,
 one cycle per hole, and necks narrower than ``lam`` stay connected.
+
+The detour test decides which branches exist; ``lam`` alone decides how far
+they reach: from each endpoint the branch regrows along the raw axis (the
+continuation of largest contact diameter) while the contact diameter stays
+at least ``lam``, the contacts are not consecutive samples (the Voronoi
+edge dual to a boundary piece runs to the boundary, not along the axis) and
+the boundary still detours by a tenth of ``detour`` (boundary noise does not)
+(:func:`regrow_tips`). Regrowing only extends trees, so it
+changes neither the topology nor the number of endpoints.
 """
 
 from __future__ import annotations
@@ -30,7 +39,10 @@ from scipy.sparse.csgraph import connected_components
 
 from medialaxis.core.graph import compact, peel_leaves
 
-__all__ = ["significant_edges", "prune_graph", "merge_close_nodes"]
+__all__ = ["significant_edges", "regrow_tips", "prune_graph", "merge_close_nodes"]
+
+#: Regrowing needs a boundary detour of at least this fraction of ``detour``.
+REGROW_DETOUR = 0.1
 
 
 def significant_edges(contact_diameter: np.ndarray, contact_arc: np.ndarray, lam: float, detour: float) -> np.ndarray:
@@ -77,11 +89,45 @@ def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) 
     return rep, new
 
 
+def regrow_tips(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarray, contact_diameter: np.ndarray) -> np.ndarray:
+    """Extend every endpoint of the kept graph along ``growable`` removed edges.
+
+    At a fork the edge of largest contact diameter is taken.
+
+    Returns the new keep mask. Each step goes to a node not yet in the kept
+    graph, so no cycle or junction is created.
+    """
+    from medialaxis.core.graph import adjacency, degree
+
+    keep = keep.copy()
+    if not keep.any():
+        return keep
+    adj = adjacency(n, edges)
+    indptr, nbrs, eids = adj.indptr, adj.indices, adj.data - 1
+    deg = degree(n, edges[keep])
+    used = deg > 0
+    for start in np.flatnonzero(deg == 1):
+        node = int(start)
+        while True:
+            best, best_d = -1, -np.inf
+            for k in range(indptr[node], indptr[node + 1]):
+                e = eids[k]
+                if growable[e] and not keep[e] and not used[nbrs[k]] and contact_diameter[e] > best_d:
+                    best, best_d = k, contact_diameter[e]
+            if best < 0:
+                break
+            keep[eids[best]] = True
+            node = int(nbrs[best])
+            used[node] = True
+    return keep
+
+
 def prune_graph(
     n: int,
     edges: np.ndarray,
     contact_diameter: np.ndarray,
     contact_arc: np.ndarray,
+    adjacent_contacts: np.ndarray,
     lam: float,
     detour: float,
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -92,6 +138,9 @@ def prune_graph(
     """
     removable = ~significant_edges(contact_diameter, contact_arc, lam, detour)
     keep = peel_leaves(n, edges, removable)
+    excess = contact_arc - contact_diameter
+    growable = (contact_diameter >= lam) & ~adjacent_contacts & (excess >= REGROW_DETOUR * detour * contact_diameter)
+    keep = regrow_tips(n, edges, keep, growable, contact_diameter)
     kept = edges[keep]
     keep_nodes = np.zeros(n, bool)
     if n:
