@@ -105,7 +105,14 @@ def _sample_and_triangulate(
         new = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length)
         if new is None:
             break
+        added = sum(map(len, new)) - len(smp.points)
         arcs = new
+        if conforming.all() and added < 0.005 * len(smp.points):
+            # a handful of pieces near tips: one more triangulation settles them
+            smp = sample(rings, arcs)
+            tri = triangulate(smp.points)
+            inside = inner_triangles(tri, region)
+            break
     return smp, tri, inside
 
 

@@ -157,7 +157,9 @@ def refine_arcs(
     split = ((h > target) | ~conforming) & (h > 2.0 * min_length)
     if not split.any():
         return None
-    pieces = np.clip(np.ceil(h / target), 2, 16).astype(np.int64)
+    # Over-split by 2 so the radii, which shrink as the sample gets denser
+    # near corners and tips, rarely need another round.
+    pieces = np.clip(np.ceil(2.0 * h / target), 2, 64).astype(np.int64)
     out = []
     for r, a in enumerate(arcs):
         idx = np.flatnonzero(split & (smp.ring == r))
