@@ -144,13 +144,15 @@ def test_spacing_scales_index_coordinates():
     mask = np.zeros((40, 80), bool)
     mask[10:30, 10:70] = True
     a = mx.medial_axis(mask)
-    b = mx.medial_axis(mask, spacing=(0.5, 2.0))
-    assert len(a.endpoints) == len(b.endpoints) == 4
+    b = mx.medial_axis(mask, spacing=(0.5, 1.0))
+    c = mx.medial_axis(mask, spacing=2.0)
+    assert len(a.endpoints) == len(b.endpoints) == len(c.endpoints) == 4
     # the central segment runs along row 19.5 (row spacing 0.5 -> 9.75)
-    mid_a = a.points[a.junctions]
-    mid_b = b.points[b.junctions]
-    np.testing.assert_allclose(mid_a[:, 0], 19.5, atol=0.3)
-    np.testing.assert_allclose(mid_b[:, 0], 19.5 * 0.5, atol=0.3)
+    np.testing.assert_allclose(a.points[a.junctions][:, 0], 19.5, atol=0.3)
+    np.testing.assert_allclose(b.points[b.junctions][:, 0], 19.5 * 0.5, atol=0.3)
+    # isotropic spacing scales everything
+    np.testing.assert_allclose(np.sort(c.radii), np.sort(2 * a.radii), rtol=1e-9, atol=1e-9)
+    assert b.metadata["spacing"] == (0.5, 1.0)
 
 
 def test_canny_route_gives_the_same_structure():

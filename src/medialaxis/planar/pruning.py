@@ -51,42 +51,45 @@ def significant_edges(contact_diameter: np.ndarray, contact_arc: np.ndarray, lam
     return (contact_diameter >= lam) & (excess >= detour * contact_diameter) & (excess >= 2.0 * lam)
 
 
-def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) -> tuple[np.ndarray, np.ndarray]:
+def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Contract tree-shaped clusters of edges shorter than ``min_length``.
 
     Co-circular samples produce coincident Voronoi vertices (the centre of a
-    disc, the mid-line of a rectangle); they are merged into the node of the
-    cluster that comes first. Clusters that contain a cycle are left alone so
-    no hole is lost.
+    disc, the mid-line of a rectangle); each cluster becomes its first node.
+    Clusters that contain a cycle are left alone so no hole is lost.
 
     Returns
     -------
-    representative : (n,) int ndarray
-        Node each node is merged into.
+    kept_nodes : (n',) int ndarray
+        Old index of each remaining node.
     edges : (m', 2) int ndarray
-        Edges between representatives, without self-loops or duplicates.
+        Remaining edges, renumbered, without self-loops or duplicates.
+    kept_edges : (m',) int ndarray
+        Old index of each remaining edge (for its attributes).
     """
     n = len(points)
-    if len(edges) == 0:
-        return np.arange(n), edges
-    length = np.linalg.norm(points[edges[:, 0]] - points[edges[:, 1]], axis=1)
-    short = edges[length < min_length]
     rep = np.arange(n)
-    if len(short):
-        adj = coo_matrix((np.ones(len(short)), (short[:, 0], short[:, 1])), shape=(n, n))
-        _, label = connected_components(adj, directed=False)
-        uniq = np.unique(np.sort(short, 1), axis=0)
-        n_nodes = np.bincount(label, minlength=label.max() + 1)
-        n_edges = np.bincount(label[uniq[:, 0]], minlength=len(n_nodes))
-        tree = n_edges == n_nodes - 1
-        first = np.full(len(n_nodes), n, np.int64)
-        np.minimum.at(first, label, np.arange(n))
-        rep = np.where(tree[label], first[label], np.arange(n))
-    new = rep[edges]
-    new = new[new[:, 0] != new[:, 1]]
-    if len(new):
-        new = np.unique(np.sort(new, 1), axis=0)
-    return rep, new
+    if len(edges):
+        length = np.linalg.norm(points[edges[:, 0]] - points[edges[:, 1]], axis=1)
+        short = edges[length < min_length]
+        if len(short):
+            adj = coo_matrix((np.ones(len(short)), (short[:, 0], short[:, 1])), shape=(n, n))
+            _, label = connected_components(adj, directed=False)
+            uniq = np.unique(np.sort(short, 1), axis=0)
+            n_nodes = np.bincount(label, minlength=label.max() + 1)
+            n_edges = np.bincount(label[uniq[:, 0]], minlength=len(n_nodes))
+            tree = n_edges == n_nodes - 1
+            first = np.full(len(n_nodes), n, np.int64)
+            np.minimum.at(first, label, np.arange(n))
+            rep = np.where(tree[label], first[label], np.arange(n))
+    new = np.sort(rep[edges], axis=1) if len(edges) else np.empty((0, 2), np.int64)
+    candidates = np.flatnonzero(new[:, 0] != new[:, 1])
+    _, first_edge = np.unique(new[candidates], axis=0, return_index=True)
+    kept_edges = np.sort(candidates[first_edge])
+    kept_nodes = np.unique(rep)
+    new_of_old = np.full(n, -1, np.int64)
+    new_of_old[kept_nodes] = np.arange(len(kept_nodes))
+    return kept_nodes, new_of_old[rep[edges[kept_edges]]].reshape(-1, 2), kept_edges
 
 
 def regrow_tips(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarray, contact_diameter: np.ndarray) -> np.ndarray:
