@@ -74,7 +74,7 @@ def _to_dict(ma: MedialAxis) -> dict[str, Any]:
         # Infinite values (contacts on different rings) are kept as JSON
         # ``Infinity``, which Python's json module reads back.
         "extras": {k: {"dtype": str(v.dtype), "shape": list(v.shape), "data": v.tolist()} for k, v in ma.extras.items()},
-        "metadata": _jsonable(dict(ma.metadata)),
+        "metadata": _jsonable(dict(ma.metadata, dim=ma.dim)),
         "shape": _shape_wkt(ma),
         "raw": _to_dict(ma.raw) if ma.raw is not None else None,
     }
@@ -96,7 +96,7 @@ def _from_dict(d: dict[str, Any]) -> MedialAxis:
     for key in ("spacing", "image_shape"):
         if key in meta and isinstance(meta[key], list):
             meta[key] = tuple(meta[key])
-    dim = len(d["points"][0]) if d["points"] else int(meta.get("dim", 2))
+    dim = int(meta.pop("dim", len(d["points"][0]) if d["points"] else 2))
     return MedialAxis(
         np.asarray(d["points"], np.float64).reshape(-1, dim),
         np.asarray(d["radii"], np.float64),
@@ -111,7 +111,6 @@ def _from_dict(d: dict[str, Any]) -> MedialAxis:
 
 def _write_json(ma: MedialAxis, path: Path) -> None:
     d = _to_dict(ma)
-    d["metadata"]["dim"] = ma.dim
     with atomic_write(path, "w") as fh:
         json.dump(d, fh)
 
@@ -152,8 +151,9 @@ def _from_npz(z: Any, prefix: str) -> MedialAxis:
         shape = shapely.from_wkt(wkt)
     extras = {k[len(prefix) + 7 :]: z[k] for k in z.files if k.startswith(f"{prefix}extra__")}
     has_raw = f"{prefix}raw__points" in z.files
+    dim = int(meta.pop("dim", 2))
     return MedialAxis(
-        z[f"{prefix}points"].reshape(-1, int(meta.get("dim", 2))),
+        z[f"{prefix}points"].reshape(-1, dim),
         z[f"{prefix}radii"],
         z[f"{prefix}edges"],
         z[f"{prefix}faces"],

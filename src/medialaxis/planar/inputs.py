@@ -124,6 +124,13 @@ def _read_image(path: Path) -> np.ndarray:
 
 
 def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, float]:
+    if threshold is not None:
+        try:
+            threshold = float(threshold)
+        except (TypeError, ValueError):
+            raise InvalidInputError(f"threshold must be a number, got {threshold!r}") from None
+        if not np.isfinite(threshold):
+            raise InvalidInputError(f"threshold must be finite, got {threshold!r}")
     if image.dtype == bool:
         return image, 0.5
     if threshold is None:
@@ -135,10 +142,6 @@ def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, 
         threshold = float(threshold_otsu(image))
         if not lo <= threshold < hi:  # Otsu can land on the max for two-level images
             threshold = 0.5 * (lo + hi)
-    else:
-        threshold = float(threshold)
-        if not np.isfinite(threshold):
-            raise InvalidInputError(f"threshold must be finite, got {threshold!r}")
     return image > threshold, threshold
 
 

@@ -32,8 +32,9 @@ def stages_figure(stages: Stages) -> Any:
         ax.set_title(title, fontsize=9)
         ax.set_aspect("equal")
     axes[0].plot(*smp.T, ".", ms=2, color="#2c3e50")
-    axes[1].triplot(smp[:, 0], smp[:, 1], tri.simplices[~stages.inside], lw=0.2, color="#aaa")
-    axes[1].triplot(smp[:, 0], smp[:, 1], tri.simplices[stages.inside], lw=0.3, color="#2c3e50")
+    for mask, lw, color in ((~stages.inside, 0.2, "#aaa"), (stages.inside, 0.3, "#2c3e50")):
+        if mask.any():
+            axes[1].triplot(smp[:, 0], smp[:, 1], tri.simplices[mask], lw=lw, color=color)
     draw_axis(axes[2], stages.raw, color_by_radius=False, lw=0.6)
     draw_axis(axes[3], ma, lw=1.5)
     for ax in axes:

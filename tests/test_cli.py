@@ -1,0 +1,142 @@
+"""The command line: round trips of every output format, exit codes, safety."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import medialaxis as mx
+from medialaxis.cli import main
+
+DATA = Path(mx.__file__).parent / "data"
+
+
+@pytest.fixture
+def png(tmp_path):
+    img = np.zeros((60, 100), np.uint8)
+    img[10:50, 10:90] = 255
+    path = tmp_path / "rect.png"
+    Image.fromarray(img).save(path)
+    return path
+
+
+def test_help_and_version(capsys):
+    assert main(["--help"]) == 0
+    assert "compute" in capsys.readouterr().out
+    assert main(["--version"]) == 0
+    assert mx.__version__ in capsys.readouterr().out
+    assert main(["compute", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "--lam" in out and "default" in out
+
+
+def test_no_command_is_a_usage_error(capsys):
+    assert main([]) == 2
+
+
+@pytest.mark.parametrize("ext", [".json", ".npz", ".svg", ".png", ".graphml", ".geojson", ".ply", ".obj"])
+def test_compute_writes_every_format(png, tmp_path, ext, capsys):
+    out = tmp_path / f"axis{ext}"
+    assert main(["compute", str(png), "-o", str(out)]) == 0
+    assert out.is_file() and out.stat().st_size > 0
+    assert "endpoints=4" in capsys.readouterr().out
+    if ext in (".json", ".npz"):
+        ma = mx.load(out)
+        ref = mx.medial_axis(png)
+        np.testing.assert_array_equal(ma.points, ref.points)
+        np.testing.assert_array_equal(ma.edges, ref.edges)
+        assert ma.metadata["lam"] == ref.metadata["lam"]
+    if ext == ".geojson":
+        doc = json.loads(out.read_text())
+        kinds = {f["properties"]["kind"] for f in doc["features"]}
+        assert {"branch", "junction", "endpoint"} <= kinds
+    if ext == ".graphml":
+        import networkx as nx
+
+        g = nx.read_graphml(out)
+        assert g.number_of_nodes() == len(mx.medial_axis(png).points)
+    if ext == ".ply":
+        import trimesh
+
+        loaded = trimesh.load(out, process=False)
+        assert len(loaded.vertices) == len(mx.medial_axis(png).points)
+    if ext == ".svg":
+        text = out.read_text()
+        assert text.startswith("<svg") and "polyline" in text
+    leftovers = [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+    assert not leftovers  # no temporary file left behind
+
+
+def test_steps_figure(png, tmp_path):
+    steps = tmp_path / "steps.png"
+    assert main(["compute", str(png), "--steps", str(steps)]) == 0
+    assert Image.open(steps).size[0] > 1000
+
+
+@pytest.mark.parametrize("name", ["bracket_two_holes.wkt", "kimia_class1_01.png"])
+def test_vector_and_bundled_inputs(name, tmp_path):
+    out = tmp_path / "a.json"
+    assert main(["compute", str(DATA / name), "-o", str(out), "--lam", "1.5", "--option", "detour=0.3"]) == 0
+    ma = mx.load(out)
+    assert ma.metadata["lam"] == 1.5 and ma.metadata["detour"] == 0.3
+
+
+def test_never_overwrites_its_input(png, capsys):
+    before = png.read_bytes()
+    assert main(["compute", str(png), "-o", str(png)]) == 2
+    err = capsys.readouterr().err
+    assert "overwrite" in err and len(err.strip().splitlines()) == 1
+    assert png.read_bytes() == before
+
+
+@pytest.mark.parametrize(
+    "args, code, words",
+    [
+        (["compute", "missing.png"], 1, "no such file"),
+        (["compute", "{png}", "-o", "x.docx"], 2, "unsupported output format"),
+        (["compute", "{png}", "--lam", "-3"], 1, "lam"),
+        (["compute", "{png}", "--lam", "abc"], 2, "invalid float"),
+        (["compute", "{png}", "--option", "novalue"], 2, "KEY=VALUE"),
+        (["compute", "{png}", "--option", "colour=1"], 1, "colour"),
+        (["compute", "{png}", "--method", "flux"], 1, "flux"),
+        (["compute", "{png}", "--steps", "s.txt"], 2, "--steps"),
+        (["frobnicate"], 2, "invalid choice"),
+    ],
+)
+def test_errors_exit_codes_one_line_no_traceback(png, tmp_path, capsys, args, code, words):
+    args = [a.replace("{png}", str(png)) for a in args]
+    args = [str(tmp_path / a) if a in ("x.docx", "s.txt") else a for a in args]
+    assert main(args) == code
+    err = capsys.readouterr().err
+    assert words in err
+    assert "Traceback" not in err
+    if code == 1:
+        assert len(err.strip().splitlines()) == 1
+
+
+def test_empty_image_fails_cleanly(tmp_path, capsys):
+    path = tmp_path / "black.png"
+    Image.fromarray(np.zeros((20, 20), np.uint8)).save(path)
+    assert main(["compute", str(path)]) == 1
+    assert "constant" in capsys.readouterr().err
+
+
+def test_console_script_runs_as_module(png):
+    proc = subprocess.run([sys.executable, "-m", "medialaxis", "compute", str(png)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert "endpoints=4" in proc.stdout
+
+
+def test_demo_writes_results_and_plots(tmp_path, capsys):
+    assert main(["demo", str(tmp_path / "demo")]) == 0
+    out = capsys.readouterr().out
+    assert "kimia_class1_01" in out and "IoU" in out
+    files = {p.name for p in (tmp_path / "demo").iterdir()}
+    assert {"kimia_class1_01.json", "kimia_class1_01.png", "kimia_class1_01.svg", "kimia_class1_01_steps.png"} <= files
+    assert "bracket_two_holes.json" in files
