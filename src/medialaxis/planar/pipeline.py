@@ -14,6 +14,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from medialaxis._progress import progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import ComputationError, InvalidInputError
 from medialaxis.planar.axis import RawAxis, inner_triangles, raw_axis
@@ -103,7 +104,7 @@ def _sample_and_triangulate(
     area = max(region.area, 1e-300)
     start = max(min_length, np.sqrt(area) / 8.0)
     arcs = initial_arcs(rings, start)
-    for _ in range(MAX_REFINEMENTS):
+    for _ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
         smp = sample(rings, arcs)
         tri = triangulate(smp.points)
         inside = inner_triangles(tri, region)
