@@ -29,6 +29,16 @@ def test_result_is_immutable(bracket):
         bracket.metadata["lam"] = 3
 
 
+def test_pickles_for_worker_processes(bracket):
+    import pickle
+
+    back = pickle.loads(pickle.dumps(bracket))
+    np.testing.assert_array_equal(back.points, bracket.points)
+    assert dict(back.metadata) == dict(bracket.metadata)
+    assert not back.points.flags.writeable
+    np.testing.assert_array_equal(back.prune(lam=2.0).edges, bracket.prune(lam=2.0).edges)
+
+
 def test_construction_copies_and_validates():
     pts = np.array([[0.0, 0.0], [1.0, 0.0]])
     ma = mx.MedialAxis(pts, [1.0, 1.0], [[0, 1]])

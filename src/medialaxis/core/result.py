@@ -29,6 +29,10 @@ def _frozen(array: Any, dtype: Any, width: int | None, name: str) -> np.ndarray:
     return out
 
 
+def _rebuild(*fields: Any) -> MedialAxis:
+    return MedialAxis(*fields)
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
 class Branch:
     """A chain of the axis between two nodes that are junctions or endpoints.
@@ -126,6 +130,14 @@ class MedialAxis:
             extras[key] = arr
         set_(self, "extras", MappingProxyType(extras))
         set_(self, "metadata", MappingProxyType(dict(self.metadata)))
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Read-only mappings do not pickle; rebuild from plain dicts (for
+        # multiprocessing and Dask workers).
+        return (
+            _rebuild,
+            (self.points, self.radii, self.edges, self.faces, dict(self.extras), dict(self.metadata), self.shape, self.raw),
+        )
 
     def __getattr__(self, name: str) -> Any:
         # Only called when normal lookup fails: expose documented extras.
