@@ -6,6 +6,7 @@
 
 from __future__ import annotations
 
+from medialaxis.compare.distance import DEFAULTS, distance_matrix, shape_distance, shape_signature
 from medialaxis.compare.signature import Signature, signature
 
-__all__ = ["Signature", "signature"]
+__all__ = ["shape_distance", "distance_matrix", "shape_signature", "signature", "Signature", "DEFAULTS"]

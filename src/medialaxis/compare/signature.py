@@ -134,22 +134,28 @@ def _prune_spurious(
 ) -> np.ndarray:
     """Drop terminal branches that barely leave the disc of their junction.
 
-    Branches protruding less than ``limit`` add almost nothing to the shape
-    (boundary noise). They are removed one at a time, weakest first, while
-    one is below ``limit`` or there are more than ``max_endpoints``
-    endpoints, and never below two endpoints.
+    Each round removes, all at once, every terminal branch protruding less
+    than ``limit`` (boundary noise), or, when none is but there are more
+    than ``max_endpoints`` endpoints, the least protruding ones (ties
+    together, so symmetric shapes stay symmetric). Rounds repeat on the
+    remaining axis; a round that would leave no edge is not applied.
     """
     for _ in range(len(points)):
         n_ends = int((_graph.degree(len(points), edges) == 1).sum())
-        if n_ends <= 2:
-            break
         terminal = _terminal_protrusions(points, radii, edges)
-        if not terminal:
+        if n_ends <= 2 or not terminal:
             break
-        chain, value = min(terminal, key=lambda item: item[1])
-        if value >= limit and n_ends <= max_endpoints:
+        values = np.array([value for _, value in terminal])
+        drop = values < limit
+        if not drop.any():
+            if n_ends <= max_endpoints:
+                break
+            drop = values <= values.min() * (1 + 1e-6) + 1e-12 * (1 + abs(values).max())
+        nodes = np.concatenate([terminal[k][0][1:] for k in np.flatnonzero(drop)])
+        kept = edges[~np.isin(edges, nodes).any(axis=1)]
+        if not len(kept):
             break
-        edges = edges[~np.isin(edges, chain[1:]).any(axis=1)]
+        edges = kept
     return edges
 
 
