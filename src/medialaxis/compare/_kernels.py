@@ -25,20 +25,36 @@ from scipy.optimize import linear_sum_assignment
 __all__ = ["pack", "pair_distances", "reference_distance", "path_costs_reference", "EPS"]
 
 EPS = 1e-12
+#: Cost of a forbidden assignment (finite so the potentials stay finite).
+FORBIDDEN = 1e12
 
 
-def pack(radii: list[np.ndarray], lengths: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Pack per-shape ``(e, e, s)`` radii and ``(e, e)`` lengths into flat arrays.
+Packed = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
-    Returns ``(flat_radii (sum e*e, s), flat_lengths (sum e*e,), offsets (n+1,), counts (n,))``.
+
+def pack(radii: list[np.ndarray], lengths: list[np.ndarray], weights: list[np.ndarray]) -> Packed:
+    """Pack per-shape ``(e, e, s)`` radii, ``(e, e)`` lengths and ``(e,)`` weights into flat arrays.
+
+    Returns ``(flat_radii (sum e*e, s), flat_lengths (sum e*e,), offsets (n+1,),
+    flat_weights (sum e,), weight_offsets (n+1,), counts (n,))``.
     """
     counts = np.array([len(L) for L in lengths], np.int64)
     offsets = np.zeros(len(counts) + 1, np.int64)
     offsets[1:] = np.cumsum(counts * counts)
+    w_offsets = np.zeros(len(counts) + 1, np.int64)
+    w_offsets[1:] = np.cumsum(counts)
     n_samples = radii[0].shape[2] if radii else 1
     flat_r = np.concatenate([r.reshape(-1, n_samples) for r in radii]) if radii else np.zeros((0, 1))
     flat_l = np.concatenate([L.reshape(-1) for L in lengths]) if lengths else np.zeros(0)
-    return np.ascontiguousarray(flat_r, np.float64), np.ascontiguousarray(flat_l, np.float64), offsets, counts
+    flat_w = np.concatenate([np.reshape(w, -1) for w in weights]) if weights else np.zeros(0)
+    return (
+        np.ascontiguousarray(flat_r, np.float64),
+        np.ascontiguousarray(flat_l, np.float64),
+        offsets,
+        np.ascontiguousarray(flat_w, np.float64),
+        w_offsets,
+        counts,
+    )
 
 
 # --------------------------------------------------------------- compiled
@@ -60,26 +76,32 @@ def _path_costs(ra, la, na, rb, lb, nb, alpha):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True)
-def _align(pc, i, k, na, nb, reverse, skip, table):  # pragma: no cover - compiled
-    """Order-keeping alignment of the paths leaving endpoint i (A) and k (B)."""
+def _align(pc, i, k, na, nb, wa, wb, reverse, skip, table):  # pragma: no cover - compiled
+    """Order-keeping alignment of the paths leaving endpoint i (A) and k (B).
+
+    Skipping the path to endpoint j costs ``skip * w[j]``.
+    """
     m = na - 1
     n = nb - 1
-    for a in range(m + 1):
-        table[a, 0] = a * skip
-    for b in range(n + 1):
-        table[0, b] = b * skip
+    table[0, 0] = 0.0
+    for a in range(1, m + 1):
+        table[a, 0] = table[a - 1, 0] + skip * wa[(i + a) % na]
+    for b in range(1, n + 1):
+        l = (k - b) % nb if reverse else (k + b) % nb
+        table[0, b] = table[0, b - 1] + skip * wb[l]
     for a in range(1, m + 1):
         j = (i + a) % na
+        skip_a = skip * wa[j]
         for b in range(1, n + 1):
             if reverse:
                 l = (k - b) % nb
             else:
                 l = (k + b) % nb
             best = table[a - 1, b - 1] + pc[i * na + j, k * nb + l]
-            alt = table[a - 1, b] + skip
+            alt = table[a - 1, b] + skip_a
             if alt < best:
                 best = alt
-            alt = table[a, b - 1] + skip
+            alt = table[a, b - 1] + skip * wb[l]
             if alt < best:
                 best = alt
             table[a, b] = best
@@ -142,41 +164,43 @@ def _assignment(cost):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True)
-def _pair(ra, la, na, rb, lb, nb, alpha, skip, unmatched):  # pragma: no cover - compiled
+def _pair(ra, la, wa, na, rb, lb, wb, nb, alpha, skip, unmatched):  # pragma: no cover - compiled
     pc = _path_costs(ra, la, na, rb, lb, nb, alpha)
     table = np.empty((na, nb))
+    size = na + nb
+    # Augmented assignment: endpoint i of A may go to its own dummy column
+    # (cost unmatched * wa[i]), endpoint k of B to its own dummy row.
+    c = np.full((size, size), FORBIDDEN)
+    c[na:, nb:] = 0.0
+    for i in range(na):
+        c[i, nb + i] = unmatched * wa[i]
+    for k in range(nb):
+        c[na + k, k] = unmatched * wb[k]
     best = np.inf
     for reverse in (False, True):
-        if na <= nb:
-            c = np.empty((na, nb))
-            for i in range(na):
-                for k in range(nb):
-                    c[i, k] = _align(pc, i, k, na, nb, reverse, skip, table)
-        else:
-            c = np.empty((nb, na))
-            for i in range(na):
-                for k in range(nb):
-                    c[k, i] = _align(pc, i, k, na, nb, reverse, skip, table)
+        for i in range(na):
+            for k in range(nb):
+                c[i, k] = _align(pc, i, k, na, nb, wa, wb, reverse, skip, table)
         total = _assignment(c)
         if total < best:
             best = total
-    return (best + unmatched * abs(na - nb)) / max(na, nb)
+    return best / max(na, nb)
 
 
 @njit(cache=True, nogil=True)
-def pair_distances(flat_r, flat_l, offsets, counts, rows, cols, alpha, skip, unmatched):  # pragma: no cover
+def pair_distances(flat_r, flat_l, offsets, flat_w, w_offsets, counts, rows, cols, alpha, skip, unmatched):  # pragma: no cover
     """Distances of the pairs ``(rows[p], cols[p])`` of packed signatures; returns ``(p,)``."""
     out = np.empty(len(rows))
     for p in range(len(rows)):
         a = rows[p]
         b = cols[p]
-        na = counts[a]
-        nb = counts[b]
-        ra = flat_r[offsets[a]:offsets[a + 1]]
-        la = flat_l[offsets[a]:offsets[a + 1]]
-        rb = flat_r[offsets[b]:offsets[b + 1]]
-        lb = flat_l[offsets[b]:offsets[b + 1]]
-        out[p] = _pair(ra, la, na, rb, lb, nb, alpha, skip, unmatched)
+        out[p] = _pair(
+            flat_r[offsets[a]:offsets[a + 1]], flat_l[offsets[a]:offsets[a + 1]], flat_w[w_offsets[a]:w_offsets[a + 1]],
+            counts[a],
+            flat_r[offsets[b]:offsets[b + 1]], flat_l[offsets[b]:offsets[b + 1]], flat_w[w_offsets[b]:w_offsets[b + 1]],
+            counts[b],
+            alpha, skip, unmatched,
+        )
     return out
 
 
@@ -193,31 +217,39 @@ def path_costs_reference(
     return radius + alpha * (lx - ly) ** 2 / (lx + ly + EPS)
 
 
-def _align_reference(seq_costs: np.ndarray, skip: float) -> float:
+def _align_reference(seq_costs: np.ndarray, skip_a: np.ndarray, skip_b: np.ndarray) -> float:
     m, n = seq_costs.shape
     table = np.zeros((m + 1, n + 1))
-    table[:, 0] = np.arange(m + 1) * skip
-    table[0, :] = np.arange(n + 1) * skip
+    table[1:, 0] = np.cumsum(skip_a)
+    table[0, 1:] = np.cumsum(skip_b)
     for a in range(1, m + 1):
         for b in range(1, n + 1):
-            table[a, b] = min(table[a - 1, b - 1] + seq_costs[a - 1, b - 1], table[a - 1, b] + skip, table[a, b - 1] + skip)
+            table[a, b] = min(
+                table[a - 1, b - 1] + seq_costs[a - 1, b - 1],
+                table[a - 1, b] + skip_a[a - 1],
+                table[a, b - 1] + skip_b[b - 1],
+            )
     return float(table[m, n])
 
 
 def reference_distance(
-    ra: np.ndarray, la: np.ndarray, rb: np.ndarray, lb: np.ndarray, alpha: float, skip: float, unmatched: float
+    ra: np.ndarray, la: np.ndarray, wa: np.ndarray, rb: np.ndarray, lb: np.ndarray, wb: np.ndarray,
+    alpha: float, skip: float, unmatched: float,
 ) -> float:
     """Pure NumPy/SciPy version of the compiled pair distance (used by the tests)."""
     na, nb = len(la), len(lb)
     pc = path_costs_reference(ra, la, rb, lb, alpha)
     best = np.inf
     for reverse in (False, True):
-        c = np.empty((na, nb))
+        c = np.full((na + nb, na + nb), FORBIDDEN)
+        c[na:, nb:] = 0.0
+        c[np.arange(na), nb + np.arange(na)] = unmatched * wa
+        c[na + np.arange(nb), np.arange(nb)] = unmatched * wb
         for i in range(na):
             seq_a = np.array([(i + a) % na for a in range(1, na)], np.int64)
             for k in range(nb):
                 seq_b = np.array([((k - b) if reverse else (k + b)) % nb for b in range(1, nb)], np.int64)
-                c[i, k] = _align_reference(pc[i, seq_a, k][:, seq_b], skip)
+                c[i, k] = _align_reference(pc[i, seq_a, k][:, seq_b], skip * wa[seq_a], skip * wb[seq_b])
         rows, cols = linear_sum_assignment(c)
         best = min(best, float(c[rows, cols].sum()))
-    return (best + unmatched * abs(na - nb)) / max(na, nb)
+    return best / max(na, nb)

@@ -31,7 +31,7 @@ __all__ = ["shape_distance", "distance_matrix", "shape_signature", "DEFAULTS"]
 
 #: Matching parameters: weight of the length term, cost of skipping a path
 #: in an alignment, cost of an unmatched endpoint.
-DEFAULTS = {"alpha": 1.0, "skip": 0.1, "unmatched": 0.1}
+DEFAULTS = {"alpha": 0.15, "skip": 0.15, "unmatched": 0.6}
 
 #: Planar ``tolerance`` for vector inputs, as a fraction of sqrt(area): a
 #: similarity-invariant choice, so distances do not move under rotation.
@@ -223,10 +223,8 @@ def shape_distance(
     if sa is sb:
         return 0.0
     _check_samples([sa, sb])
-    flat_r, flat_l, offsets, counts = _kernels.pack([sa.radii, sb.radii], [sa.lengths, sb.lengths])
-    d = _kernels.pair_distances(flat_r, flat_l, offsets, counts, np.array([0]), np.array([1]), *params)
-    e = _kernels.pair_distances(flat_r, flat_l, offsets, counts, np.array([1]), np.array([0]), *params)
-    return float(min(d[0], e[0]))  # equal up to rounding; min makes it exactly symmetric
+    packed = _kernels.pack([sa.radii, sb.radii], [sa.lengths, sb.lengths], [sa.weights, sb.weights])
+    return float(_score_block(packed, np.array([0]), np.array([1]), params)[0])  # equal up to rounding; min makes it exactly symmetric
 
 
 # --------------------------------------------------------------- matrix
@@ -236,10 +234,9 @@ def _blocks(n_pairs: int, n_blocks: int) -> list[slice]:
 
 
 def _score_block(packed: tuple[np.ndarray, ...], rows: np.ndarray, cols: np.ndarray, params: tuple[float, ...]) -> np.ndarray:
-    flat_r, flat_l, offsets, counts = packed
-    forward = _kernels.pair_distances(flat_r, flat_l, offsets, counts, rows, cols, *params)
-    backward = _kernels.pair_distances(flat_r, flat_l, offsets, counts, cols, rows, *params)
-    return np.minimum(forward, backward)
+    forward = _kernels.pair_distances(*packed, rows, cols, *params)
+    backward = _kernels.pair_distances(*packed, cols, rows, *params)
+    return np.minimum(forward, backward)  # equal up to rounding; min makes it exactly symmetric
 
 
 def _dask_client(scheduler: Any) -> Any:
@@ -323,7 +320,7 @@ def distance_matrix(
     out = np.zeros((n, n))
     if n == 1:
         return out
-    packed = _kernels.pack([s.radii for s in sigs], [s.lengths for s in sigs])
+    packed = _kernels.pack([s.radii for s in sigs], [s.lengths for s in sigs], [s.weights for s in sigs])
     rows, cols = np.triu_indices(n, 1)
     n_pairs = len(rows)
     workers = (os.cpu_count() or 1) if n_jobs is None else int(n_jobs)

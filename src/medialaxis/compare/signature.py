@@ -32,7 +32,7 @@ __all__ = ["Signature", "signature", "DEFAULT_SAMPLES", "DEFAULT_PRUNE"]
 DEFAULT_SAMPLES = 24
 #: Terminal branches protruding less than this fraction of the shape scale
 #: beyond the disc of their junction are dropped before matching.
-DEFAULT_PRUNE = 0.06
+DEFAULT_PRUNE = 0.045
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -47,6 +47,11 @@ class Signature:
         spaced in arc length, divided by ``scale``. ``radii[j, i]`` is its reverse.
     lengths : (e, e) float64 ndarray
         Geodesic path lengths divided by ``scale`` (symmetric, zero diagonal).
+    weights : (e,) float64 ndarray
+        Significance of each endpoint: how far its terminal branch protrudes
+        past the disc of its junction (half the path length for an axis
+        without junction), divided by ``scale``. Leaving an endpoint or a
+        path to it unmatched costs in proportion to it.
     endpoints : (e, 2) float64 ndarray
         Endpoint coordinates (input units), in boundary order.
     scale : float
@@ -59,6 +64,7 @@ class Signature:
 
     radii: np.ndarray
     lengths: np.ndarray
+    weights: np.ndarray
     endpoints: np.ndarray
     scale: float
     points: np.ndarray
@@ -157,6 +163,19 @@ def _prune_spurious(
             break
         edges = kept
     return edges
+
+
+def _endpoint_weights(
+    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, ends: np.ndarray, lengths: np.ndarray
+) -> np.ndarray:
+    """Protrusion of the terminal branch of each endpoint (see :func:`_terminal_protrusions`)."""
+    out = np.full(len(ends), lengths.max() / 2 if lengths.size else 0.0)
+    where = {int(e): k for k, e in enumerate(ends)}
+    for chain, value in _terminal_protrusions(points, radii, edges):
+        k = where.get(int(chain[-1]))
+        if k is not None:
+            out[k] = value
+    return out
 
 
 def _boundary_order(points: np.ndarray, edges: np.ndarray, ends: np.ndarray) -> np.ndarray:
@@ -345,4 +364,5 @@ def signature(
     else:
         order = _boundary_order(points, edges, ends)
     path_r, path_l = _paths(points, radii, edges, order, int(n_samples))
-    return Signature(path_r / scale, path_l / scale, points[order], scale, points, radii, edges)
+    weights = _endpoint_weights(points, radii, edges, order, path_l)
+    return Signature(path_r / scale, path_l / scale, weights / scale, points[order], scale, points, radii, edges)
