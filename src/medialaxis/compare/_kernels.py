@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 from scipy.optimize import linear_sum_assignment
 
-__all__ = ["pack", "pair_distances", "reference_distance", "path_costs_reference", "EPS"]
+__all__ = ["pack", "pair_distances", "reference_distance", "reference_match", "path_costs_reference", "EPS"]
 
 EPS = 1e-12
 #: Cost of a forbidden assignment (finite so the potentials stay finite).
@@ -237,9 +237,18 @@ def reference_distance(
     alpha: float, skip: float, unmatched: float,
 ) -> float:
     """Pure NumPy/SciPy version of the compiled pair distance (used by the tests)."""
+    return reference_match(ra, la, wa, rb, lb, wb, alpha, skip, unmatched)[0]
+
+
+def reference_match(
+    ra: np.ndarray, la: np.ndarray, wa: np.ndarray, rb: np.ndarray, lb: np.ndarray, wb: np.ndarray,
+    alpha: float, skip: float, unmatched: float,
+) -> tuple[float, list[tuple[int, int]]]:
+    """The pair distance and the endpoint pairs ``(i of A, k of B)`` it matched."""
     na, nb = len(la), len(lb)
     pc = path_costs_reference(ra, la, rb, lb, alpha)
     best = np.inf
+    pairs: list[tuple[int, int]] = []
     for reverse in (False, True):
         c = np.full((na + nb, na + nb), FORBIDDEN)
         c[na:, nb:] = 0.0
@@ -251,5 +260,8 @@ def reference_distance(
                 seq_b = np.array([((k - b) if reverse else (k + b)) % nb for b in range(1, nb)], np.int64)
                 c[i, k] = _align_reference(pc[i, seq_a, k][:, seq_b], skip * wa[seq_a], skip * wb[seq_b])
         rows, cols = linear_sum_assignment(c)
-        best = min(best, float(c[rows, cols].sum()))
-    return best / max(na, nb)
+        total = float(c[rows, cols].sum())
+        if total < best:
+            best = total
+            pairs = [(int(i), int(k)) for i, k in zip(rows, cols) if i < na and k < nb]
+    return best / max(na, nb), pairs
