@@ -275,6 +275,19 @@ def _score_block(packed: tuple[np.ndarray, ...], rows: np.ndarray, cols: np.ndar
     return np.minimum(forward, backward)  # equal up to rounding; min makes it exactly symmetric
 
 
+def _check_scheduler(scheduler: Any) -> None:
+    if scheduler in (None, "threads", "synchronous"):
+        return
+    if isinstance(scheduler, str) and "://" in scheduler:
+        return
+    if not isinstance(scheduler, str) and hasattr(scheduler, "submit") and hasattr(scheduler, "scatter"):
+        return
+    raise InvalidInputError(
+        f"scheduler must be None, 'threads', 'synchronous', a dask Client or an address like "
+        f"'tcp://host:8786', got {scheduler!r}"
+    )
+
+
 def _check_jobs(n_jobs: Any) -> None:
     if n_jobs is not None and (isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs < 1):
         raise InvalidInputError(f"n_jobs must be a positive integer or None, got {n_jobs!r}")
@@ -308,6 +321,7 @@ def query_distances(
     """
     params = _params(alpha, skip, unmatched)
     _check_jobs(n_jobs)
+    _check_scheduler(scheduler)
     shapes = list(shapes)
     sigs = [shape_signature(query, n_samples=n_samples, prune=prune, **axis_options)] + [
         shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
@@ -358,10 +372,6 @@ def _score_pairs(
                 for blk, fut in progress(futures, desc="pairs", total=len(futures), show=show_progress):
                     values[blk] = fut.result()
     else:
-        if isinstance(scheduler, str) and scheduler in ("processes", "single-threaded", "sync"):
-            raise InvalidInputError(
-                f"scheduler must be None, 'threads', 'synchronous', a dask Client or an address, got {scheduler!r}"
-            )
         client, owned = _dask_client(scheduler)
         try:
             shared = client.scatter(packed, broadcast=True)
@@ -437,6 +447,7 @@ def distance_matrix(
     if n == 0:
         raise InvalidInputError("distance_matrix needs at least one shape, got an empty collection")
     _check_jobs(n_jobs)
+    _check_scheduler(scheduler)
     sigs = [
         shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
         for s in progress(shapes, desc="signatures", total=n, show=show_progress)
