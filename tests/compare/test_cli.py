@@ -63,3 +63,12 @@ def test_usage_and_input_errors(kimia_dir, tmp_path, capsys):
     assert "error" in err and "Traceback" not in err
     assert main(["compare", "--help"]) == 0
     assert main(["search", "--help"]) == 0
+
+
+def test_demo_case_writes_match_picture(tmp_path):
+    from medialaxis.compare.demo import DEMO_CASES
+
+    (title, run), = DEMO_CASES
+    line = run(tmp_path)
+    assert title == "compare" and line.startswith("compare:")
+    assert (tmp_path / "compare_match.png").stat().st_size > 1000
