@@ -85,5 +85,7 @@ def test_errors():
         signature(ma, n_samples=1)
     with pytest.raises(InvalidInputError, match="prune"):
         signature(ma, prune=-1)
+    with pytest.raises(InvalidInputError, match="prune"):
+        signature(ma, prune="much")
     with pytest.raises(EmptyShapeError):
         shape_signature(np.zeros((20, 20), bool))

@@ -336,6 +336,10 @@ def signature(
         )
     if not isinstance(n_samples, (int, np.integer)) or n_samples < 2:
         raise InvalidInputError(f"n_samples must be an integer >= 2, got {n_samples!r}")
+    try:
+        prune = float(prune)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"prune must be a number, got {prune!r}") from None
     if not np.isfinite(prune) or prune < 0:
         raise InvalidInputError(f"prune must be finite and >= 0, got {prune!r}")
     if not isinstance(max_endpoints, (int, np.integer)) or max_endpoints < 2:
