@@ -5,8 +5,11 @@ block of pairs is scored in one ``nogil`` call: threads then run in parallel.
 
 Per pair (Bai and Latecki, TPAMI 2008):
 
-1. path cost between path ``(i, j)`` of shape A and path ``(k, l)`` of B:
-   ``mean_t (r_t - r'_t)**2 / (r_t + r'_t) + alpha * (L - L')**2 / (L + L')``;
+1. path cost between path ``(i, j)`` of shape A and path ``(k, l)`` of B, with
+   ``chi(x, y) = (x - y)**2 / (x + y)``:
+   ``mean_t chi(r_t, r'_t) + alpha chi(L, L') + beta chi(C, C') + gamma mean_k chi(b_k, b'_k)``
+   (radius function ``r``, path length ``L``, chord ``C``, bend profile ``b``;
+   Bai and Latecki use the first two terms);
 2. endpoint cost ``C[i, k]``: the paths leaving ``i`` (in boundary order)
    aligned to those leaving ``k`` by dynamic programming that keeps the order
    and may skip a path at cost ``skip``;
@@ -29,49 +32,69 @@ EPS = 1e-12
 FORBIDDEN = 1e12
 
 
-Packed = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+Packed = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]
 
 
-def pack(radii: list[np.ndarray], lengths: list[np.ndarray], weights: list[np.ndarray]) -> Packed:
-    """Pack per-shape ``(e, e, s)`` radii, ``(e, e)`` lengths and ``(e,)`` weights into flat arrays.
+def pack(
+    radii: list[np.ndarray],
+    lengths: list[np.ndarray],
+    chords: list[np.ndarray],
+    bends: list[np.ndarray],
+    weights: list[np.ndarray],
+) -> Packed:
+    """Pack per-shape path features into flat arrays for :func:`pair_distances`.
 
-    Returns ``(flat_radii (sum e*e, s), flat_lengths (sum e*e,), offsets (n+1,),
-    flat_weights (sum e,), weight_offsets (n+1,), counts (n,))``.
+    Per shape: radii ``(e, e, s)``, lengths and chords ``(e, e)``, bends
+    ``(e, e, b)``, weights ``(e,)``. Returns ``(profiles (sum e*e, s + b),
+    scalars (sum e*e, 2), offsets (n+1,), flat_weights (sum e,),
+    weight_offsets (n+1,), counts (n,), s)``.
     """
     counts = np.array([len(L) for L in lengths], np.int64)
     offsets = np.zeros(len(counts) + 1, np.int64)
     offsets[1:] = np.cumsum(counts * counts)
     w_offsets = np.zeros(len(counts) + 1, np.int64)
     w_offsets[1:] = np.cumsum(counts)
-    n_samples = radii[0].shape[2] if radii else 1
-    flat_r = np.concatenate([r.reshape(-1, n_samples) for r in radii]) if radii else np.zeros((0, 1))
-    flat_l = np.concatenate([L.reshape(-1) for L in lengths]) if lengths else np.zeros(0)
-    flat_w = np.concatenate([np.reshape(w, -1) for w in weights]) if weights else np.zeros(0)
+    n_samples = radii[0].shape[2]
+    n_bend = bends[0].shape[2]
+    profiles = np.concatenate(
+        [np.concatenate([r.reshape(-1, n_samples), b.reshape(-1, n_bend)], axis=1) for r, b in zip(radii, bends)]
+    )
+    scalars = np.concatenate([np.column_stack([L.reshape(-1), C.reshape(-1)]) for L, C in zip(lengths, chords)])
+    flat_w = np.concatenate([np.reshape(w, -1) for w in weights])
     return (
-        np.ascontiguousarray(flat_r, np.float64),
-        np.ascontiguousarray(flat_l, np.float64),
+        np.ascontiguousarray(profiles, np.float64),
+        np.ascontiguousarray(scalars, np.float64),
         offsets,
         np.ascontiguousarray(flat_w, np.float64),
         w_offsets,
         counts,
+        int(n_samples),
     )
 
 
 # --------------------------------------------------------------- compiled
 @njit(cache=True, nogil=True)
-def _path_costs(ra, la, na, rb, lb, nb, alpha):  # pragma: no cover - compiled
-    s = ra.shape[1]
+def _chi(x, y):  # pragma: no cover - compiled
+    return (x - y) * (x - y) / (x + y + EPS)
+
+
+@njit(cache=True, nogil=True)
+def _path_costs(pa, sa, na, pb, sb, nb, n_radius, alpha, beta, gamma):  # pragma: no cover - compiled
+    n_cols = pa.shape[1]
+    n_bend = n_cols - n_radius
     out = np.zeros((na * na, nb * nb))
     for p in range(na * na):
         for q in range(nb * nb):
-            acc = 0.0
-            for t in range(s):
-                x = ra[p, t]
-                y = rb[q, t]
-                acc += (x - y) * (x - y) / (x + y + EPS)
-            x = la[p]
-            y = lb[q]
-            out[p, q] = acc / s + alpha * (x - y) * (x - y) / (x + y + EPS)
+            radius = 0.0
+            for t in range(n_radius):
+                radius += _chi(pa[p, t], pb[q, t])
+            bend = 0.0
+            for t in range(n_radius, n_cols):
+                bend += _chi(pa[p, t], pb[q, t])
+            cost = radius / n_radius + alpha * _chi(sa[p, 0], sb[q, 0]) + beta * _chi(sa[p, 1], sb[q, 1])
+            if n_bend > 0:
+                cost += gamma * bend / n_bend
+            out[p, q] = cost
     return out
 
 
@@ -164,8 +187,8 @@ def _assignment(cost):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True)
-def _pair(ra, la, wa, na, rb, lb, wb, nb, alpha, skip, unmatched):  # pragma: no cover - compiled
-    pc = _path_costs(ra, la, na, rb, lb, nb, alpha)
+def _pair(pa, sa, wa, na, pb, sb, wb, nb, n_radius, alpha, beta, gamma, skip, unmatched):  # pragma: no cover
+    pc = _path_costs(pa, sa, na, pb, sb, nb, n_radius, alpha, beta, gamma)
     table = np.empty((na, nb))
     size = na + nb
     # Augmented assignment: endpoint i of A may go to its own dummy column
@@ -188,33 +211,42 @@ def _pair(ra, la, wa, na, rb, lb, wb, nb, alpha, skip, unmatched):  # pragma: no
 
 
 @njit(cache=True, nogil=True)
-def pair_distances(flat_r, flat_l, offsets, flat_w, w_offsets, counts, rows, cols, alpha, skip, unmatched):  # pragma: no cover
+def pair_distances(
+    profiles, scalars, offsets, flat_w, w_offsets, counts, n_radius, rows, cols, alpha, beta, gamma, skip, unmatched
+):  # pragma: no cover - compiled
     """Distances of the pairs ``(rows[p], cols[p])`` of packed signatures; returns ``(p,)``."""
     out = np.empty(len(rows))
     for p in range(len(rows)):
         a = rows[p]
         b = cols[p]
         out[p] = _pair(
-            flat_r[offsets[a]:offsets[a + 1]], flat_l[offsets[a]:offsets[a + 1]], flat_w[w_offsets[a]:w_offsets[a + 1]],
+            profiles[offsets[a]:offsets[a + 1]], scalars[offsets[a]:offsets[a + 1]], flat_w[w_offsets[a]:w_offsets[a + 1]],
             counts[a],
-            flat_r[offsets[b]:offsets[b + 1]], flat_l[offsets[b]:offsets[b + 1]], flat_w[w_offsets[b]:w_offsets[b + 1]],
+            profiles[offsets[b]:offsets[b + 1]], scalars[offsets[b]:offsets[b + 1]], flat_w[w_offsets[b]:w_offsets[b + 1]],
             counts[b],
-            alpha, skip, unmatched,
+            n_radius, alpha, beta, gamma, skip, unmatched,
         )
     return out
 
 
 # -------------------------------------------------------------- references
+def _chi_reference(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    return (x - y) ** 2 / (x + y + EPS)
+
+
 def path_costs_reference(
-    ra: np.ndarray, la: np.ndarray, rb: np.ndarray, lb: np.ndarray, alpha: float
+    ra: np.ndarray, la: np.ndarray, ca: np.ndarray, ba: np.ndarray,
+    rb: np.ndarray, lb: np.ndarray, cb: np.ndarray, bb: np.ndarray,
+    alpha: float, beta: float, gamma: float,
 ) -> np.ndarray:
     """NumPy path cost tensor ``(na, na, nb, nb)`` of two signatures."""
-    x = ra[:, :, None, None, :]
-    y = rb[None, None, :, :, :]
-    radius = ((x - y) ** 2 / (x + y + EPS)).mean(axis=-1)
-    lx = la[:, :, None, None]
-    ly = lb[None, None, :, :]
-    return radius + alpha * (lx - ly) ** 2 / (lx + ly + EPS)
+    def cross(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        return _chi_reference(x[:, :, None, None, ...], y[None, None, ...])
+
+    cost = cross(ra, rb).mean(axis=-1) + alpha * cross(la, lb) + beta * cross(ca, cb)
+    if ba.shape[-1]:
+        cost = cost + gamma * cross(ba, bb).mean(axis=-1)
+    return cost
 
 
 def _align_reference(seq_costs: np.ndarray, skip_a: np.ndarray, skip_b: np.ndarray) -> float:
@@ -232,21 +264,24 @@ def _align_reference(seq_costs: np.ndarray, skip_a: np.ndarray, skip_b: np.ndarr
     return float(table[m, n])
 
 
-def reference_distance(
-    ra: np.ndarray, la: np.ndarray, wa: np.ndarray, rb: np.ndarray, lb: np.ndarray, wb: np.ndarray,
-    alpha: float, skip: float, unmatched: float,
-) -> float:
-    """Pure NumPy/SciPy version of the compiled pair distance (used by the tests)."""
-    return reference_match(ra, la, wa, rb, lb, wb, alpha, skip, unmatched)[0]
+def reference_distance(a: tuple[np.ndarray, ...], b: tuple[np.ndarray, ...], *params: float) -> float:
+    """Pure NumPy/SciPy version of the compiled pair distance (used by the tests).
+
+    ``a`` and ``b`` are ``(radii, lengths, chords, bends, weights)``; ``params``
+    are ``alpha, beta, gamma, skip, unmatched``.
+    """
+    return reference_match(a, b, *params)[0]
 
 
 def reference_match(
-    ra: np.ndarray, la: np.ndarray, wa: np.ndarray, rb: np.ndarray, lb: np.ndarray, wb: np.ndarray,
-    alpha: float, skip: float, unmatched: float,
+    a: tuple[np.ndarray, ...], b: tuple[np.ndarray, ...],
+    alpha: float, beta: float, gamma: float, skip: float, unmatched: float,
 ) -> tuple[float, list[tuple[int, int]]]:
     """The pair distance and the endpoint pairs ``(i of A, k of B)`` it matched."""
+    ra, la, ca, ba, wa = a
+    rb, lb, cb, bb, wb = b
     na, nb = len(la), len(lb)
-    pc = path_costs_reference(ra, la, rb, lb, alpha)
+    pc = path_costs_reference(ra, la, ca, ba, rb, lb, cb, bb, alpha, beta, gamma)
     best = np.inf
     pairs: list[tuple[int, int]] = []
     for reverse in (False, True):
@@ -255,9 +290,9 @@ def reference_match(
         c[np.arange(na), nb + np.arange(na)] = unmatched * wa
         c[na + np.arange(nb), np.arange(nb)] = unmatched * wb
         for i in range(na):
-            seq_a = np.array([(i + a) % na for a in range(1, na)], np.int64)
+            seq_a = np.array([(i + s) % na for s in range(1, na)], np.int64)
             for k in range(nb):
-                seq_b = np.array([((k - b) if reverse else (k + b)) % nb for b in range(1, nb)], np.int64)
+                seq_b = np.array([((k - s) if reverse else (k + s)) % nb for s in range(1, nb)], np.int64)
                 c[i, k] = _align_reference(pc[i, seq_a, k][:, seq_b], skip * wa[seq_a], skip * wb[seq_b])
         rows, cols = linear_sum_assignment(c)
         total = float(c[rows, cols].sum())

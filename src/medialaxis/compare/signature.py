@@ -30,6 +30,8 @@ __all__ = ["Signature", "signature", "DEFAULT_SAMPLES", "DEFAULT_PRUNE"]
 
 #: Radius samples per skeleton path.
 DEFAULT_SAMPLES = 24
+#: Interior samples of each path's bend profile.
+N_BEND = 7
 #: Terminal branches protruding less than this fraction of the shape scale
 #: beyond the disc of their junction are dropped before matching.
 DEFAULT_PRUNE = 0.045
@@ -47,6 +49,12 @@ class Signature:
         spaced in arc length, divided by ``scale``. ``radii[j, i]`` is its reverse.
     lengths : (e, e) float64 ndarray
         Geodesic path lengths divided by ``scale`` (symmetric, zero diagonal).
+    chords : (e, e) float64 ndarray
+        Straight-line distances between endpoints divided by ``scale``.
+    bends : (e, e, b) float64 ndarray
+        Bend profile of each path: distance from the midpoint of its chord of
+        the path points at arc-length fractions ``1/(b+1) ... b/(b+1)``,
+        divided by ``scale`` (0 for a straight path's middle).
     weights : (e,) float64 ndarray
         Significance of each endpoint: how far its terminal branch protrudes
         past the disc of its junction (half the path length for an axis
@@ -64,6 +72,8 @@ class Signature:
 
     radii: np.ndarray
     lengths: np.ndarray
+    chords: np.ndarray
+    bends: np.ndarray
     weights: np.ndarray
     endpoints: np.ndarray
     scale: float
@@ -243,15 +253,51 @@ def _weighted(n: int, edges: np.ndarray, weights: np.ndarray) -> Any:
 
 
 def _paths(
-    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, ends: np.ndarray, n_samples: int
-) -> tuple[np.ndarray, np.ndarray]:
-    """Resampled radius functions and lengths of the geodesic paths between endpoints."""
+    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, ends: np.ndarray, n_samples: int, n_bend: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Radius functions, lengths and bend profiles of the geodesic paths between endpoints.
+
+    Returns ``(radii (e, e, n_samples), lengths (e, e), bends (e, e, n_bend))``;
+    the bend profile is the distance from the chord's midpoint of the path
+    points at ``n_bend`` interior arc-length fractions ``k / (n_bend + 1)``.
+    """
     e = len(ends)
     out_r = np.zeros((e, e, n_samples))
     out_l = np.zeros((e, e))
+    out_b = np.zeros((e, e, n_bend))
     if not len(edges):
         out_r[:] = radii[ends[0]]
-        return out_r, out_l
+        return out_r, out_l, out_b
+    n = len(points)
+    weights = _edge_lengths(points, edges)
+    dist, pred = csgraph.dijkstra(_weighted(n, edges, weights), directed=False, indices=ends, return_predecessors=True)
+    t = np.linspace(0.0, 1.0, n_samples)
+    tb = np.arange(1, n_bend + 1) / (n_bend + 1)
+    for i in range(e):
+        for j in range(e):
+            if i == j:
+                out_r[i, j] = radii[ends[i]]
+                continue
+            if j < i:
+                out_r[i, j] = out_r[j, i][::-1]
+                out_l[i, j] = out_l[j, i]
+                out_b[i, j] = out_b[j, i][::-1]
+                continue
+            path = [int(ends[j])]
+            while path[-1] != ends[i]:
+                path.append(int(pred[i, path[-1]]))
+            path.reverse()
+            p = points[path]
+            arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
+            total = arc[-1]
+            out_l[i, j] = total
+            if total > 0:
+                out_r[i, j] = np.interp(t * total, arc, radii[path])
+                along = np.column_stack([np.interp(tb * total, arc, p[:, 0]), np.interp(tb * total, arc, p[:, 1])])
+                out_b[i, j] = np.linalg.norm(along - (p[0] + p[-1]) / 2, axis=1)
+            else:
+                out_r[i, j] = radii[path[0]]
+    return out_r, out_l, out_b
     n = len(points)
     weights = _edge_lengths(points, edges)
     dist, pred = csgraph.dijkstra(_weighted(n, edges, weights), directed=False, indices=ends, return_predecessors=True)
@@ -367,6 +413,10 @@ def signature(
         order = ends
     else:
         order = _boundary_order(points, edges, ends)
-    path_r, path_l = _paths(points, radii, edges, order, int(n_samples))
+    path_r, path_l, bends = _paths(points, radii, edges, order, int(n_samples), N_BEND)
     weights = _endpoint_weights(points, radii, edges, order, path_l)
-    return Signature(path_r / scale, path_l / scale, weights / scale, points[order], scale, points, radii, edges)
+    ends_xy = points[order]
+    chords = np.linalg.norm(ends_xy[:, None, :] - ends_xy[None, :, :], axis=2)
+    return Signature(
+        path_r / scale, path_l / scale, chords / scale, bends / scale, weights / scale, ends_xy, scale, points, radii, edges
+    )
