@@ -102,7 +102,7 @@ def shape_signature(
     if isinstance(shape, (str, os.PathLike)):
         path = Path(shape).resolve()
         stat = path.stat()
-        file_key = (str(path), stat.st_mtime_ns, stat.st_size, key, tuple(sorted(axis_options.items())))
+        file_key = (str(path), stat.st_mtime_ns, stat.st_size, key, repr(sorted(axis_options.items())))
         with _LOCK:
             hit = _FILE_CACHE.get(file_key)
             if hit is not None:
