@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from medialaxis._version import __version__
 from medialaxis.api import medial_axis
+from medialaxis.compare import distance_matrix, shape_distance
 from medialaxis.core.io import load
 from medialaxis.metrics import reconstruction_error
 from medialaxis.core.result import Branch, MedialAxis
@@ -27,6 +28,8 @@ from medialaxis.errors import (
 __all__ = [
     "__version__",
     "medial_axis",
+    "shape_distance",
+    "distance_matrix",
     "load",
     "reconstruction_error",
     "MedialAxis",

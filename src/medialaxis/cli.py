@@ -145,6 +145,10 @@ def _run_demo(args: argparse.Namespace) -> int:
 #: Subcommand builders; each adds a parser whose ``run`` default handles it.
 SUBCOMMANDS: list[Callable[[Any], None]] = [_add_compute, _add_demo]
 
+from medialaxis.compare.cli import add_compare, add_search  # noqa: E402
+
+SUBCOMMANDS += [add_compare, add_search]
+
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(

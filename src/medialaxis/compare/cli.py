@@ -1,0 +1,186 @@
+"""``medialaxis compare A B`` and ``medialaxis search QUERY FOLDER`` subcommands.
+
+Registered in :data:`medialaxis.cli.SUBCOMMANDS`; errors are raised as
+:class:`~medialaxis.errors.MedialAxisError` or ``UsageError`` and turned into
+exit codes by :func:`medialaxis.cli.main`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture"]
+
+#: File types ``search`` ranks inside a folder.
+PLANAR_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff", ".svg", ".geojson", ".json", ".wkt")
+
+
+def _add_matching_options(p: argparse.ArgumentParser) -> None:
+    from medialaxis.compare.distance import DEFAULTS
+    from medialaxis.compare.signature import DEFAULT_PRUNE
+
+    p.add_argument("--alpha", type=float, default=DEFAULTS["alpha"], help="weight of the path-length term")
+    p.add_argument("--skip", type=float, default=DEFAULTS["skip"], help="cost of an unaligned path (times endpoint weight)")
+    p.add_argument("--unmatched", type=float, default=DEFAULTS["unmatched"], help="cost of an unmatched endpoint (times weight)")
+    p.add_argument("--prune", type=float, default=DEFAULT_PRUNE, help="drop terminal branches protruding less than this fraction of the shape scale")
+
+
+def _matching(args: argparse.Namespace) -> dict[str, Any]:
+    return {"alpha": args.alpha, "skip": args.skip, "unmatched": args.unmatched, "prune": args.prune}
+
+
+# ------------------------------------------------------------ compare
+def add_compare(sub: Any) -> None:
+    """Add the ``compare`` subcommand."""
+    p = sub.add_parser(
+        "compare",
+        help="distance between two shapes through their medial axes",
+        description="Print the skeleton-path distance between two planar shapes (0: same shape) "
+        "and optionally draw the matched parts side by side.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+    )
+    p.add_argument("first", type=Path, help="image, SVG, GeoJSON or WKT file, or a saved axis (.json/.npz)")
+    p.add_argument("second", type=Path, help="the other shape")
+    p.add_argument("-o", "--output", type=Path, default=None, help="picture of the matched endpoints (.png, .svg or .pdf)")
+    _add_matching_options(p)
+    p.set_defaults(run=_run_compare)
+
+
+def _axis(path: Path) -> Any:
+    import medialaxis as mx
+
+    if path.suffix.lower() in (".npz",) or (path.suffix.lower() == ".json" and _is_saved_axis(path)):
+        return mx.load(path)
+    return mx.medial_axis(str(path))
+
+
+def _is_saved_axis(path: Path) -> bool:
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(4096)
+    except OSError:
+        return False
+    return b'"points"' in head and b'"radii"' in head
+
+
+def _run_compare(args: argparse.Namespace) -> int:
+    from medialaxis.cli import UsageError
+    from medialaxis.compare.distance import match_endpoints, shape_distance
+
+    if args.output is not None:
+        if args.output.suffix.lower() not in (".png", ".svg", ".pdf"):
+            raise UsageError(f"--output needs a .png, .svg or .pdf file, got {str(args.output)!r}")
+        if args.output.exists() and any(args.output.resolve() == p.resolve() for p in (args.first, args.second)):
+            raise UsageError(f"refusing to overwrite the input file {str(args.output)!r}")
+    a, b = _axis(args.first), _axis(args.second)
+    options = _matching(args)
+    distance = shape_distance(a, b, **options)
+    print(f"{distance:.6g}")
+    if args.output is not None:
+        _, pairs = match_endpoints(a, b, **options)
+        save_match_picture(a, b, pairs, args.output, prune=args.prune, titles=(args.first.name, args.second.name), distance=distance)
+        print(f"wrote {args.output}", file=sys.stderr)
+    return 0
+
+
+def save_match_picture(
+    a: Any, b: Any, pairs: list[tuple[int, int]], path: Path, *, prune: float, titles: tuple[str, str], distance: float
+) -> None:
+    """Draw two axes side by side, matched endpoints in the same colour."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from medialaxis.compare.distance import shape_signature
+    from medialaxis.core.io import atomic_write
+    from medialaxis.core.plot import draw_region
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 5))
+    colours = plt.get_cmap("tab10")
+    for side, (ma, ax, title) in enumerate(zip((a, b), axes, titles)):
+        sig = shape_signature(ma, prune=prune)
+        raster = "image_shape" in ma.metadata
+
+        def xy(p: np.ndarray, raster: bool = raster) -> np.ndarray:
+            return p[:, ::-1] if raster else p
+
+        if ma.shape is not None:
+            draw_region(ax, ma, ma.shape)
+        for i, j in sig.edges:
+            seg = xy(sig.points[[i, j]])
+            ax.plot(seg[:, 0], seg[:, 1], color="#555", lw=1.2)
+        ends = xy(sig.endpoints)
+        ax.scatter(ends[:, 0], ends[:, 1], s=25, color="#999", zorder=3)
+        for n, pair in enumerate(pairs):
+            x, y = ends[pair[side]]
+            ax.scatter([x], [y], s=90, color=colours(n % 10), zorder=4)
+            ax.annotate(str(n + 1), (x, y), xytext=(5, 5), textcoords="offset points", fontsize=10)
+        ax.set_aspect("equal")
+        if raster:
+            ax.invert_yaxis()
+        ax.set_title(title)
+        ax.set_axis_off()
+    fig.suptitle(f"distance {distance:.4g}; matched endpoints share a colour")
+    fmt = path.suffix.lower().lstrip(".")
+    with atomic_write(path, "wb") as fh:
+        fig.savefig(fh, format=fmt, dpi=100, bbox_inches="tight")
+    plt.close(fig)
+
+
+# ------------------------------------------------------------- search
+def add_search(sub: Any) -> None:
+    """Add the ``search`` subcommand."""
+    p = sub.add_parser(
+        "search",
+        help="rank the shapes of a folder by distance to a query",
+        description="Rank the planar shape files of a folder by their skeleton-path distance to a query shape.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+    )
+    p.add_argument("query", type=Path, help="query shape file")
+    p.add_argument("folder", type=Path, help="folder of shape files (" + " ".join(PLANAR_SUFFIXES) + ")")
+    p.add_argument("--top", type=int, default=10, help="number of results printed")
+    p.add_argument("--jobs", type=int, default=None, help="worker threads (default: all CPUs)")
+    p.add_argument("--scheduler", default=None, help="Dask scheduler address (tcp://host:port) to run the pairs on a cluster")
+    _add_matching_options(p)
+    p.set_defaults(run=_run_search)
+
+
+def _run_search(args: argparse.Namespace) -> int:
+    from medialaxis.cli import UsageError
+    from medialaxis.compare.distance import query_distances, shape_signature
+    from medialaxis.errors import InputFileError, MedialAxisError
+
+    if args.top < 1:
+        raise UsageError(f"--top must be >= 1, got {args.top}")
+    if args.jobs is not None and args.jobs < 1:
+        raise UsageError(f"--jobs must be >= 1, got {args.jobs}")
+    if not args.folder.is_dir():
+        raise InputFileError(f"not a folder: {str(args.folder)!r}")
+    files = sorted(p for p in args.folder.iterdir() if p.is_file() and p.suffix.lower() in PLANAR_SUFFIXES)
+    if not files:
+        raise InputFileError(f"no shape files ({', '.join(PLANAR_SUFFIXES)}) in {str(args.folder)!r}")
+    options = _matching(args)
+    query = shape_signature(str(args.query), prune=args.prune)
+    sigs, kept = [], []
+    for path in files:
+        try:
+            sigs.append(shape_signature(str(path), prune=args.prune))
+            kept.append(path)
+        except MedialAxisError as exc:
+            print(f"medialaxis: skipped {path}: {exc}", file=sys.stderr)
+    if not sigs:
+        raise InputFileError(f"no readable shape in {str(args.folder)!r}")
+    distances = query_distances(query, sigs, n_jobs=args.jobs, scheduler=args.scheduler, **options)
+    order = np.lexsort((np.arange(len(kept)), distances))[: args.top]
+    for rank, k in enumerate(order, 1):
+        print(f"{rank}\t{distances[k]:.6g}\t{kept[k]}")
+    skipped = len(files) - len(kept)
+    if skipped:
+        print(f"medialaxis: {skipped} file(s) skipped", file=sys.stderr)
+    return 0

@@ -1,0 +1,153 @@
+"""shape_distance / distance_matrix: a distance, invariant, robust, and fast to batch."""
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from PIL import Image
+from shapely import affinity
+from shapely.geometry import Polygon, box
+from skimage import transform
+
+import medialaxis as mx
+from medialaxis.compare import match_endpoints, query_distances, shape_signature
+from medialaxis.errors import EmptyShapeError, InvalidInputError
+
+T_SHAPE = Polygon([(0, 0), (10, 0), (10, 2), (6, 2), (6, 8), (4, 8), (4, 2), (0, 2)])
+L_SHAPE = Polygon([(0, 0), (9, 0), (9, 2), (2, 2), (2, 6), (0, 6)])
+CROSS = box(0, 0, 10, 3).union(box(3, 0, 5, 9))
+POLYGONS = [T_SHAPE, L_SHAPE, CROSS]
+
+
+def _similarity(geom, angle, factor, dx, dy, mirror):
+    g = affinity.rotate(geom, angle, origin=(0, 0))
+    g = affinity.scale(g, -factor if mirror else factor, factor, origin=(0, 0))
+    return affinity.translate(g, dx, dy)
+
+
+def test_zero_for_itself_and_symmetric():
+    for a in POLYGONS:
+        assert mx.shape_distance(a, a) == 0.0
+    d_ab, d_ba = mx.shape_distance(T_SHAPE, CROSS), mx.shape_distance(CROSS, T_SHAPE)
+    assert d_ab > 0 and d_ab == d_ba
+
+
+def test_zero_for_a_copy_of_itself():
+    assert mx.shape_distance(T_SHAPE, Polygon(T_SHAPE.exterior.coords)) == 0.0
+
+
+@given(
+    which=st.integers(0, 2),
+    other=st.integers(0, 2),
+    angle=st.floats(-180, 180),
+    factor=st.floats(0.05, 20),
+    dx=st.floats(-100, 100),
+    dy=st.floats(-100, 100),
+    mirror=st.booleans(),
+)
+def test_polygon_distance_invariant_under_similarities(which, other, angle, factor, dx, dy, mirror):
+    a, b = POLYGONS[which], POLYGONS[other]
+    moved = _similarity(a, angle, factor, dx, dy, mirror)
+    base = mx.shape_distance(a, b)
+    got = mx.shape_distance(moved, b)
+    assert got == pytest.approx(base, rel=1e-6, abs=1e-9)
+    assert mx.shape_distance(b, moved) == got
+
+
+def test_distance_separates_shapes():
+    d_same = mx.shape_distance(T_SHAPE, _similarity(T_SHAPE, 17, 3, 1, 2, True))
+    assert d_same < 1e-9
+    assert mx.shape_distance(T_SHAPE, L_SHAPE) > 0.01
+    assert mx.shape_distance(T_SHAPE, CROSS) > 0.01
+
+
+def _load(path):
+    return np.asarray(Image.open(path).convert("L")) > 127
+
+
+def _nearest_other_class(query_sig, signatures, labels, label):
+    d = query_distances(query_sig, [s for s, l in zip(signatures, labels) if l != label], n_jobs=1)
+    return d.min()
+
+
+@pytest.mark.parametrize("name", ["class1_01", "class3_05", "class7_03", "class8_05", "class9_02"])
+@pytest.mark.parametrize("kind", ["rotate", "rescale", "noise", "bump"])
+def test_raster_changes_stay_within_class(name, kind, kimia_dir, kimia_files, kimia_signatures, kimia_labels):
+    mask = _load(kimia_dir / f"{name}.png")
+    rng = np.random.default_rng(0)
+    if kind == "rotate":
+        moved = transform.rotate(mask.astype(float), 37, resize=True, order=1) > 0.5
+    elif kind == "rescale":
+        moved = transform.rescale(mask.astype(float), 1.6, order=1) > 0.5
+    elif kind == "noise":
+        # Flip about a third of the boundary pixels: noise of a pixel.
+        from scipy import ndimage
+
+        edge = mask ^ ndimage.binary_erosion(mask)
+        moved = mask.copy()
+        flip = edge & (rng.random(mask.shape) < 0.33)
+        moved[flip] = False
+        out = ndimage.binary_dilation(mask) & ~mask & (rng.random(mask.shape) < 0.33)
+        moved[out] = True
+    else:
+        # A small bump (3 x 3 pixels) on the boundary: a small spurious branch.
+        rows, cols = np.nonzero(mask ^ np.pad(mask[1:], ((0, 1), (0, 0))))
+        r, c = rows[len(rows) // 3], cols[len(rows) // 3]
+        moved = mask.copy()
+        moved[r : r + 3, c - 1 : c + 2] = True
+    original = kimia_signatures[[p.stem for p in kimia_files].index(name)]
+    label = int(name.split("_")[0][5:])
+    d = mx.shape_distance(moved, original)
+    assert d < _nearest_other_class(original, kimia_signatures, kimia_labels, label)
+    assert d < _nearest_other_class(shape_signature(moved), kimia_signatures, kimia_labels, label)
+
+
+def test_distance_matrix_matches_pairwise_and_jobs(kimia_signatures):
+    sigs = kimia_signatures[::11]
+    D1 = mx.distance_matrix(sigs, n_jobs=1)
+    D2 = mx.distance_matrix(sigs, n_jobs=2, scheduler="threads")
+    assert D1.shape == (len(sigs), len(sigs)) and D1.dtype == np.float64
+    assert np.array_equal(D1, D2)
+    assert np.array_equal(D1, D1.T) and np.all(np.diag(D1) == 0)
+    assert D1[0, 3] == mx.shape_distance(sigs[0], sigs[3])
+    off = D1[~np.eye(len(sigs), dtype=bool)]
+    assert (off > 0).all()
+
+
+def test_distance_matrix_from_files_uses_cache(kimia_files):
+    files = [str(p) for p in kimia_files[:3]]
+    first = shape_signature(files[0])
+    assert shape_signature(files[0]) is first
+    D = mx.distance_matrix(files, n_jobs=1)
+    assert D[0, 1] == mx.shape_distance(first, files[1])
+
+
+def test_match_endpoints_of_itself_is_identity():
+    d, pairs = match_endpoints(CROSS, CROSS)
+    n = shape_signature(CROSS).n_endpoints
+    assert d == 0.0 and pairs == [(i, i) for i in range(n)]
+
+
+def test_bad_inputs():
+    with pytest.raises(EmptyShapeError):
+        mx.shape_distance(np.zeros((30, 30), bool), T_SHAPE)
+    with pytest.raises(InvalidInputError, match="planar"):
+        mx.shape_distance(np.zeros((5, 6, 7), bool), T_SHAPE)
+    with pytest.raises(InvalidInputError, match="planar"):
+        mx.distance_matrix([T_SHAPE, np.ones((5, 6, 7), bool)])
+    with pytest.raises(InvalidInputError, match="alpha"):
+        mx.shape_distance(T_SHAPE, CROSS, alpha=-1)
+    with pytest.raises(InvalidInputError, match="n_jobs"):
+        mx.distance_matrix([T_SHAPE, CROSS], n_jobs=0)
+    with pytest.raises(InvalidInputError, match="at least one"):
+        mx.distance_matrix([])
+    with pytest.raises(InvalidInputError, match="n_samples"):
+        mx.distance_matrix([shape_signature(T_SHAPE), shape_signature(CROSS, n_samples=8)])
+
+
+def test_inputs_not_modified():
+    mask = np.zeros((60, 90), bool)
+    mask[20:40, 10:80] = True
+    copy = mask.copy()
+    mx.distance_matrix([mask, mask.T], n_jobs=1)
+    assert np.array_equal(mask, copy)

@@ -1,0 +1,91 @@
+"""Skeleton-path signatures on shapes with known axes."""
+
+import numpy as np
+import pytest
+from shapely.geometry import Point, Polygon, box
+
+import medialaxis as mx
+from medialaxis.compare import shape_signature, signature
+from medialaxis.core.result import MedialAxis
+from medialaxis.errors import EmptyShapeError, InvalidInputError
+
+T_SHAPE = Polygon([(0, 0), (10, 0), (10, 2), (6, 2), (6, 8), (4, 8), (4, 2), (0, 2)])
+
+
+def test_t_shape_has_three_limbs_in_boundary_order():
+    # Corner branches protrude 0.41 half-widths past their junction disc:
+    # below prune * scale = 0.1 * 6.4 they go, leaving the three limbs.
+    assert shape_signature(T_SHAPE, prune=0).n_endpoints == 6
+    sig = shape_signature(T_SHAPE, prune=0.1)
+    assert sig.n_endpoints == 3
+    # The three limb tips, whatever the corner branches did.
+    tips = {tuple(np.round(p).astype(int)) for p in sig.endpoints}
+    assert tips == {(1, 1), (9, 1), (5, 7)}
+    # Path lengths: the arm tips are 8 apart; arm tip to top tip is 4 + 6 less the cut at the junction.
+    L = sig.lengths * sig.scale
+    assert np.allclose(L, L.T)
+    assert np.allclose(np.sort(L[np.triu_indices(3, 1)]), [8, 10, 10], atol=0.25)
+    # Radius along the arms is the half-width 1 away from the junction and the tips.
+    mid = sig.radii[0, 1, len(sig.radii[0, 1]) // 4] * sig.scale
+    assert mid == pytest.approx(1.0, abs=0.02)
+
+
+def test_paths_are_reverses_and_arrays_read_only():
+    sig = shape_signature(T_SHAPE, prune=0.1)
+    assert np.allclose(sig.radii, sig.radii.transpose(1, 0, 2)[:, :, ::-1])
+    for arr in (sig.radii, sig.lengths, sig.weights, sig.endpoints):
+        assert not arr.flags.writeable
+    assert (sig.weights > 0).all()
+
+
+def test_rectangle_is_a_single_path_with_corner_branches_pruned():
+    sig = shape_signature(box(0, 0, 8, 2), prune=0.1)
+    assert sig.n_endpoints == 2
+    kept = signature(mx.medial_axis(box(0, 0, 8, 2)), prune=0)
+    assert kept.n_endpoints == 4
+
+
+def test_disc_has_a_point_axis():
+    sig = shape_signature(Point(0, 0).buffer(3, 64))
+    assert sig.n_endpoints == 2
+    assert np.all(sig.lengths == 0)
+    assert np.allclose(sig.radii * sig.scale, 3, rtol=0.01)
+
+
+def test_keeps_largest_component():
+    mask = np.zeros((60, 90), bool)
+    mask[20:40, 10:70] = True
+    mask[5:8, 80:83] = True  # a speck
+    sig = shape_signature(mask)
+    assert sig.endpoints[:, 1].max() < 75
+
+
+def test_input_axis_not_modified():
+    ma = mx.medial_axis(T_SHAPE)
+    before = (ma.points.copy(), ma.radii.copy(), ma.edges.copy())
+    signature(ma)
+    assert all(np.array_equal(x, y) for x, y in zip(before, (ma.points, ma.radii, ma.edges)))
+
+
+def test_signature_cached_per_axis():
+    ma = mx.medial_axis(T_SHAPE)
+    assert shape_signature(ma) is shape_signature(ma)
+    assert shape_signature(ma, prune=0) is not shape_signature(ma)
+
+
+def test_errors():
+    with pytest.raises(InvalidInputError, match="planar"):
+        signature(MedialAxis(np.zeros((2, 3)), np.ones(2), [[0, 1]]))
+    with pytest.raises(EmptyShapeError, match="no axis"):
+        signature(MedialAxis(np.zeros((0, 2)), np.zeros(0)))
+    with pytest.raises(InvalidInputError, match="MedialAxis"):
+        signature(np.zeros((3, 2)))
+    ma = mx.medial_axis(T_SHAPE)
+    with pytest.raises(InvalidInputError, match="n_samples"):
+        signature(ma, n_samples=1)
+    with pytest.raises(InvalidInputError, match="prune"):
+        signature(ma, prune=-1)
+    with pytest.raises(InvalidInputError, match="prune"):
+        signature(ma, prune="much")
+    with pytest.raises(EmptyShapeError):
+        shape_signature(np.zeros((20, 20), bool))
