@@ -13,11 +13,12 @@ import dataclasses
 from typing import Any, Literal
 
 import numpy as np
+import shapely
 
 from medialaxis._progress import progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import ComputationError, InvalidInputError
-from medialaxis.planar.axis import RawAxis, inner_triangles, raw_axis
+from medialaxis.planar.axis import RawAxis, boundary_distance, inner_triangles, raw_axis
 from medialaxis.planar.delaunay import Triangulation, edge_keys, triangulate
 from medialaxis.planar.inputs import PlanarInput, load_planar
 from medialaxis.planar.pruning import merge_close_nodes, prune_graph
@@ -36,6 +37,15 @@ DEFAULT_VECTOR_DETOUR = 0.028
 #: Default lambda in units of the tolerance.
 LAM_PER_TOLERANCE = 8.0
 MAX_REFINEMENTS = 12
+#: Polygons with more vertices than this are simplified to the tolerance first.
+SIMPLIFY_ABOVE = 10_000
+
+
+def shape_size(region: Any) -> float:
+    """Twice the largest distance from the centroid to a vertex (rotation invariant)."""
+    xy = shapely.get_coordinates(region)
+    centre = np.asarray(region.centroid.coords[0])
+    return 2.0 * float(np.sqrt(((xy - centre) ** 2).sum(1).max()))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -165,13 +175,12 @@ def planar_stages(
         raise InvalidInputError(f"boundary must be 'contour' or 'canny', got {boundary!r}")
     src = load_planar(shape, threshold=threshold, spacing=spacing)
     region = src.region
-    minx, miny, maxx, maxy = region.bounds
-    diag = float(np.hypot(maxx - minx, maxy - miny))
+    size = shape_size(region)
     if tolerance is None:
-        tolerance = 0.25 * float(src.spacing.min()) if src.is_raster else 1e-4 * diag
+        tolerance = 0.25 * float(src.spacing.min()) if src.is_raster else 1e-4 * size
     tolerance = _positive(tolerance, "tolerance")
     if tolerance == 0:
-        tolerance = 1e-9 * diag
+        tolerance = 1e-9 * size
     lam = LAM_PER_TOLERANCE * tolerance if lam is None else _positive(lam, "lam")
     if detour is None:
         detour = DEFAULT_DETOUR if src.is_raster else DEFAULT_VECTOR_DETOUR
@@ -183,7 +192,12 @@ def planar_stages(
 
         smp, rings, tri, inside = canny_stages(src, tolerance)
     else:
-        rings = simplify_rings(region, tolerance)
+        # Small polygons keep every vertex, so the axis does not depend on
+        # where a ring starts (Douglas-Peucker does) and stays exactly
+        # equivariant under rotation, scaling and mirroring.
+        n_vertices = len(shapely.get_coordinates(region))
+        simplify = src.is_raster or n_vertices > SIMPLIFY_ABOVE
+        rings = simplify_rings(region, tolerance if simplify else 0.0)
         min_length = max(tolerance, lam / 8.0)
         smp, tri, inside = _sample_and_triangulate(rings, rings.region, tolerance, min_length)
     if not inside.any():
@@ -191,7 +205,10 @@ def planar_stages(
     ax: RawAxis = raw_axis(tri, inside, smp, rings.region)
     # Co-circular samples give clusters of coincident Voronoi vertices (the
     # centre of a disc, the mid-line of a rectangle): one node each.
-    nodes, edges, kept = merge_close_nodes(ax.points, ax.edges, tolerance)
+    cluster, edges, kept = merge_close_nodes(ax.points, ax.edges, tolerance)
+    count = np.bincount(cluster)
+    points = np.stack([np.bincount(cluster, ax.points[:, k]) / count for k in range(2)], axis=1)
+    radii = np.where(count > 1, boundary_distance(points, smp), np.bincount(cluster, ax.radii) / count)
     metadata = {
         "domain": "planar",
         "method": "voronoi",
@@ -210,8 +227,8 @@ def planar_stages(
     if src.repaired:
         metadata["repaired"] = src.repaired
     raw = _result(
-        ax.points[nodes],
-        ax.radii[nodes],
+        points,
+        radii,
         edges,
         {
             "edge_contact_diameter": ax.contact_diameter[kept],
@@ -257,8 +274,10 @@ def voronoi_medial_axis(
         The one accuracy parameter: the boundary is simplified to within
         ``tolerance`` and sampled so that each Voronoi vertex lies within
         about ``tolerance`` of the axis of the simplified shape. Default: a
-        quarter pixel for images, ``1e-4`` of the bounding-box diagonal for
-        polygons. Larger is faster and coarser.
+        quarter pixel for images, ``1e-4`` of the shape's size (twice the
+        largest centroid-to-vertex distance) for polygons. Larger is faster
+        and coarser. Polygons of more than 10,000 vertices and all image
+        contours are first simplified to within ``tolerance``.
     detour : float, optional
         An edge is significant only if the boundary arc between its contacts
         exceeds their distance by ``detour`` times that distance and by

@@ -55,15 +55,17 @@ def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) 
     """Contract tree-shaped clusters of edges shorter than ``min_length``.
 
     Co-circular samples produce coincident Voronoi vertices (the centre of a
-    disc, the mid-line of a rectangle); each cluster becomes its first node.
-    Clusters that contain a cycle are left alone so no hole is lost.
+    disc, the mid-line of a rectangle); each cluster becomes one node, placed
+    by the caller (at the cluster's mean, which does not depend on how the
+    triangulation broke the ties). Clusters that contain a cycle are left
+    alone so no hole is lost.
 
     Returns
     -------
-    kept_nodes : (n',) int ndarray
-        Old index of each remaining node.
+    cluster : (n,) int ndarray
+        New node of each old node (clusters numbered by their first member).
     edges : (m', 2) int ndarray
-        Remaining edges, renumbered, without self-loops or duplicates.
+        Remaining edges between clusters, without self-loops or duplicates.
     kept_edges : (m',) int ndarray
         Old index of each remaining edge (for its attributes).
     """
@@ -86,10 +88,8 @@ def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) 
     candidates = np.flatnonzero(new[:, 0] != new[:, 1])
     _, first_edge = np.unique(new[candidates], axis=0, return_index=True)
     kept_edges = np.sort(candidates[first_edge])
-    kept_nodes = np.unique(rep)
-    new_of_old = np.full(n, -1, np.int64)
-    new_of_old[kept_nodes] = np.arange(len(kept_nodes))
-    return kept_nodes, new_of_old[rep[edges[kept_edges]]].reshape(-1, 2), kept_edges
+    _, cluster = np.unique(rep, return_inverse=True)
+    return cluster.reshape(-1), cluster[edges[kept_edges]].reshape(-1, 2), kept_edges
 
 
 def regrow_tips(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarray, contact_diameter: np.ndarray) -> np.ndarray:
