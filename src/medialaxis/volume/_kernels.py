@@ -14,6 +14,8 @@ The references (``*_reference``) loop in Python; the tests compare them.
 from __future__ import annotations
 
 import numpy as np
+import heapq
+
 from numba import njit
 
 __all__ = [
@@ -154,52 +156,70 @@ def greedy_subsample_reference(voxels: np.ndarray, order: np.ndarray, radius: np
 
 
 @njit(cache=True, nogil=True)
-def geodesic_labels(index: np.ndarray, voxels: np.ndarray, seeds: np.ndarray,
-                    offs: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
-    """Label of the first seed that reaches each voxel by a breadth-first
-    search over 26-adjacent voxels (seeds expand in the given order, -1 when
-    unreachable). ``index`` maps grid positions to rows (-1 elsewhere)."""
+def geodesic_labels(index: np.ndarray, voxels: np.ndarray, seeds: np.ndarray, offs: np.ndarray,
+                    spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+    """Discrete geodesic Voronoi regions of ``seeds`` over 26-adjacent voxels.
+
+    Regions grow in order of the Euclidean distance from a voxel to the seed
+    of the neighbour it is reached from (vector propagation with a heap), so
+    region borders are near the Euclidean bisectors; ties go to the lower
+    seed. Voxels not reachable from any seed get -1. ``index`` maps grid
+    positions to rows (-1 elsewhere).
+    """
     n = voxels.shape[0]
     label = np.full(n, -1, np.int64)
-    queue = np.empty(n, np.int64)
-    head = 0
-    tail = 0
+    best = np.full(n, np.inf)
+    heap = [(0.0, np.int64(0), np.int64(0))]
+    heap.pop()
     for s in range(seeds.shape[0]):
+        best[seeds[s]] = 0.0
         label[seeds[s]] = s
-        queue[tail] = seeds[s]
-        tail += 1
+        heapq.heappush(heap, (0.0, np.int64(s), np.int64(seeds[s])))
+    done = np.zeros(n, np.bool_)
     Z, Y, X = index.shape
-    while head < tail:
-        i = queue[head]
-        head += 1
-        z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
+    while len(heap) > 0:
+        d, s, i = heapq.heappop(heap)
+        if done[i] or label[i] != s:
+            continue
+        done[i] = True
+        src = seeds[s]
         for t in range(offs.shape[0]):
-            a, b, c = z + offs[t, 0], y + offs[t, 1], x + offs[t, 2]
+            a, b, c = voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1], voxels[i, 2] + offs[t, 2]
             if 0 <= a < Z and 0 <= b < Y and 0 <= c < X:
                 j = index[a, b, c]
-                if j >= 0 and label[j] < 0:
-                    label[j] = label[i]
-                    queue[tail] = j
-                    tail += 1
+                if j >= 0 and not done[j]:
+                    dz = (a - voxels[src, 0]) * spacing[0]
+                    dy = (b - voxels[src, 1]) * spacing[1]
+                    dx = (c - voxels[src, 2]) * spacing[2]
+                    dj = np.sqrt(dz * dz + dy * dy + dx * dx)
+                    if dj < best[j] or (dj == best[j] and s < label[j]):
+                        best[j] = dj
+                        label[j] = s
+                        heapq.heappush(heap, (dj, np.int64(s), np.int64(j)))
     return label
 
 
-def geodesic_labels_reference(voxels: np.ndarray, seeds: np.ndarray) -> np.ndarray:
+def geodesic_labels_reference(voxels: np.ndarray, seeds: np.ndarray, spacing: np.ndarray) -> np.ndarray:
     """Pure-Python reference of :func:`geodesic_labels`."""
-    from collections import deque
-
     where = {tuple(v): i for i, v in enumerate(voxels.tolist())}
     label = np.full(len(voxels), -1, np.int64)
-    queue: deque[int] = deque()
+    best = np.full(len(voxels), np.inf)
+    done = np.zeros(len(voxels), bool)
+    heap: list[tuple[float, int, int]] = []
     for s, i in enumerate(seeds):
-        label[i] = s
-        queue.append(int(i))
-    while queue:
-        i = queue.popleft()
-        z, y, x = voxels[i]
-        for a, b, c in OFFSETS_26:
-            j = where.get((z + a, y + b, z * 0 + x + c))
-            if j is not None and label[j] < 0:
-                label[j] = label[i]
-                queue.append(j)
+        best[i], label[i] = 0.0, s
+        heapq.heappush(heap, (0.0, s, int(i)))
+    while heap:
+        _, s, i = heapq.heappop(heap)
+        if done[i] or label[i] != s:
+            continue
+        done[i] = True
+        for off in OFFSETS_26:
+            j = where.get(tuple((voxels[i] + off).tolist()))
+            if j is None or done[j]:
+                continue
+            dj = float(np.linalg.norm((voxels[j] - voxels[seeds[s]]) * spacing))
+            if dj < best[j] or (dj == best[j] and s < label[j]):
+                best[j], label[j] = dj, s
+                heapq.heappush(heap, (dj, s, j))
     return label

@@ -26,7 +26,7 @@ __all__ = ["MedialVoxels", "medial_voxels", "estimate_thickness", "DEFAULT_LAM_R
 DEFAULT_LAM_RATIO = 0.75
 #: A pair whose bisector is within this many voxels of the middle marks its
 #: lower voxel, so that noise on an even-thickness plate gives a flat sheet.
-TIE_TOLERANCE = 0.3
+TIE_TOLERANCE = 0.5
 
 
 @dataclasses.dataclass(frozen=True)

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+from typing import Any
 
 import numpy as np
 
@@ -87,7 +88,7 @@ def _pair_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
 
 
 def _region_edges(label_grid: np.ndarray, n: int) -> np.ndarray:
-    """Sorted unique keys of label pairs that are 6-adjacent somewhere."""
+    """Sorted unique keys of label pairs that are 6-adjacent (share a voxel face) somewhere."""
     keys = []
     for axis in range(3):
         lo = [slice(None)] * 3
@@ -122,48 +123,56 @@ def _block_labels(label_grid: np.ndarray, voxels: np.ndarray) -> np.ndarray:
     return labels
 
 
+def _split_quad(labs: np.ndarray, points: np.ndarray, edges: np.ndarray, n: int) -> list[tuple[int, int, int]]:
+    """Two triangles for four regions meeting at one degenerate Voronoi vertex.
+
+    Regions that share a voxel face are sides of the quad; the diagonals are
+    the two pairs that only touch at the vertex. A diagonal that is a region
+    edge elsewhere is used; otherwise the shorter diagonal.
+    """
+    pairings = [((0, 1), (2, 3)), ((0, 2), (1, 3)), ((0, 3), (1, 2))]
+
+    def side(i: int, j: int) -> bool:
+        return bool(_has(edges, _pair_keys(np.array([labs[i]]), np.array([labs[j]]), n))[0])
+
+    def length(i: int, j: int) -> float:
+        return float(np.linalg.norm(points[labs[i]] - points[labs[j]]))
+
+    sides = [sum(side(*e) for e in pairing) for pairing in pairings]
+    candidates = [k for k in range(3) if sides[k] < 2] or [int(np.argmax([length(*a) + length(*b) for a, b in pairings]))]
+    k = min(candidates, key=lambda c: (sides[c] == 0 and len(candidates) > 1, sum(length(*e) for e in pairings[c])))
+    (a, b), (c, d) = pairings[k]
+    if side(c, d) and not side(a, b):
+        (a, b), (c, d) = (c, d), (a, b)
+    elif side(a, b) == side(c, d) and length(c, d) < length(a, b):
+        (a, b), (c, d) = (c, d), (a, b)
+    la, lb, lc, ld = (int(labs[i]) for i in (a, b, c, d))
+    return [(la, lb, lc), (la, lb, ld)]
+
+
 def _triangles(label_grid: np.ndarray, voxels: np.ndarray, points: np.ndarray) -> np.ndarray:
     n = len(points)
     edges = _region_edges(label_grid, n)
     blocks = _block_labels(label_grid, voxels)
     distinct = (blocks >= 0).sum(axis=1)
-    tri = [blocks[distinct == 3][:, -3:]]
+    faces = [blocks[distinct == 3][:, -3:].astype(np.int64)]
     extra: list[tuple[int, int, int]] = []
     for row in np.unique(blocks[distinct >= 4], axis=0):
         labs = row[row >= 0]
-        cliques = [c for c in itertools.combinations(labs, 3)
-                   if _has(edges, _pair_keys(np.array([c[0], c[0], c[1]]), np.array([c[1], c[2], c[2]]), n)).all()]
-        if len(labs) == 4 and len(cliques) != 2:
-            # a degenerate Voronoi vertex: split the quad across its shorter diagonal
-            best = None
-            for a, b in itertools.combinations(labs, 2):
-                c, d = [x for x in labs if x not in (a, b)]
-                pair = [(a, b, c), (a, b, d)]
-                perimeter = sum(np.linalg.norm(points[t[0]] - points[t[1]]) + np.linalg.norm(points[t[1]] - points[t[2]])
-                                + np.linalg.norm(points[t[2]] - points[t[0]]) for t in pair)
-                if best is None or perimeter < best[0]:
-                    best = (perimeter, pair)
-            assert best is not None
-            cliques = best[1]
-        extra.extend(cliques)
+        if len(labs) == 4:
+            extra.extend(_split_quad(labs, points, edges, n))
+        else:  # five or more regions at one vertex: triangles of face-adjacent triples
+            for c in itertools.combinations(labs.tolist(), 3):
+                ks = _pair_keys(np.array([c[0], c[0], c[1]]), np.array([c[1], c[2], c[2]]), n)
+                if _has(edges, ks).all():
+                    extra.append(c)
     if extra:
-        tri.append(np.array(extra, np.int64).reshape(-1, 3))
-    faces = np.concatenate(tri).astype(np.int64)
-    if len(faces) == 0:
-        return faces.reshape(0, 3)
-    keys_ab = _pair_keys(faces[:, 0], faces[:, 1], n)
-    keys_bc = _pair_keys(faces[:, 1], faces[:, 2], n)
-    keys_ca = _pair_keys(faces[:, 2], faces[:, 0], n)
-    # triangles from 3-label blocks need their three regions to touch pairwise;
-    # quad splits add their diagonal, which is not a region edge
-    first = len(tri[0])
-    ok = np.ones(len(faces), bool)
-    ok[:first] = _has(edges, keys_ab[:first]) & _has(edges, keys_bc[:first]) & _has(edges, keys_ca[:first])
-    faces = np.sort(faces[ok], axis=1)
-    return np.unique(faces, axis=0)
+        faces.append(np.array(extra, np.int64).reshape(-1, 3))
+    out = np.sort(np.concatenate(faces), axis=1)
+    return np.unique(out, axis=0) if len(out) else out.reshape(0, 3)
 
 
-def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0) -> Polygonization:
+def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0) -> Polygonization:
     """Triangle mesh of the medial voxels by sub-sampling.
 
     Parameters
@@ -174,6 +183,8 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     density : float
         Sampling radius in units of the local radius (half thickness); smaller
         gives more vertices. The radius is at least 1.5 voxels.
+    rng : seed or numpy Generator
+        Order of the picks within a class (results are reproducible for a seed).
 
     Returns
     -------
@@ -189,10 +200,12 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     index = np.full(shape, -1, np.int32)
     index[tuple(voxels.T)] = np.arange(n, dtype=np.int32)
     priority = np.select([kind == JUNCTION, kind == BOUNDARY], [0, 1], 2)
-    order = np.lexsort((np.arange(n), priority))
+    # a random order within each class avoids grid-aligned picks, whose Voronoi
+    # regions meet four at a time (degenerate vertices)
+    order = np.lexsort((np.random.default_rng(rng).permutation(n), priority))
     radius = np.maximum(density * medial.radius, 1.5 * float(features.spacing.max()))
     picks = _kernels.greedy_subsample(index, voxels, order, radius, features.spacing)
-    label = _kernels.geodesic_labels(index, voxels, picks, _kernels.OFFSETS_26)
+    label = _kernels.geodesic_labels(index, voxels, picks, _kernels.OFFSETS_26, features.spacing)
     del index
     label_grid = np.full(shape, -1, np.int32)
     label_grid[tuple(voxels.T)] = label
