@@ -29,7 +29,8 @@ def face_normals(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return np.divide(n, norm, out=np.zeros_like(n), where=norm > 0)
 
 
-def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray) -> np.ndarray:
+def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
+                 excluded: np.ndarray | None = None) -> np.ndarray:
     """New positions of the junction vertices by minimising eq. (1).
 
     Parameters
@@ -37,7 +38,11 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray) ->
     points : (v, 3) float64 ndarray
     faces : (f, 3) int64 ndarray
     junction : (v,) bool ndarray
-        Which vertices are junction vertices.
+        Which vertices move (the paper's junction vertices).
+    excluded : (v,) bool ndarray, optional
+        Vertices whose faces are not used as planes (default: ``junction``).
+        The pipeline also moves free-edge vertices this way, using planes of
+        faces with neither junction nor free-edge vertices.
 
     Returns
     -------
@@ -51,7 +56,7 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray) ->
     >>> pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0.5, 0.5, 0.3]], float)
     >>> f = np.array([[0, 1, 2], [1, 3, 2], [0, 1, 4]])
     >>> remove_dents(pts, f, np.array([0, 0, 0, 0, 1], bool))[4].round(3).tolist()
-    [0.5, 0.5, 0.15]
+    [0.5, 0.5, 0.1]
     """
     points = np.asarray(points, np.float64)
     out = points.copy()
@@ -64,7 +69,7 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray) ->
     ring = (incidence @ incidence.T).tocsr()  # vertex -> vertices sharing a face (incl. itself)
     rows = np.flatnonzero(junction)
     near = (ring[rows] @ incidence).tocoo()  # junction vertex -> faces touching its one-ring
-    clean = ~junction[faces].any(axis=1)
+    clean = ~(junction if excluded is None else np.asarray(excluded, bool))[faces].any(axis=1)
     keep = clean[near.col]
     owner, face = rows[near.row[keep]], near.col[keep]
     normal = face_normals(points, faces)[face]

@@ -97,8 +97,35 @@ def march_to_iso(grey: np.ndarray, iso: float, spacing: np.ndarray, start: np.nd
     return out
 
 
+#: Largest |cos| between an extension ray and the normal of a face at its vertex.
+MAX_NORMAL_COMPONENT = 0.35
+
+
+def _max_normal_component(points: np.ndarray, faces: np.ndarray, vertices: np.ndarray, directions: np.ndarray,
+                          plane_normals: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    from medialaxis.volume.dents import face_normals
+
+    normals = face_normals(points, faces)
+    slot = np.full(len(points), -1, np.int64)
+    slot[vertices] = np.arange(len(vertices))
+    out = np.zeros(len(vertices))
+    for corner in range(3):
+        s = slot[faces[:, corner]]
+        has = s >= 0
+        cos = np.abs(np.einsum("ij,ij->i", normals[has], directions[s[has]]))
+        np.maximum.at(out, s[has], cos)
+    if plane_normals is not None:
+        owner, normal = plane_normals
+        s = slot[owner]
+        has = s >= 0
+        cos = np.abs(np.einsum("ij,ij->i", normal[has], directions[s[has]]))
+        np.maximum.at(out, s[has], cos)
+    return out
+
+
 def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: float, spacing: np.ndarray,
-                max_length: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                max_length: float, plane_normals: tuple[np.ndarray, np.ndarray] | None = None,
+                free: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Extend the free boundary of a mid-surface mesh to the isosurface.
 
     Parameters
@@ -112,6 +139,15 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     max_length : float
         Longest extension (physical units); rays that do not leave the part
         within it are not extended.
+    plane_normals : (owner (p,) int, normal (p, 3)) arrays, optional
+        Sheet normals known at each vertex (e.g. of the medial voxels in its
+        Voronoi region); like the normals of its faces, a ray must be nearly
+        orthogonal to all of them.
+    free : (v,) bool ndarray, optional
+        Vertices on a free edge of the part (medial voxels classified as
+        boundary). When given, only they, and vertices joined to them by a
+        boundary edge (the ends of junction lines), are extended; the edges
+        of small holes in the mesh are not free edges of the part.
 
     Returns
     -------
@@ -126,6 +162,15 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         return points, faces, np.empty(0, np.int64)
     vertices, directions = outward_directions(points, edges, opposite)
     good = np.linalg.norm(directions, axis=1) > 0.5
+    if free is not None:
+        free = np.asarray(free, bool)
+        reach = free.copy()
+        reach[edges[free[edges[:, 1]], 0]] = True
+        reach[edges[free[edges[:, 0]], 1]] = True
+        good &= reach[vertices]
+    # only rays in the plane of every face at the vertex: boundary edges of
+    # small holes (or folds) would otherwise shoot across the plate
+    good &= _max_normal_component(points, faces, vertices, directions, plane_normals) < MAX_NORMAL_COMPONENT
     vertices, directions = vertices[good], directions[good]
     step = 0.25 * float(spacing.min())
     length = march_to_iso(grey, iso, spacing, points[vertices], directions, max_length, step)

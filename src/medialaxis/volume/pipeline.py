@@ -27,7 +27,7 @@ from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.extension import extend_mesh
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, estimate_thickness, medial_voxels
-from medialaxis.volume.polygonize import EXTENSION, JUNCTION, Polygonization, polygonize
+from medialaxis.volume.polygonize import BOUNDARY, EXTENSION, JUNCTION, Polygonization, polygonize
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
 
@@ -139,14 +139,22 @@ def volume_stages(
             state["mesh"] = mesh
             state["points"], state["faces"] = mesh.points, mesh.faces
             state["radii"], state["kind"] = mesh.radii, mesh.kind
-        elif stage == "dents" and remove_dents:
-            state["points"] = _remove_dents(state["points"], state["faces"], state["kind"] == JUNCTION)
+        elif stage == "dents":
+            kind = state["kind"]
+            special = (kind == JUNCTION) | (kind == BOUNDARY)
+            # free-edge vertices mix in boundary points of the end face: put them
+            # on the planes of the interior faces next to them (eq. 1 as well)
+            moved = _remove_dents(state["points"], state["faces"], kind == BOUNDARY, special)
+            if remove_dents:
+                moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
+            state["points"] = moved
         elif stage == "extension" and extend:
             src = state["source"]
             sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
             points, faces, source = extend_mesh(
                 state["points"], state["faces"], src.grey, src.iso, src.spacing,
                 max_length=1.5 * state["thickness"] + 2.0 * sample_radius,
+                free=state["kind"] == BOUNDARY,
             )
             state["points"], state["faces"] = points, faces
             state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
