@@ -172,6 +172,62 @@ def _triangles(label_grid: np.ndarray, voxels: np.ndarray, points: np.ndarray) -
     return np.unique(out, axis=0) if len(out) else out.reshape(0, 3)
 
 
+def _edge_counts(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(f, 3) number of faces on each face's edges, and the edge keys."""
+    e = np.sort(np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1), axis=2)  # (f, 3, 2)
+    flat = e.reshape(-1, 2)
+    _, inverse, count = np.unique(flat, axis=0, return_inverse=True, return_counts=True)
+    return count[inverse.ravel()].reshape(-1, 3), e
+
+
+def repair_faces(faces: np.ndarray, junction: np.ndarray, rounds: int = 4) -> np.ndarray:
+    """Remove folded triangles and close three-edge holes.
+
+    Where neighbouring blocks split the same degenerate quad across both
+    diagonals, one extra triangle lies over the others: it has an edge with
+    three faces that is not a junction edge (both ends junction vertices) and
+    an edge with only one. Such triangles are dropped; then holes bounded by
+    exactly three edges are closed with one triangle.
+
+    Parameters
+    ----------
+    faces : (f, 3) int64 ndarray
+    junction : (v,) bool ndarray
+        Junction vertices (their shared edges may carry three or more faces).
+
+    Returns
+    -------
+    (g, 3) int64 ndarray
+        Sorted, unique faces.
+    """
+    faces = np.unique(np.sort(np.asarray(faces, np.int64), axis=1), axis=0)
+    for _ in range(rounds):
+        if len(faces) == 0:
+            break
+        count, e = _edge_counts(faces)
+        junction_edge = junction[e[..., 0]] & junction[e[..., 1]]
+        folded = ((count >= 3) & ~junction_edge).any(axis=1) & (count == 1).any(axis=1)
+        if not folded.any():
+            break
+        faces = faces[~folded]
+    if len(faces):
+        count, e = _edge_counts(faces)
+        single = e[count == 1]
+        if len(single):
+            from scipy.sparse import coo_matrix
+            from scipy.sparse.csgraph import connected_components
+
+            n = int(faces.max()) + 1
+            graph = coo_matrix((np.ones(len(single)), (single[:, 0], single[:, 1])), shape=(n, n))
+            _, comp = connected_components(graph, directed=False)
+            size = np.bincount(comp[single[:, 0]], minlength=n)
+            loops = [np.unique(single[comp[single[:, 0]] == c]) for c in np.flatnonzero(size == 3)]
+            new = [loop for loop in loops if len(loop) == 3]
+            if new:
+                faces = np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+    return faces
+
+
 def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0) -> Polygonization:
     """Triangle mesh of the medial voxels by sub-sampling.
 
@@ -210,5 +266,5 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     label_grid = np.full(shape, -1, np.int32)
     label_grid[tuple(voxels.T)] = label
     points = medial.position[picks]
-    faces = _triangles(label_grid, voxels, points)
+    faces = repair_faces(_triangles(label_grid, voxels, points), kind[picks] == JUNCTION)
     return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label)
