@@ -1,7 +1,8 @@
 """Medial voxels: the grid form of the lambda-medial axis (Prohaska and Hege).
 
 Two 6-adjacent foreground voxels ``p``, ``q`` whose nearest boundary points
-``f(p)``, ``f(q)`` are more than ``lam`` apart straddle the medial surface;
+``f(p)``, ``f(q)`` are more than ``lam`` apart, in directions more than 120
+degrees apart, straddle the medial surface;
 the one closer to the bisector plane of ``f(p)`` and ``f(q)`` is marked
 (ties go to the lower index), so even thicknesses give a one-voxel sheet.
 Each medial voxel keeps the midpoint of the two boundary points (the sub-voxel
@@ -27,6 +28,17 @@ DEFAULT_LAM_RATIO = 0.75
 #: A pair whose bisector is within this many voxels of the middle marks its
 #: lower voxel, so that noise on an even-thickness plate gives a flat sheet.
 TIE_TOLERANCE = 0.5
+#: A medial pair narrower than ``FULL_GAP * thickness`` must have contact
+#: directions more than 120 degrees apart (cos below this): the separation
+#: angle of Foskey et al. It removes the fins into convex edges that survive
+#: ``lam`` where the radius is large (an end face next to a junction: gap up
+#: to ~0.88 thickness at 90 degrees); pairs spanning a full thickness (sheets,
+#: the corners of an X junction) are kept whatever their angle.
+SEPARATION_COS = -0.5
+FULL_GAP = 0.9
+#: Pairs whose nearest boundary points are within ~18 degrees of opposite
+#: directions see the two faces of a plate (thickness estimate).
+ANTIPODAL_COS = 0.95
 
 
 @dataclasses.dataclass(frozen=True)
@@ -75,8 +87,13 @@ def _pair_gaps(features: Features) -> list[tuple[np.ndarray, np.ndarray, np.ndar
 
 
 def estimate_thickness(features: Features) -> float:
-    """Nominal plate thickness: the median gap between the nearest boundary
-    points of adjacent voxels, over the pairs that straddle a medial surface.
+    """Nominal plate thickness from the pairs of adjacent voxels that see
+    opposite faces of a plate.
+
+    A pair straddling a plate's mid-surface has nearest boundary points on
+    the two faces, in opposite directions (antipodal), and their distance is
+    the local thickness. Pairs near edges and corners see faces at an angle
+    and are left out. The estimate is the median over antipodal pairs.
 
     Parameters
     ----------
@@ -93,16 +110,23 @@ def estimate_thickness(features: Features) -> float:
         If the part has no interior (no straddling pair).
     """
     unit = float(features.spacing.max())
-    gaps = np.concatenate([g for _, _, g in _pair_gaps(features)])
-    big = gaps[gaps > 2.0 * unit]
-    if len(big) == 0:
+    P = (features.voxels + features.offset) * features.spacing
+    found = []
+    for p, q, gap in _pair_gaps(features):
+        keep = gap > 2.0 * unit
+        p, q, gap = p[keep], q[keep], gap[keep]
+        up = features.feature[p] - P[p]
+        uq = features.feature[q] - P[q]
+        cos = np.einsum("ij,ij->i", up, uq) / np.maximum(
+            np.linalg.norm(up, axis=1) * np.linalg.norm(uq, axis=1), 1e-12)
+        found.append(gap[cos < -ANTIPODAL_COS])
+    gaps = np.concatenate(found)
+    if len(gaps) == 0:
         raise EmptyShapeError("the part is too thin to have medial voxels (thinner than ~2 voxels)")
-    # Straddling pairs of a sheet all see the full thickness; corner branches
-    # see less. The upper half of the gaps is dominated by the sheets.
-    return float(np.median(big[big >= np.median(big)]))
+    return float(np.median(gaps))
 
 
-def medial_voxels(features: Features, lam: float) -> MedialVoxels:
+def medial_voxels(features: Features, lam: float, thickness: float | None = None) -> MedialVoxels:
     """Medial voxels whose contact points are more than ``lam`` apart.
 
     Parameters
@@ -111,6 +135,9 @@ def medial_voxels(features: Features, lam: float) -> MedialVoxels:
     lam : float
         Smallest distance between the two nearest boundary points of a medial
         voxel pair (physical units), the lambda of the lambda-medial axis.
+    thickness : float, optional
+        Nominal thickness; when given, pairs narrower than 0.9 of it must also
+        pass the separation-angle test.
 
     Returns
     -------
@@ -127,6 +154,8 @@ def medial_voxels(features: Features, lam: float) -> MedialVoxels:
         raise InvalidInputError(f"lam must be finite and > 0, got {lam!r}")
     n = len(features.voxels)
     unit = float(features.spacing.min())
+    if thickness is None:
+        thickness = 0.0
     F = features.feature
     P = (features.voxels + features.offset) * features.spacing
     acc_mid = np.zeros((n, 3))
@@ -137,6 +166,12 @@ def medial_voxels(features: Features, lam: float) -> MedialVoxels:
         keep = gap > lam
         p, q, gap = p[keep], q[keep], gap[keep]
         fp, fq = F[p], F[q]
+        # separation angle: the contact directions of a sheet are opposite; at
+        # convex edges and where an end face meets a junction they are ~90 deg
+        up, uq = fp - P[p], fq - P[q]
+        cos = np.einsum("ij,ij->i", up, uq) / np.maximum(np.linalg.norm(up, axis=1) * np.linalg.norm(uq, axis=1), 1e-12)
+        wide = (cos < SEPARATION_COS) | (gap >= FULL_GAP * thickness)
+        p, q, gap, fp, fq = p[wide], q[wide], gap[wide], fp[wide], fq[wide]
         mid = 0.5 * (fp + fq)
         u = (fq - fp) / gap[:, None]
         sp = np.abs(np.einsum("ij,ij->i", P[p] - mid, u))

@@ -107,8 +107,8 @@ def volume_stages(
     remove_dents: bool = True,
     density: float = 1.0,
     rng: Any = 0,
-    shape: Any = None,
-    dtype: Any = None,
+    raw_shape: Any = None,
+    raw_dtype: Any = None,
     callback: Callable[[str], Any] | None = None,
     show_progress: bool | None = None,
 ) -> VolumeStages:
@@ -128,12 +128,12 @@ def volume_stages(
         check_cancel(callback, stage)
         t0 = time.perf_counter()
         if stage == "binarize":
-            state["source"] = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, shape=shape, dtype=dtype)
+            state["source"] = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
         elif stage == "distance":
             state["features"] = feature_transform(state["source"])
             state["thickness"], state["lam"] = _thickness_and_lam(state["features"], thickness, lam)
         elif stage == "medial voxels":
-            state["medial"] = medial_voxels(state["features"], state["lam"])
+            state["medial"] = medial_voxels(state["features"], state["lam"], state["thickness"])
         elif stage == "polygonize":
             mesh = polygonize(state["features"], state["medial"], density=density, rng=rng)
             state["mesh"] = mesh
@@ -196,8 +196,8 @@ def midsurface_medial_axis(
     remove_dents: bool = True,
     density: float = 1.0,
     rng: Any = 0,
-    shape: Any = None,
-    dtype: Any = None,
+    raw_shape: Any = None,
+    raw_dtype: Any = None,
     callback: Callable[[str], Any] | None = None,
     show_progress: bool | None = None,
 ) -> MedialAxis:
@@ -213,7 +213,7 @@ def midsurface_medial_axis(
     ----------
     volume : (Z, Y, X) array_like, str or path
         Bool mask or grey values, or a volume file / folder (NRRD, NIfTI,
-        TIFF stack, DICOM series, ``.npy``, ``.raw`` with ``shape``/``dtype``).
+        TIFF stack, DICOM series, ``.npy``, ``.raw`` with ``raw_shape``/``raw_dtype``).
         Never modified.
     iso, threshold : float, optional
         Foreground is ``grey > iso`` (``threshold`` is the dispatcher's name
@@ -236,8 +236,8 @@ def midsurface_medial_axis(
         Vertex spacing in units of the local half thickness.
     rng : seed or numpy Generator
         Order of the sub-sampling within a class (reproducible per seed).
-    shape, dtype : optional
-        Array shape and dtype of a ``.raw`` file.
+    raw_shape, raw_dtype : optional
+        Array shape ``(Z, Y, X)`` and dtype of a ``.raw`` file.
     callback : callable, optional
         Called with each stage name; returning ``False`` cancels.
     show_progress : bool, optional
@@ -275,7 +275,7 @@ def midsurface_medial_axis(
     """
     return volume_stages(
         volume, iso=iso, threshold=threshold, thickness=thickness, lam=lam, spacing=spacing, extend=extend,
-        remove_dents=remove_dents, density=density, rng=rng, shape=shape, dtype=dtype, callback=callback,
+        remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype, callback=callback,
         show_progress=show_progress,
     ).result
 
@@ -288,8 +288,8 @@ def medial_voxel_axis(
     thickness: float | None = None,
     lam: float | None = None,
     spacing: Any = None,
-    shape: Any = None,
-    dtype: Any = None,
+    raw_shape: Any = None,
+    raw_dtype: Any = None,
 ) -> MedialAxis:
     """The medial voxels themselves (``method="voxels"``): points and radii, no faces.
 
@@ -313,10 +313,10 @@ def medial_voxel_axis(
     """
     from medialaxis.volume.polygonize import classify_voxels
 
-    src = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, shape=shape, dtype=dtype)
+    src = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
     features = feature_transform(src)
     thickness_value, lam_value = _thickness_and_lam(features, thickness, lam)
-    medial = medial_voxels(features, lam_value)
+    medial = medial_voxels(features, lam_value, thickness_value)
     occupied = np.zeros(features.index.shape, bool)
     occupied[tuple(medial.voxels.T)] = True
     kind = classify_voxels(occupied, medial.voxels)

@@ -103,7 +103,7 @@ def _read_npy(path: Path) -> tuple[np.ndarray, Any]:
 
 def _read_raw(path: Path, shape: Any, dtype: Any) -> tuple[np.ndarray, Any]:
     if shape is None or dtype is None:
-        raise InvalidInputError(f"reading raw file {str(path)!r} needs shape=(Z, Y, X) and dtype options")
+        raise InvalidInputError(f"reading raw file {str(path)!r} needs the raw_shape=(Z, Y, X) and raw_dtype options")
     try:
         shape = tuple(int(s) for s in shape)
         dt = np.dtype(dtype)
