@@ -10,13 +10,13 @@ def small_t():
 
 
 @pytest.fixture(scope="session")
-def small_x():
-    return x_phantom((60, 60, 50), margin=8)
+def x_part():
+    return x_phantom()
 
 
 @pytest.fixture(scope="session")
-def small_member():
-    return member_phantom((60, 80, 60), margin=8)
+def member_part():
+    return member_phantom()
 
 
 @pytest.fixture(scope="session")

@@ -58,19 +58,19 @@ def test_extension_and_dent_removal_each_help(small_t):
     assert d_full.max() < d_dent.max()
 
 
-def test_x_junction(small_x):
-    ma = mx.medial_axis(small_x.volume, method="midsurface", iso=0.5, thickness=6.0)
-    d = distance_to_rects(ma.points, small_x.midsurface)
-    assert np.percentile(d, 99) <= 1.5
-    assert coverage(_truth(small_x), ma.points, ma.faces)[0] >= 0.97
+def test_x_junction(x_part):
+    ma = mx.medial_axis(x_part.volume, method="midsurface", iso=0.5, thickness=6.0)
+    d = distance_to_rects(ma.points, x_part.midsurface)
+    assert np.percentile(d, 99) <= 1.0
+    assert coverage(_truth(x_part), ma.points, ma.faces)[0] >= 0.985
     topo = mesh_topology(ma.faces)
     assert topo.components == 1 and topo.junction_edges > 0
 
 
-def test_member_box_section(small_member):
-    ma = mx.medial_axis(small_member.volume, method="midsurface", iso=0.5)
-    assert coverage(_truth(small_member), ma.points, ma.faces)[0] >= 0.95
-    assert np.percentile(distance_to_rects(ma.points, small_member.midsurface), 95) <= 1.0
+def test_member_box_section(member_part):
+    ma = mx.medial_axis(member_part.volume, method="midsurface", iso=0.5)
+    assert coverage(_truth(member_part), ma.points, ma.faces)[0] >= 0.97
+    assert np.percentile(distance_to_rects(ma.points, member_part.midsurface), 99) <= 1.0
     assert mesh_topology(ma.faces).components == 1
 
 

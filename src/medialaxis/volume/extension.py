@@ -123,9 +123,29 @@ def _max_normal_component(points: np.ndarray, faces: np.ndarray, vertices: np.nd
     return out
 
 
+def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.ndarray, vertices: np.ndarray,
+                          directions: np.ndarray) -> np.ndarray:
+    """Directions of junction-line ends: away from their one junction neighbour."""
+    e = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
+    e = e[junction[e[:, 0]] & junction[e[:, 1]]]
+    ends = np.concatenate([e, e[:, ::-1]])  # (vertex, junction neighbour)
+    degree = np.bincount(ends[:, 0], minlength=len(points))
+    out = directions.copy()
+    slot = np.full(len(points), -1, np.int64)
+    slot[vertices] = np.arange(len(vertices))
+    one = ends[(degree[ends[:, 0]] == 1) & (slot[ends[:, 0]] >= 0)]
+    d = points[one[:, 0]] - points[one[:, 1]]
+    d /= np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
+    rows = slot[one[:, 0]]
+    agree = np.einsum("ij,ij->i", d, directions[rows]) > 0  # only where the mesh agrees it is outward
+    out[rows[agree]] = d[agree]
+    return out
+
+
 def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: float, spacing: np.ndarray,
                 max_length: float, plane_normals: tuple[np.ndarray, np.ndarray] | None = None,
-                free: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                free: np.ndarray | None = None, junction: np.ndarray | None = None,
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Extend the free boundary of a mid-surface mesh to the isosurface.
 
     Parameters
@@ -146,8 +166,11 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     free : (v,) bool ndarray, optional
         Vertices on a free edge of the part (medial voxels classified as
         boundary). When given, only they, and vertices joined to them by a
-        boundary edge (the ends of junction lines), are extended; the edges
+        boundary edges (the ends of junction lines), are extended; the edges
         of small holes in the mesh are not free edges of the part.
+    junction : (v,) bool ndarray, optional
+        Junction vertices. A junction vertex with one junction neighbour ends
+        a junction line and is extended along that line.
 
     Returns
     -------
@@ -161,6 +184,8 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     if len(edges) == 0:
         return points, faces, np.empty(0, np.int64)
     vertices, directions = outward_directions(points, edges, opposite)
+    if junction is not None:
+        directions = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions)
     good = np.linalg.norm(directions, axis=1) > 0.5
     if free is not None:
         free = np.asarray(free, bool)

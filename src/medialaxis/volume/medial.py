@@ -5,9 +5,9 @@ Two 6-adjacent foreground voxels ``p``, ``q`` whose nearest boundary points
 degrees apart, straddle the medial surface;
 the one closer to the bisector plane of ``f(p)`` and ``f(q)`` is marked
 (ties go to the lower index), so even thicknesses give a one-voxel sheet.
-Each medial voxel keeps the midpoint of the two boundary points (the sub-voxel
-position of the mid-surface), half their distance (the radius) and their
-direction (the sheet normal), averaged over the pairs that marked it.
+Each medial voxel keeps the sub-voxel mid-surface point (on the bisector
+planes of the pairs that marked it), half the distance between the boundary
+points (the radius) and their direction (the sheet normal).
 """
 
 from __future__ import annotations
@@ -36,6 +36,9 @@ TIE_TOLERANCE = 0.5
 #: the corners of an X junction) are kept whatever their angle.
 SEPARATION_COS = -0.5
 FULL_GAP = 0.9
+#: Weight (relative to one plane) that holds a medial voxel's position near the
+#: mean midpoint of its pairs along directions no plane constrains.
+POSITION_REGULARIZATION = 0.01
 #: Pairs whose nearest boundary points are within ~18 degrees of opposite
 #: directions see the two faces of a plate (thickness estimate).
 ANTIPODAL_COS = 0.95
@@ -50,13 +53,17 @@ class MedialVoxels:
     voxels : (n, 3) int64 ndarray
         Crop indices (see :class:`~medialaxis.volume.distance.Features`).
     position : (n, 3) float64 ndarray
-        Mean midpoint of the nearest-boundary pairs (physical units).
+        Sub-voxel mid-surface point: the least-squares point of the bisector
+        planes of the voxel's pairs, near their mean midpoint (physical units).
     radius : (n,) float64 ndarray
         Half the mean distance between the pairs' boundary points.
     normal : (n, 3) float64 ndarray
         Unit direction between the boundary points (sign arbitrary).
     distance : (n,) float64 ndarray
         Distance transform at the voxel.
+    coherence : (n,) float64 ndarray
+        Length of the mean pair direction: 1 on a sheet, lower on creases
+        and junctions where the pairs cross two sheets.
     """
 
     voxels: np.ndarray
@@ -64,6 +71,7 @@ class MedialVoxels:
     radius: np.ndarray
     normal: np.ndarray
     distance: np.ndarray
+    coherence: np.ndarray
 
 
 def _pairs(features: Features, axis: int) -> tuple[np.ndarray, np.ndarray]:
@@ -160,6 +168,8 @@ def medial_voxels(features: Features, lam: float, thickness: float | None = None
     P = (features.voxels + features.offset) * features.spacing
     acc_mid = np.zeros((n, 3))
     acc_normal = np.zeros((n, 3))
+    acc_q = np.zeros((n, 3, 3))  # sum of u u^T over the pairs (plane quadric)
+    acc_qm = np.zeros((n, 3))  # sum of u u^T mid
     acc_gap = np.zeros(n)
     count = np.zeros(n)
     for p, q, gap in _pair_gaps(features):
@@ -181,21 +191,35 @@ def medial_voxels(features: Features, lam: float, thickness: float | None = None
         # orient normals consistently (largest component positive) before averaging
         flip = np.take_along_axis(u, np.abs(u).argmax(axis=1)[:, None], axis=1)[:, 0] < 0
         u[flip] *= -1
+        uu = u[:, :, None] * u[:, None, :]
+        uum = np.einsum("kij,kj->ki", uu, mid)
         for k in range(3):
             acc_mid[:, k] += np.bincount(chosen, mid[:, k], minlength=n)
             acc_normal[:, k] += np.bincount(chosen, u[:, k], minlength=n)
+            acc_qm[:, k] += np.bincount(chosen, uum[:, k], minlength=n)
+            for m in range(3):
+                acc_q[:, k, m] += np.bincount(chosen, uu[:, k, m], minlength=n)
         acc_gap += np.bincount(chosen, gap, minlength=n)
         count += np.bincount(chosen, minlength=n)
     rows = np.flatnonzero(count)
     if len(rows) == 0:
         raise EmptyShapeError(f"no medial voxel for lam={lam:g}: the thickness or lam is larger than the part allows")
     c = count[rows]
-    normal = acc_normal[rows]
-    normal /= np.maximum(np.linalg.norm(normal, axis=1, keepdims=True), 1e-12)
+    normal = acc_normal[rows] / c[:, None]
+    coherence = np.linalg.norm(normal, axis=1)
+    normal /= np.maximum(coherence[:, None], 1e-12)
+    # Position: least squares on the bisector planes of the voxel's pairs, held
+    # near their mean midpoint. One plane (a sheet): the midpoint. Planes of
+    # two sheets (a crease or a junction): their intersection next to it.
+    centre = acc_mid[rows] / c[:, None]
+    q = acc_q[rows] / c[:, None, None] + POSITION_REGULARIZATION * np.eye(3)
+    rhs = acc_qm[rows] / c[:, None] + POSITION_REGULARIZATION * centre
+    position = np.linalg.solve(q, rhs[:, :, None])[:, :, 0]
     return MedialVoxels(
         voxels=features.voxels[rows],
-        position=acc_mid[rows] / c[:, None],
+        position=position,
         radius=0.5 * acc_gap[rows] / c,
         normal=normal,
         distance=features.distance[rows],
+        coherence=coherence,
     )

@@ -154,7 +154,7 @@ def volume_stages(
             points, faces, source = extend_mesh(
                 state["points"], state["faces"], src.grey, src.iso, src.spacing,
                 max_length=1.5 * state["thickness"] + 2.0 * sample_radius,
-                free=state["kind"] == BOUNDARY,
+                free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
             )
             state["points"], state["faces"] = points, faces
             state["radii"] = np.concatenate([state["radii"], state["radii"][source]])

@@ -2,8 +2,8 @@
 
 1. Classify medial voxels as junction, boundary or surface by counting the
    background components around them (Malandain).
-2. Pick representatives in the order junction, boundary, surface, each pick
-   removing the medial voxels within its sampling radius.
+2. Pick representatives in the order junction, crease, boundary, surface,
+   each pick removing the medial voxels within its sampling radius.
 3. Grow the picks' discrete Voronoi regions over the medial voxels
    (breadth-first, 26-adjacency) and connect picks whose regions touch.
 4. A triangle joins three picks whose regions meet in one 2x2x2 block of
@@ -80,6 +80,11 @@ def classify_voxels(occupied: np.ndarray, voxels: np.ndarray) -> np.ndarray:
     kind[count <= 1] = BOUNDARY
     kind[count >= 3] = JUNCTION
     return kind
+
+
+#: Surface voxels whose pair directions disagree this much (mean direction
+#: shorter than this) lie on a crease and are sampled before the others.
+CREASE_COHERENCE = 0.9
 
 
 def _pair_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
@@ -255,7 +260,10 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     del occupied
     index = np.full(shape, -1, np.int32)
     index[tuple(voxels.T)] = np.arange(n, dtype=np.int32)
-    priority = np.select([kind == JUNCTION, kind == BOUNDARY], [0, 1], 2)
+    # creases (a sheet bending sharply, pairs in two directions) come right
+    # after junctions so that vertices sit on the crease line
+    crease = (kind == SURFACE) & (medial.coherence < CREASE_COHERENCE)
+    priority = np.select([kind == JUNCTION, crease, kind == BOUNDARY], [0, 1, 2], 3)
     # a random order within each class avoids grid-aligned picks, whose Voronoi
     # regions meet four at a time (degenerate vertices)
     order = np.lexsort((np.random.default_rng(rng).permutation(n), priority))
