@@ -31,6 +31,10 @@ from medialaxis.volume.polygonize import BOUNDARY, EXTENSION, JUNCTION, Polygoni
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
 
+#: Passes of eq. (1) for free-edge vertices: each pass keeps 1 / (1 + k) of
+#: the offset from the planes of the k faces beside the vertex.
+FREE_EDGE_PASSES = 3
+
 
 @dataclasses.dataclass(frozen=True)
 class VolumeStages:
@@ -144,7 +148,9 @@ def volume_stages(
             special = (kind == JUNCTION) | (kind == BOUNDARY)
             # free-edge vertices mix in boundary points of the end face: put them
             # on the planes of the interior faces next to them (eq. 1 as well)
-            moved = _remove_dents(state["points"], state["faces"], kind == BOUNDARY, special)
+            moved = state["points"]
+            for _ in range(FREE_EDGE_PASSES):
+                moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special)
             if remove_dents:
                 moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
             state["points"] = moved
