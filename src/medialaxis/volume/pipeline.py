@@ -52,6 +52,10 @@ class VolumeStages:
     result : MedialAxis
     timings : dict of str to float
         Seconds per stage.
+    steps : dict of str to MedialAxis
+        The axis after each stage, for viewing: ``"medial_voxels"`` (points
+        only), ``"polygonized"``, ``"dents_removed"`` and ``"extended"`` (the
+        result).
     """
 
     source: VolumeInput
@@ -62,6 +66,7 @@ class VolumeStages:
     mesh: Polygonization
     result: MedialAxis
     timings: dict[str, float]
+    steps: dict[str, MedialAxis] = dataclasses.field(default_factory=dict)
 
 
 def _number(value: Any, name: str, *, positive: bool = True) -> float:
@@ -154,6 +159,7 @@ def volume_stages(
             if remove_dents:
                 moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
             state["points"] = moved
+            state["dented_points"] = moved
         elif stage == "extension" and extend:
             src = state["source"]
             sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
@@ -186,8 +192,17 @@ def volume_stages(
         extras={"thickness": 2.0 * state["radii"], "vertex_kind": state["kind"]},
         metadata=metadata,
     )
-    return VolumeStages(src, state["features"], state["thickness"], state["lam"], state["medial"], state["mesh"],
-                        result, timings)
+    mesh, medial, features = state["mesh"], state["medial"], state["features"]
+    voxel_meta = dict(metadata, method="voxels")
+    steps = {
+        "medial_voxels": MedialAxis(features.physical(medial.voxels), medial.radius, metadata=voxel_meta),
+        "polygonized": MedialAxis(mesh.points, mesh.radii, faces=mesh.faces, metadata=metadata,
+                                  extras={"vertex_kind": mesh.kind}),
+        "dents_removed": MedialAxis(state["dented_points"], mesh.radii, faces=mesh.faces, metadata=metadata,
+                                    extras={"vertex_kind": mesh.kind}),
+        "extended": result,
+    }
+    return VolumeStages(src, features, state["thickness"], state["lam"], medial, mesh, result, timings, steps)
 
 
 def midsurface_medial_axis(
