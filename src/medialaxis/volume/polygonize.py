@@ -185,20 +185,110 @@ def _edge_counts(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return count[inverse.ravel()].reshape(-1, 3), e
 
 
-def repair_faces(faces: np.ndarray, junction: np.ndarray, rounds: int = 4) -> np.ndarray:
-    """Remove folded triangles and close three-edge holes.
+def _drop_surplus(faces: np.ndarray, junction: np.ndarray, points: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """On edges from a junction vertex to a sheet vertex with three or more
+    faces, keep the two faces closest to the sheet's plane (the others bridge
+    to another sheet across the junction's corner)."""
+    from medialaxis.volume.dents import face_normals
 
-    Where neighbouring blocks split the same degenerate quad across both
-    diagonals, one extra triangle lies over the others: it has an edge with
-    three faces that is not a junction edge (both ends junction vertices) and
-    an edge with only one. Such triangles are dropped; then holes bounded by
-    exactly three edges are closed with one triangle.
+    count, e = _edge_counts(faces)
+    end_j = junction[e[..., 0]] ^ junction[e[..., 1]]  # exactly one end is a junction vertex
+    over = (count >= 3) & end_j
+    if not over.any():
+        return faces
+    fid, slot = np.nonzero(over)
+    edge = e[fid, slot]
+    sheet_vertex = np.where(junction[edge[:, 0]], edge[:, 1], edge[:, 0])
+    fit = np.abs(np.einsum("ij,ij->i", face_normals(points, faces)[fid], normal[sheet_vertex]))
+    key = edge[:, 0].astype(np.int64) * (int(faces.max()) + 1) + edge[:, 1]
+    order = np.lexsort((-fit, key))  # per edge, best-fitting faces first
+    key, fid = key[order], fid[order]
+    rank = np.arange(len(key)) - np.searchsorted(key, key)
+    drop = np.zeros(len(faces), bool)
+    drop[fid[rank >= 2]] = True
+    return faces[~drop]
+
+
+def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = 4) -> np.ndarray:
+    """Close holes bounded by at most ``max_edges`` edges.
+
+    A hole is a cycle of boundary edges, or a path of boundary edges whose
+    ends are joined by an edge of the mesh (a notch beside a junction edge).
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    count, e = _edge_counts(faces)
+    single = e[count == 1]
+    if len(single) == 0:
+        return faces
+    n = int(faces.max()) + 1
+    graph = coo_matrix((np.ones(len(single)), (single[:, 0], single[:, 1])), shape=(n, n))
+    _, comp = connected_components(graph, directed=False)
+    size = np.bincount(comp[single[:, 0]], minlength=n)
+    existing = {tuple(x) for x in np.sort(e.reshape(-1, 2), axis=1).tolist()}
+    new: list[list[int]] = []
+    for c in np.flatnonzero((size >= 2) & (size <= max_edges)):
+        edges = single[comp[single[:, 0]] == c]
+        verts, deg = np.unique(edges, return_counts=True)
+        if np.all(deg == 2):  # a cycle
+            cycle = _walk(edges, int(verts[0]))
+        elif (deg == 1).sum() == 2 and np.all(deg <= 2):  # a path
+            a, b = verts[deg == 1]
+            if (min(a, b), max(a, b)) not in existing:
+                continue
+            cycle = _walk(edges, int(a))
+        else:
+            continue
+        if len(cycle) == 3:
+            new.append(cycle)
+        elif len(cycle) == 4:
+            a, b, c2, d = cycle
+            if np.linalg.norm(points[a] - points[c2]) <= np.linalg.norm(points[b] - points[d]):
+                new += [[a, b, c2], [a, c2, d]]
+            else:
+                new += [[a, b, d], [b, c2, d]]
+    if not new:
+        return faces
+    return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+
+
+def _walk(edges: np.ndarray, start: int) -> list[int]:
+    """Vertices of a path or cycle of edges in order, from ``start``."""
+    nbrs: dict[int, list[int]] = {}
+    for a, b in edges.tolist():
+        nbrs.setdefault(a, []).append(b)
+        nbrs.setdefault(b, []).append(a)
+    order, prev, cur = [start], -1, start
+    while True:
+        nxt = [v for v in nbrs[cur] if v != prev]
+        if not nxt or nxt[0] == start:
+            return order
+        prev, cur = cur, nxt[0]
+        order.append(cur)
+
+
+def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | None = None,
+                 normal: np.ndarray | None = None, rounds: int = 4) -> np.ndarray:
+    """Remove folded and surplus triangles and close small holes.
+
+    1. Where neighbouring blocks split the same degenerate quad across both
+       diagonals, one extra triangle lies over the others: it has an edge with
+       three faces that is not a junction edge (both ends junction vertices)
+       and an edge with only one. Such triangles are dropped.
+    2. With ``points`` and ``normal`` (vertex sheet normals): on edges from a
+       junction vertex to a sheet vertex with three or more faces, only the
+       two faces closest to that sheet's plane stay.
+    3. Holes bounded by three or four edges (or a notch of three boundary
+       edges against a junction edge) are closed.
 
     Parameters
     ----------
     faces : (f, 3) int64 ndarray
     junction : (v,) bool ndarray
         Junction vertices (their shared edges may carry three or more faces).
+    points : (v, 3) float64 ndarray, optional
+    normal : (v, 3) float64 ndarray, optional
 
     Returns
     -------
@@ -216,20 +306,7 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, rounds: int = 4) -> np
             break
         faces = faces[~folded]
     if len(faces):
-        count, e = _edge_counts(faces)
-        single = e[count == 1]
-        if len(single):
-            from scipy.sparse import coo_matrix
-            from scipy.sparse.csgraph import connected_components
-
-            n = int(faces.max()) + 1
-            graph = coo_matrix((np.ones(len(single)), (single[:, 0], single[:, 1])), shape=(n, n))
-            _, comp = connected_components(graph, directed=False)
-            size = np.bincount(comp[single[:, 0]], minlength=n)
-            loops = [np.unique(single[comp[single[:, 0]] == c]) for c in np.flatnonzero(size == 3)]
-            new = [loop for loop in loops if len(loop) == 3]
-            if new:
-                faces = np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+        faces = _close_small_holes(faces, points if points is not None else np.zeros((int(faces.max()) + 1, 3)))
     return faces
 
 
@@ -274,5 +351,6 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     label_grid = np.full(shape, -1, np.int32)
     label_grid[tuple(voxels.T)] = label
     points = medial.position[picks]
-    faces = repair_faces(_triangles(label_grid, voxels, points), kind[picks] == JUNCTION)
+    faces = repair_faces(_triangles(label_grid, voxels, points), kind[picks] == JUNCTION, points,
+                         medial.normal[picks])
     return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label)
