@@ -26,6 +26,10 @@ from medialaxis.volume.medial import MedialVoxels
 
 __all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "Polygonization", "classify_voxels", "polygonize"]
 
+#: Junction picks are this many local radii apart (sparser than the sheets:
+#: larger junction regions keep the regions of different sheets apart).
+JUNCTION_SPACING = 1.5
+
 #: Vertex / voxel classes.
 SURFACE, BOUNDARY, JUNCTION, EXTENSION = 0, 1, 2, 3
 
@@ -345,6 +349,7 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     # regions meet four at a time (degenerate vertices)
     order = np.lexsort((np.random.default_rng(rng).permutation(n), priority))
     radius = np.maximum(density * medial.radius, 1.5 * float(features.spacing.max()))
+    radius[kind == JUNCTION] *= JUNCTION_SPACING
     picks = _kernels.greedy_subsample(index, voxels, order, radius, features.spacing)
     label = _kernels.geodesic_labels(index, voxels, picks, _kernels.OFFSETS_26, features.spacing)
     del index
