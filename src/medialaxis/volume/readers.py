@@ -22,7 +22,6 @@ __all__ = ["read_volume", "VOLUME_SUFFIXES"]
 #: Suffixes handled by :func:`read_volume` (a folder is a TIFF or DICOM series).
 VOLUME_SUFFIXES = (".nrrd", ".nhdr", ".nii", ".nii.gz", ".tif", ".tiff", ".dcm", ".npy", ".raw")
 
-Spacing = "tuple[float, float, float] | None"
 
 
 def _suffix(path: Path) -> str:
