@@ -25,7 +25,10 @@ METHODS: dict[str, dict[str, str]] = {
         "voronoi": "medialaxis.planar.pipeline:voronoi_medial_axis",
     },
     "mesh": {},
-    "volume": {},
+    "volume": {
+        "midsurface": "medialaxis.volume.pipeline:midsurface_medial_axis",
+        "voxels": "medialaxis.volume.pipeline:medial_voxel_axis",
+    },
 }
 
 #: Default method per domain.

@@ -73,7 +73,7 @@ def _add_compute(sub: Any) -> None:
     )
     p.add_argument("input", type=Path, help="image, SVG/GeoJSON/WKT, mesh or volume file (or folder)")
     p.add_argument("-o", "--output", type=Path, action="append", default=[],
-                   help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj); repeatable")
+                   help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj .vtk); repeatable")
     p.add_argument("--method", default=None, help="method within the input's domain (default: the domain's default)")
     p.add_argument("--lam", type=float, default=None, help="lambda: smallest contact-set diameter kept (output units)")
     p.add_argument("--threshold", type=float, default=None, help="grey level of the foreground (default: Otsu)")
@@ -81,7 +81,9 @@ def _add_compute(sub: Any) -> None:
     p.add_argument("--tolerance", type=float, default=None, help="planar accuracy parameter (output units)")
     p.add_argument("--detour", type=float, default=None, help="planar pruning detour ratio")
     p.add_argument("--boundary", choices=["contour", "canny"], default=None, help="planar boundary extraction")
-    p.add_argument("--steps", type=Path, default=None, help="planar: save the pipeline stages as one figure (PNG/SVG/PDF)")
+    p.add_argument("--steps", type=Path, default=None,
+                   help="save the pipeline stages: planar, one figure (PNG/SVG/PDF); volume, one mesh file per stage "
+                        "named STEM_<k>_<stage>.<ext> (.ply .vtk .obj .json .npz)")
     p.add_argument("--option", action="append", default=[], metavar="KEY=VALUE",
                    help="extra method option (value parsed as JSON when possible); repeatable")
     p.set_defaults(run=_run_compute)
@@ -92,7 +94,8 @@ def _run_compute(args: argparse.Namespace) -> int:
 
     outputs = list(args.output) + ([args.steps] if args.steps else [])
     _check_outputs([args.input], list(args.output))
-    if args.steps is not None:
+    volume_steps = args.steps is not None and mx._dispatch.classify(str(args.input), args.method) == "volume"
+    if args.steps is not None and not volume_steps:
         _check_outputs([args.input], [args.steps.with_suffix(".png")])
         if args.steps.suffix.lower() not in (".png", ".svg", ".pdf"):
             raise UsageError(f"--steps needs a .png, .svg or .pdf file, got {str(args.steps)!r}")
@@ -102,12 +105,20 @@ def _run_compute(args: argparse.Namespace) -> int:
         if value is not None:
             options[name] = value
     spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
-    if args.steps is not None:
+    if volume_steps:
+        from medialaxis.volume.steps import save_steps, stages_for_method
+
+        _check_outputs([args.input], [args.steps])
+        stages = stages_for_method(str(args.input), args.method, lam=args.lam, threshold=args.threshold,
+                                   spacing=spacing, **options)
+        ma = stages.result
+        outputs = list(args.output) + save_steps(stages, args.steps)
+    elif args.steps is not None:
         from medialaxis.planar.pipeline import planar_stages
         from medialaxis.planar.plotting import save_stages_figure
 
         if mx._dispatch.classify(str(args.input), args.method) != "planar":
-            raise UsageError("--steps is available for planar inputs")
+            raise UsageError("--steps is available for planar and volume inputs")
         stages = planar_stages(str(args.input), lam=args.lam, threshold=args.threshold, spacing=spacing, **options)
         ma = stages.result
         save_stages_figure(stages, args.steps)

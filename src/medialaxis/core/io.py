@@ -3,7 +3,8 @@
 Lossless: ``.json`` and ``.npz`` (read back by :func:`load`, including the
 unpruned axis so :meth:`MedialAxis.prune` still works). Exports: ``.graphml``,
 ``.geojson``, ``.svg`` (axis over the shape), ``.png`` (plot coloured by
-radius), ``.ply`` (vertices with radius, edges, faces) and ``.obj``.
+radius), ``.ply`` (vertices with radius, edges, faces), ``.obj`` and ``.vtk``
+(legacy polydata with radius, thickness and per-vertex extras as point data).
 Every file is written to a temporary name in the target folder, then renamed,
 so a failure never leaves a half-written file.
 """
@@ -339,6 +340,32 @@ def _write_obj(ma: MedialAxis, path: Path) -> None:
             np.savetxt(fh, ma.faces + 1, fmt="f %d %d %d")
 
 
+def _write_vtk(ma: MedialAxis, path: Path) -> None:
+    """Legacy VTK polydata: triangles (or lines), with ``radius``, ``thickness``
+    (twice the radius) and every per-vertex extra as point data."""
+    n, d = ma.points.shape
+    pts = ma.points if d == 3 else np.c_[ma.points, np.zeros(n)]
+    with atomic_write(path, "w") as fh:
+        fh.write("# vtk DataFile Version 3.0\nmedialaxis result\nASCII\nDATASET POLYDATA\n")
+        fh.write(f"POINTS {n} double\n")
+        np.savetxt(fh, pts, fmt="%.10g")
+        if len(ma.faces):
+            fh.write(f"POLYGONS {len(ma.faces)} {4 * len(ma.faces)}\n")
+            np.savetxt(fh, np.c_[np.full(len(ma.faces), 3), ma.faces], fmt="%d")
+        elif len(ma.edges):
+            fh.write(f"LINES {len(ma.edges)} {3 * len(ma.edges)}\n")
+            np.savetxt(fh, np.c_[np.full(len(ma.edges), 2), ma.edges], fmt="%d")
+        else:
+            fh.write(f"VERTICES {n} {2 * n}\n")
+            np.savetxt(fh, np.c_[np.ones(n, int), np.arange(n)], fmt="%d")
+        fields = {"radius": ma.radii, "thickness": 2.0 * ma.radii}
+        fields.update({k: v for k, v in ma.extras.items() if v.shape == (n,) and k not in fields})
+        fh.write(f"POINT_DATA {n}\n")
+        for name, values in fields.items():
+            fh.write(f"SCALARS {name} double 1\nLOOKUP_TABLE default\n")
+            np.savetxt(fh, np.asarray(values, np.float64), fmt="%.10g")
+
+
 WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
     ".json": _write_json,
     ".npz": _write_npz,
@@ -348,6 +375,7 @@ WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
     ".png": _write_png,
     ".ply": _write_ply,
     ".obj": _write_obj,
+    ".vtk": _write_vtk,
 }
 LOSSLESS = (".json", ".npz")
 

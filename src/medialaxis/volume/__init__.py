@@ -1,1 +1,21 @@
-"""3D volumes (CT scans): medial voxels and mid-surfaces of thin-plate parts."""
+"""3D volumes (CT scans): medial voxels and mid-surfaces of thin-plate parts.
+
+:func:`midsurface_medial_axis` (``method="midsurface"``) implements paper 002
+(Kumar, Michikawa and Suzuki, "Improving medial surfaces for reverse
+engineering"); :func:`medial_voxel_axis` (``method="voxels"``) returns the
+medial voxels. Both are reached through :func:`medialaxis.medial_axis`.
+"""
+
+from medialaxis.volume.inputs import VolumeInput, load_volume
+from medialaxis.volume.pipeline import VolumeStages, medial_voxel_axis, midsurface_medial_axis, volume_stages
+from medialaxis.volume.readers import read_volume
+
+__all__ = [
+    "midsurface_medial_axis",
+    "medial_voxel_axis",
+    "volume_stages",
+    "VolumeStages",
+    "load_volume",
+    "VolumeInput",
+    "read_volume",
+]

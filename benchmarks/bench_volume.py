@@ -1,0 +1,247 @@
+"""Benchmark of the volume mid-surface pipeline on the issue's T phantom.
+
+Builds the 140 x 240 x 240 CT-like T (two 6-voxel plates, blurred, noisy,
+iso 0.5), then runs, each in a fresh child process (so that peak memory is
+per tool):
+
+* ours: ``medial_axis(volume, method="midsurface", iso=0.5)``, after a warm-up
+  on a small phantom so the numba kernels come from their on-disk cache;
+* scikit-image ``skeletonize`` on the same binarized volume;
+* kimimaro ``skeletonize`` on the same binarized volume;
+* the distance-transform choices: our sub-voxel k-d tree feature transform,
+  SciPy ``distance_transform_edt(return_indices=True)`` and ``edt.edt``.
+
+It prints our figures, the peers' figures and the ratios, and the issue's
+targets with PASS/FAIL. Timings depend on the machine's load.
+
+Usage::
+
+    PYTHONPATH=src python benchmarks/bench_volume.py [--shape 140 240 240]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+
+def _peak_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def child(tool: str, path: str) -> dict:
+    volume = np.load(path)
+    out: dict = {}
+    if tool == "ours":
+        import medialaxis as mx
+        from medialaxis.volume.phantoms import t_phantom
+        from medialaxis.volume.pipeline import volume_stages
+
+        mx.medial_axis(t_phantom((40, 60, 60), margin=6).volume, method="midsurface", iso=0.5)  # warm caches
+        base = _peak_mb()
+        t0 = time.perf_counter()
+        stages = volume_stages(volume, iso=0.5)
+        out["seconds"] = time.perf_counter() - t0
+        out["timings"] = stages.timings
+        ma = stages.result
+        np.savez(path + ".ours.npz", points=ma.points, faces=ma.faces, radii=ma.radii, kind=ma.vertex_kind)
+        out["baseline_mb"] = base
+        out["vertices"], out["faces"] = len(ma.points), len(ma.faces)
+    elif tool == "skimage":
+        from skimage.morphology import skeletonize
+
+        mask = volume > 0.5
+        t0 = time.perf_counter()
+        skel = skeletonize(mask)
+        out["seconds"] = time.perf_counter() - t0
+        out["voxels"] = int(np.count_nonzero(skel))
+    elif tool == "kimimaro":
+        import kimimaro
+
+        labels = (volume > 0.5).astype(np.uint32)
+        t0 = time.perf_counter()
+        skels = kimimaro.skeletonize(labels, anisotropy=(1, 1, 1), parallel=1, progress=False)
+        out["seconds"] = time.perf_counter() - t0
+        out["vertices"] = int(sum(len(s.vertices) for s in skels.values()))
+        out["edges"] = int(sum(len(s.edges) for s in skels.values()))
+    elif tool == "ft_ours":
+        from medialaxis.volume.distance import feature_transform
+        from medialaxis.volume.inputs import load_volume
+
+        vol = load_volume(volume, iso=0.5)
+        base = _peak_mb()
+        t0 = time.perf_counter()
+        feature_transform(vol)
+        out["seconds"] = time.perf_counter() - t0
+        out["baseline_mb"] = base
+    elif tool == "ft_scipy":
+        from scipy import ndimage
+
+        mask = volume > 0.5
+        base = _peak_mb()
+        t0 = time.perf_counter()
+        ndimage.distance_transform_edt(mask, return_indices=True)
+        out["seconds"] = time.perf_counter() - t0
+        out["baseline_mb"] = base
+    elif tool == "ft_edt":
+        import edt
+
+        mask = volume > 0.5
+        base = _peak_mb()
+        t0 = time.perf_counter()
+        edt.edt(mask, parallel=2)
+        out["seconds"] = time.perf_counter() - t0
+        out["baseline_mb"] = base
+    out["peak_mb"] = _peak_mb()
+    return out
+
+
+def run_child(tool: str, path: str) -> dict:
+    env = dict(os.environ)
+    src = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "src")
+    env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
+    res = subprocess.run([sys.executable, os.path.abspath(__file__), "--child", tool, path],
+                         capture_output=True, text=True, env=env, check=False)
+    if res.returncode != 0:
+        return {"error": res.stderr.strip().splitlines()[-1] if res.stderr.strip() else f"exit {res.returncode}"}
+    return json.loads(res.stdout.strip().splitlines()[-1])
+
+
+def score_arrays(points, faces, radii, phantom) -> dict:
+    from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
+
+    d = distance_to_rects(points, phantom.midsurface)
+    truth = np.concatenate([r.sample(0.5) for r in phantom.midsurface])
+    frac, dist = coverage(truth, points, faces, tolerance=1.0)
+    # the junction line is where the two true mid-planes meet
+    flange, stem = phantom.midsurface
+    zj, yj = flange.origin[0], stem.origin[1]
+    near_v = np.hypot(points[:, 0] - zj, points[:, 1] - yj) <= phantom.thickness
+    near_t = np.hypot(truth[:, 0] - zj, truth[:, 1] - yj) <= phantom.thickness
+    # away from the plate ends (x within one thickness of the end faces): the dent proper
+    x0, x1 = flange.origin[2], flange.origin[2] + flange.v[2]
+    inner_v = near_v & (points[:, 2] > x0 + phantom.thickness) & (points[:, 2] < x1 - phantom.thickness)
+    lo = np.array([flange.origin[1], flange.origin[2]])
+    hi = lo + np.array([flange.u[1], flange.v[2]])
+    end_z = stem.origin[0] + stem.u[0]
+    free = (np.minimum(truth[:, 1] - lo[0], hi[0] - truth[:, 1]) <= 2) & (np.abs(truth[:, 0] - zj) < 0.1)
+    free |= (np.minimum(truth[:, 2] - lo[1], hi[1] - truth[:, 2]) <= 2)
+    free |= (end_z - truth[:, 0] <= 2) & (np.abs(truth[:, 1] - yj) < 0.1)
+    topo = mesh_topology(faces)
+    return {
+        "vertex_p99": float(np.percentile(d, 99)),
+        "vertex_max": float(d.max()),
+        "coverage": frac,
+        "coverage_free_edges": float(np.mean(dist[free] <= 1.0)),
+        "junction_vertex_max": float(d[near_v].max()),
+        "dent_vertex_max": float(d[inner_v].max()),
+        "junction_truth_max": float(dist[near_t].max()),
+        "median_thickness": float(np.median(2 * radii)),
+        "topology": topo,
+    }
+
+
+def score(path: str, phantom) -> dict:
+    z = np.load(path + ".ours.npz")
+    return score_arrays(z["points"], z["faces"], z["radii"], phantom)
+
+
+def robustness(shape: tuple[int, int, int]) -> list[tuple[int, int, float, dict]]:
+    """Our pipeline over noise seeds x sampling seeds (in this process)."""
+    import medialaxis as mx
+    from medialaxis.volume.phantoms import t_phantom
+
+    rows = []
+    for noise_seed in (0, 1, 2):
+        ph = t_phantom(shape, rng=noise_seed)
+        for rng in (0, 1):
+            t0 = time.perf_counter()
+            ma = mx.medial_axis(ph.volume, method="midsurface", iso=0.5, rng=rng)
+            rows.append((noise_seed, rng, time.perf_counter() - t0, score_arrays(ma.points, ma.faces, ma.radii, ph)))
+    return rows
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--shape", type=int, nargs=3, default=(140, 240, 240))
+    parser.add_argument("--quick", action="store_true", help="skip the robustness table over seeds")
+    parser.add_argument("--child", nargs=2, metavar=("TOOL", "PATH"), help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.child:
+        print(json.dumps(child(*args.child)))
+        return
+    from medialaxis.volume.phantoms import t_phantom
+
+    ph = t_phantom(tuple(args.shape))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "t.npy")
+        np.save(path, ph.volume)
+        print(f"T phantom {tuple(args.shape)}: plates {ph.thickness:g} voxels, blur 1, noise 0.05, iso 0.5; "
+              f"{os.cpu_count()} cores (shared: timings are pessimistic)")
+        res = {tool: run_child(tool, path) for tool in ("ours", "skimage", "kimimaro", "ft_ours", "ft_scipy", "ft_edt")}
+        ours = res["ours"]
+        if "error" in ours:
+            raise SystemExit(f"ours failed: {ours['error']}")
+        s = score(path, ph)
+    mb = ours["peak_mb"]
+    print(f"\nours (midsurface): {ours['seconds']:.2f} s, peak RSS {mb:.0f} MB (process incl. imports and input), "
+          f"{ours['vertices']} vertices, {ours['faces']} faces")
+    print("  stages: " + ", ".join(f"{k} {v:.2f} s" for k, v in ours["timings"].items()))
+    for tool in ("skimage", "kimimaro"):
+        r = res[tool]
+        if "error" in r:
+            print(f"{tool}: failed: {r['error']}")
+            continue
+        size = f"{r['voxels']} skeleton voxels" if tool == "skimage" else f"{r['vertices']} vertices, {r['edges']} edges (trees)"
+        print(f"{tool}: {r['seconds']:.2f} s, peak RSS {r['peak_mb']:.0f} MB, {size}; "
+              f"time ratio ours/{tool} = {ours['seconds'] / r['seconds']:.2f}")
+    print("\ndistance / feature transform of the same volume:")
+    for tool, label in (("ft_ours", "ours: sub-voxel boundary + k-d tree"), ("ft_scipy", "scipy distance_transform_edt(return_indices)"),
+                        ("ft_edt", "edt.edt (distance only, no feature transform)")):
+        r = res[tool]
+        extra = r["peak_mb"] - r["baseline_mb"]
+        print(f"  {label}: {r['seconds']:.2f} s, +{extra:.0f} MB peak over baseline; ratio to ours {r['seconds'] / res['ft_ours']['seconds']:.2f}")
+    ext = ours["timings"].get("extension", float("nan"))
+    print(f"\nextension stage: {ext:.3f} s (paper Table 1, T 240x240x140: 1,190 s; ratio {1190 / max(ext, 1e-9):.0f}x); "
+          f"dent removal {ours['timings'].get('dents', float('nan')):.3f} s (paper: 7 s)")
+    t = s["topology"]
+    checks = [
+        ("vertex distance to true mid-planes p99 <= 1 voxel", s["vertex_p99"], s["vertex_p99"] <= 1.0),
+        ("vertex distance max <= 2 voxels", s["vertex_max"], s["vertex_max"] <= 2.0),
+        ("true mid-surface within 1 voxel of the mesh >= 98.5%", s["coverage"], s["coverage"] >= 0.985),
+        ("  of it within 2 voxels of a free edge (extension)", s["coverage_free_edges"], s["coverage_free_edges"] >= 0.985),
+        ("max deviation of vertices near the junction <= 0.75", s["junction_vertex_max"], s["junction_vertex_max"] <= 0.75),
+        ("  same, away from the plate ends (the dent) <= 0.75", s["dent_vertex_max"], s["dent_vertex_max"] <= 0.75),
+        ("median thickness within 10% of 6", s["median_thickness"], abs(s["median_thickness"] - 6) <= 0.6),
+        ("one connected mesh", t.components, t.components == 1),
+        ("contractible (Euler characteristic 1)", t.euler, t.euler == 1),
+        ("non-manifold junction edges present", t.junction_edges, t.junction_edges > 0),
+        ("whole pipeline <= 10 s", ours["seconds"], ours["seconds"] <= 10),
+        ("peak memory <= 2 GB", mb, mb <= 2048),
+    ]
+    print("\ntargets:")
+    for name, value, ok in checks:
+        print(f"  [{'PASS' if ok else 'FAIL'}] {name}: {value:.4g}" if isinstance(value, float) else
+              f"  [{'PASS' if ok else 'FAIL'}] {name}: {value}")
+    print(f"  (truth points near the junction: max distance to the mesh {s['junction_truth_max']:.3f}; mesh {t})")
+    if not args.quick:
+        rows = robustness(tuple(args.shape))
+        print("\nrobustness: noise seed x sampling seed (rng), same T, in-process:")
+        print("  noise rng  time_s  p99    max    cover   free    junct  dent   thick  euler  comps")
+        for noise_seed, rng, secs, r in rows:
+            tp = r["topology"]
+            print(f"  {noise_seed:5d} {rng:3d}  {secs:6.2f}  {r['vertex_p99']:.3f}  {r['vertex_max']:.3f}  {r['coverage']:.4f}  "
+                  f"{r['coverage_free_edges']:.4f}  {r['junction_vertex_max']:.3f}  {r['dent_vertex_max']:.3f}  "
+                  f"{r['median_thickness']:.3f}  {tp.euler:5d}  {tp.components:5d}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,188 @@
+"""Volume file readers: NRRD, NIfTI, TIFF stacks, DICOM series, ``.npy`` and raw.
+
+Every reader returns ``(array, spacing)`` with the array in index order
+``(axis0, axis1, axis2)`` as stored and ``spacing`` per array axis (``None``
+when the file does not say). Missing, unreadable or truncated files raise
+:class:`~medialaxis.errors.InputFileError`.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from medialaxis._optional import require
+from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
+
+__all__ = ["read_volume", "VOLUME_SUFFIXES"]
+
+#: Suffixes handled by :func:`read_volume` (a folder is a TIFF or DICOM series).
+VOLUME_SUFFIXES = (".nrrd", ".nhdr", ".nii", ".nii.gz", ".tif", ".tiff", ".dcm", ".npy", ".raw")
+
+
+
+def _suffix(path: Path) -> str:
+    name = path.name.lower()
+    return ".nii.gz" if name.endswith(".nii.gz") else path.suffix.lower()
+
+
+def _read_nrrd(path: Path) -> tuple[np.ndarray, Any]:
+    nrrd = require("nrrd", "pynrrd")
+    data, header = nrrd.read(str(path), index_order="C")
+    spacing = None
+    if "spacings" in header:
+        spacing = tuple(float(s) for s in header["spacings"])
+    elif "space directions" in header:
+        dirs = np.asarray(header["space directions"], dtype=float)
+        if dirs.ndim == 2 and np.all(np.isfinite(dirs)):
+            spacing = tuple(float(s) for s in np.linalg.norm(dirs, axis=1))
+    if spacing is not None and data.ndim == 3:
+        spacing = spacing[::-1] if len(spacing) == 3 else None  # header lists fastest axis first
+    return data, spacing
+
+
+def _read_nifti(path: Path) -> tuple[np.ndarray, Any]:
+    nib = require("nibabel", "nibabel")
+    img = nib.load(str(path))
+    data = np.asanyarray(img.dataobj)
+    zooms = tuple(float(z) for z in img.header.get_zooms()[: data.ndim])
+    return data, zooms if len(zooms) == 3 else None
+
+
+def _read_tiff(path: Path) -> tuple[np.ndarray, Any]:
+    tifffile = require("tifffile", "tifffile")
+    if path.is_dir():
+        files = sorted(p for p in path.iterdir() if p.suffix.lower() in (".tif", ".tiff"))
+        if not files:
+            raise InputFileError(f"folder {str(path)!r} holds no .tif/.tiff slices or .dcm files")
+        data = tifffile.imread([str(f) for f in files])
+    else:
+        data = tifffile.imread(str(path))
+    return data, None
+
+
+def _read_dicom(path: Path) -> tuple[np.ndarray, Any]:
+    pydicom = require("pydicom", "pydicom")
+    files = sorted(p for p in path.iterdir() if p.is_file() and p.suffix.lower() in (".dcm", "")) if path.is_dir() else [path]
+    slices = []
+    for f in files:
+        try:
+            ds = pydicom.dcmread(str(f))
+            slices.append((ds, ds.pixel_array))
+        except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
+            raise InputFileError(f"cannot read DICOM file {str(f)!r}: {exc}") from exc
+    if not slices:
+        raise InputFileError(f"folder {str(path)!r} holds no DICOM files")
+
+    def position(item: Any) -> float:
+        ds = item[0]
+        ipp = getattr(ds, "ImagePositionPatient", None)
+        return float(ipp[2]) if ipp is not None else float(getattr(ds, "InstanceNumber", 0))
+
+    slices.sort(key=position)
+    arrays = [a for _, a in slices]
+    if len({a.shape for a in arrays}) != 1:
+        raise InputFileError(f"DICOM slices in {str(path)!r} have different sizes")
+    data = np.stack(arrays) if arrays[0].ndim == 2 else arrays[0]
+    ds0 = slices[0][0]
+    pixel = [float(s) for s in getattr(ds0, "PixelSpacing", [1.0, 1.0])]
+    if len(slices) > 1:
+        dz = abs(position(slices[1]) - position(slices[0])) or float(getattr(ds0, "SliceThickness", 1.0))
+    else:
+        dz = float(getattr(ds0, "SliceThickness", 1.0))
+    return data, (dz, pixel[0], pixel[1])
+
+
+def _read_npy(path: Path) -> tuple[np.ndarray, Any]:
+    return np.load(path, allow_pickle=False), None
+
+
+def _read_raw(path: Path, shape: Any, dtype: Any) -> tuple[np.ndarray, Any]:
+    if shape is None or dtype is None:
+        raise InvalidInputError(f"reading raw file {str(path)!r} needs the raw_shape=(Z, Y, X) and raw_dtype options")
+    try:
+        shape = tuple(int(s) for s in shape)
+        dt = np.dtype(dtype)
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError(f"bad raw shape {shape!r} or dtype {dtype!r}: {exc}") from None
+    if len(shape) != 3 or min(shape) < 1:
+        raise InvalidInputError(f"raw shape must be 3 positive sizes, got {shape}")
+    expected = int(np.prod(shape)) * dt.itemsize
+    size = path.stat().st_size
+    if size != expected:
+        raise InputFileError(
+            f"raw file {str(path)!r} has {size} bytes, expected {expected} for shape {shape} and dtype {dt}"
+            + (" (truncated)" if size < expected else "")
+        )
+    return np.fromfile(path, dtype=dt).reshape(shape), None
+
+
+def read_volume(path: str | os.PathLike[str], *, shape: Any = None, dtype: Any = None) -> tuple[np.ndarray, Any]:
+    """Read a 3D volume file or a folder of slices.
+
+    Parameters
+    ----------
+    path : str or path
+        ``.nrrd``/``.nhdr``, ``.nii``/``.nii.gz``, multi-page ``.tif``, a folder
+        of TIFF slices or DICOM files, a ``.dcm`` file, ``.npy`` or ``.raw``.
+    shape, dtype : optional
+        Required for ``.raw``: the array shape ``(Z, Y, X)`` and NumPy dtype.
+
+    Returns
+    -------
+    array : (Z, Y, X) ndarray
+    spacing : tuple of 3 float or None
+        Voxel size per array axis when the file records it.
+
+    Raises
+    ------
+    InputFileError
+        Missing, unreadable, truncated or not 3D.
+    UnsupportedFormatError
+        An extension no reader handles.
+    MissingDependencyError
+        The reader's optional package is not installed.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, os
+    >>> d = tempfile.mkdtemp(); p = os.path.join(d, "v.npy")
+    >>> np.save(p, np.zeros((4, 5, 6), np.uint8))
+    >>> read_volume(p)[0].shape
+    (4, 5, 6)
+    """
+    p = Path(path)
+    if not p.exists():
+        raise InputFileError(f"no such file or folder: {str(p)!r}")
+    if p.is_dir():
+        names = [q.suffix.lower() for q in p.iterdir() if q.is_file()]
+        reader = _read_tiff if any(n in (".tif", ".tiff") for n in names) else _read_dicom
+        args: tuple[Any, ...] = ()
+    else:
+        ext = _suffix(p)
+        table = {".nrrd": _read_nrrd, ".nhdr": _read_nrrd, ".nii": _read_nifti, ".nii.gz": _read_nifti,
+                 ".tif": _read_tiff, ".tiff": _read_tiff, ".dcm": _read_dicom, ".npy": _read_npy}
+        if ext == ".raw":
+            return _check3d(_read_raw(p, shape, dtype), p)
+        if ext not in table:
+            raise UnsupportedFormatError(f"unsupported volume file type {ext or '(none)'!r} for {str(p)!r}")
+        reader, args = table[ext], ()
+    try:
+        result = reader(p, *args)
+    except (InputFileError, InvalidInputError, ImportError):
+        raise
+    except Exception as exc:  # noqa: BLE001 - decoder errors of any kind mean a bad file
+        raise InputFileError(f"cannot read volume {str(p)!r}: {type(exc).__name__}: {exc}") from exc
+    return _check3d(result, p)
+
+
+def _check3d(result: tuple[np.ndarray, Any], path: Path) -> tuple[np.ndarray, Any]:
+    data, spacing = result
+    data = np.asarray(data)
+    data = np.squeeze(data) if data.ndim > 3 else data
+    if data.ndim != 3:
+        raise InputFileError(f"{str(path)!r} holds a {data.ndim}D array of shape {data.shape}, expected a 3D volume")
+    return data, spacing

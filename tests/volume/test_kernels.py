@@ -1,0 +1,64 @@
+"""The compiled kernels agree with their pure-Python references."""
+
+import numpy as np
+from hypothesis import given
+from hypothesis import strategies as st
+
+from medialaxis.volume import _kernels as K
+
+
+def _random_sheet(seed: int, shape=(9, 10, 11), p=0.35) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    occ = rng.random(shape) < p
+    occ[0], occ[-1], occ[:, 0], occ[:, -1], occ[:, :, 0], occ[:, :, -1] = (False,) * 6
+    return occ
+
+
+@given(st.integers(0, 10_000), st.floats(0.1, 0.8))
+def test_topology_class_matches_reference(seed, p):
+    occ = _random_sheet(seed, p=p)
+    vox = np.argwhere(occ)
+    fast = K.topology_class(occ, vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE)
+    assert np.array_equal(fast, K.topology_class_reference(occ, vox))
+
+
+def test_topology_class_of_plane_edge_and_junction():
+    occ = np.zeros((7, 9, 7), bool)
+    occ[2, 1:8, 1:6] = True  # a sheet normal to axis 0
+    occ[3:6, 4, 1:6] = True  # a sheet hanging from its middle: a T
+    vox = np.array([[2, 2, 3], [2, 1, 3], [2, 4, 3], [4, 4, 3]])
+    got = K.topology_class(occ, vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE).tolist()
+    assert got == [2, 1, 3, 2]  # surface, free edge, junction, surface
+
+
+@given(st.integers(0, 10_000), st.floats(0.8, 3.5))
+def test_greedy_subsample_matches_reference(seed, r):
+    occ = _random_sheet(seed, p=0.5)
+    vox = np.argwhere(occ)
+    index = np.full(occ.shape, -1, np.int32)
+    index[tuple(vox.T)] = np.arange(len(vox))
+    rng = np.random.default_rng(seed)
+    order = rng.permutation(len(vox))
+    radius = rng.uniform(0.5, r, len(vox))
+    spacing = np.array([1.0, 1.5, 0.75])
+    fast = K.greedy_subsample(index, vox, order, radius, spacing)
+    ref = K.greedy_subsample_reference(vox, order, radius, spacing)
+    assert np.array_equal(fast, ref)
+    # picks are farther apart than the radius of the earlier pick
+    phys = vox[fast] * spacing
+    for k in range(len(fast)):
+        d = np.linalg.norm(phys[k + 1 :] - phys[k], axis=1)
+        assert np.all(d > radius[fast[k]])
+
+
+@given(st.integers(0, 10_000), st.integers(1, 6))
+def test_geodesic_labels_match_reference(seed, nseeds):
+    occ = _random_sheet(seed, p=0.6)
+    vox = np.argwhere(occ)
+    index = np.full(occ.shape, -1, np.int32)
+    index[tuple(vox.T)] = np.arange(len(vox))
+    seeds = np.random.default_rng(seed).choice(len(vox), size=min(nseeds, len(vox)), replace=False)
+    spacing = np.array([1.0, 1.0, 2.0])
+    fast = K.geodesic_labels(index, vox, seeds, K.OFFSETS_26, spacing)
+    assert np.array_equal(fast, K.geodesic_labels_reference(vox, seeds, spacing))
+    assert np.array_equal(fast[seeds], np.arange(len(seeds)))
