@@ -24,7 +24,9 @@ METHODS: dict[str, dict[str, str]] = {
     "planar": {
         "voronoi": "medialaxis.planar.pipeline:voronoi_medial_axis",
     },
-    "mesh": {},
+    "mesh": {
+        "flow": "medialaxis.mesh.flow:flow_skeleton",
+    },
     "volume": {},
 }
 

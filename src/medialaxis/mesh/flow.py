@@ -1,0 +1,393 @@
+"""Curve skeletons of closed meshes by a diffusion flow (paper 003), with user control.
+
+The surface ``S`` evolves by the diffusion equation of paper 003, eq. (4),
+``dS/dt = D(N, kappa) laplacian(S)``, discretised with the cotangent Laplacian
+``L`` and lumped mass ``M`` of the *current* surface and solved implicitly
+(backward Euler, unconditionally stable) for the free vertices::
+
+    (M + tau (L + w M)) p_next = M p + tau w M c
+
+The extra term pulls each vertex towards ``c``, the centre of its inner
+medial ball (shrinking-ball poles): it plays the role of the paper's normal
+term ``N`` (the grassfire direction) and keeps tips from retracting, so the
+surface collapses onto the medial axis rather than onto a point. A vertex
+whose one-ring area has shrunk below ``collapse`` times its initial area has
+met the opposite side of the surface: it is frozen there as a skeletal point
+(the paper's collision test, in a form that costs O(n) per step), and mesh
+edges shorter than a fraction of the thickness are collapsed (their end
+points move as one). The contracted mesh is then turned into a curve skeleton
+graph by :mod:`medialaxis.mesh.contract_graph`.
+
+User control, as in paper 003 section 4.2: ``fixed_points`` freezes chosen
+vertices from the start (the skeleton reaches them), ``region`` restricts the
+flow to a box, ``curvature_threshold`` turns convex tips of high Gaussian
+curvature (eq. 7) into skeletal points, ``callback`` watches every step.
+
+References
+----------
+Paper 003: "Medial Axis Extraction and Shape Manipulation of Solid Objects
+Using Parabolic PDEs", sections 3-4.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy import sparse
+from scipy.sparse import linalg as splinalg
+from scipy.spatial import cKDTree
+
+from medialaxis._progress import check_cancel, progress
+from medialaxis.core import graph as _graph
+from medialaxis.core.result import MedialAxis
+from medialaxis.errors import ComputationError, InvalidInputError
+from medialaxis.mesh import _flow_operators as ops
+from medialaxis.mesh.contract_graph import skeleton_graph
+from medialaxis.mesh.inputs import _read, load_mesh
+
+__all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices"]
+
+
+@dataclasses.dataclass(frozen=True)
+class FlowState:
+    """What ``callback(state)`` receives after every step of the flow.
+
+    Attributes
+    ----------
+    step : int
+        1 for the first step.
+    positions : (n, 3) float64 ndarray, read-only
+        Current positions of the cleaned mesh's vertices.
+    frozen : (n,) bool ndarray, read-only
+        Vertices that are skeletal points (frozen) so far.
+    faces : (k, 3) int64 ndarray, read-only
+        Faces of the cleaned mesh (constant).
+    time : float
+        Flow time reached (in units of the squared median thickness).
+    """
+
+    step: int
+    positions: np.ndarray
+    frozen: np.ndarray
+    faces: np.ndarray
+    time: float
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, copy=True)
+    a.setflags(write=False)
+    return a
+
+
+def nonmanifold_vertices(n_vertices: int, faces: np.ndarray) -> np.ndarray:
+    """Vertices whose incident faces form more than one fan (a "bow-tie") ``(b,)``."""
+    # nodes: directed (vertex, neighbour) pairs; each face corner links its two neighbours
+    corner = np.concatenate([faces, np.roll(faces, -1, axis=1), np.roll(faces, -2, axis=1)], axis=0)
+    v, a, b = corner[:, 0], corner[:, 1], corner[:, 2]
+    pairs = np.concatenate([np.column_stack([v, a]), np.column_stack([v, b])])
+    uniq, inv = np.unique(pairs, axis=0, return_inverse=True)
+    inv = inv.ravel()
+    k = len(v)
+    _, label = _graph.component_labels(len(uniq), np.column_stack([inv[:k], inv[k:]]))
+    fans = np.unique(np.column_stack([uniq[:, 0], label]), axis=0)
+    count = np.bincount(fans[:, 0], minlength=n_vertices)
+    return np.flatnonzero(count > 1)
+
+
+def prepare_flow_mesh(mesh: Any, *, repair: bool = False) -> tuple[Any, np.ndarray, tuple[str, ...]]:
+    """Validate a closed mesh for the flow.
+
+    Returns
+    -------
+    clean : trimesh.Trimesh
+        Cleaned watertight copy (see :func:`medialaxis.mesh.inputs.load_mesh`).
+    vertex_map : (n_input,) int64 ndarray
+        Vertex of ``clean`` for each input vertex (merged duplicates share one).
+    repairs : tuple of str
+
+    Raises
+    ------
+    InvalidInputError
+        Open or non-manifold meshes (edges or vertices), non-finite coordinates.
+    EmptyShapeError, InputFileError
+        See :func:`medialaxis.mesh.inputs.load_mesh`.
+    """
+    raw = _read(Path(mesh)) if isinstance(mesh, (str, os.PathLike)) else mesh
+    checked = load_mesh(raw, watertight=True, repair=repair)
+    clean = checked.mesh
+    faces = np.asarray(clean.faces, dtype=np.int64)
+    bad = nonmanifold_vertices(len(clean.vertices), faces)
+    if len(bad):
+        raise InvalidInputError(
+            f"the mesh has {len(bad)} non-manifold vertices (e.g. vertex {int(bad[0])} joins separate "
+            "fans of faces); split them first"
+        )
+    raw_vertices = np.asarray(raw.vertices, dtype=np.float64)
+    _, vertex_map = cKDTree(np.asarray(clean.vertices)).query(raw_vertices, k=1)
+    return clean, np.asarray(vertex_map, dtype=np.int64), checked.repairs
+
+
+def _curvature_tips(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, threshold: float) -> np.ndarray:
+    """Vertex of highest Gaussian curvature in each edge-connected patch where ``K >= threshold``."""
+    k = ops.gaussian_curvature(points, faces)
+    hot = k >= threshold
+    if not hot.any():
+        return np.zeros(0, dtype=np.int64)
+    sub = edges[hot[edges[:, 0]] & hot[edges[:, 1]]]
+    _, label = _graph.component_labels(len(points), sub)
+    idx = np.flatnonzero(hot)
+    order = idx[np.lexsort((-k[idx], label[idx]))]
+    first = np.unique(label[order], return_index=True)[1]
+    return np.sort(order[first])
+
+
+def _solve(a: sparse.csr_matrix, b: np.ndarray, x0: np.ndarray) -> np.ndarray:
+    """Solve the SPD system for three right-hand sides: Jacobi-preconditioned CG, SuperLU fallback."""
+    diag = a.diagonal()
+    pre = sparse.diags(1.0 / diag)
+    out = np.empty_like(b)
+    for d in range(b.shape[1]):
+        x, info = splinalg.cg(a, b[:, d], x0=x0[:, d], rtol=1e-9, maxiter=2000, M=pre)
+        if info != 0 or not np.all(np.isfinite(x)):
+            solve = splinalg.factorized(a.tocsc())  # one factorization for the remaining axes
+            for dd in range(d, b.shape[1]):
+                out[:, dd] = solve(b[:, dd])
+            return out
+        out[:, d] = x
+    return out
+
+
+def _check_box(region: Any) -> np.ndarray:
+    box = np.asarray(region, dtype=np.float64)
+    if box.shape != (2, 3) or not np.all(np.isfinite(box)) or np.any(box[0] > box[1]):
+        raise InvalidInputError(f"region must be a finite (2, 3) box [[xmin, ymin, zmin], [xmax, ymax, zmax]], got {region!r}")
+    return box
+
+
+def _positive(name: str, value: Any, *, allow_none: bool = True) -> float | None:
+    if value is None and allow_none:
+        return None
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{name} must be a positive number, got {value!r}") from None
+    if not (np.isfinite(v) and v > 0):
+        raise InvalidInputError(f"{name} must be a positive number, got {value!r}")
+    return v
+
+
+def flow_skeleton(
+    mesh: Any,
+    *,
+    dt: float | None = None,
+    fixed_points: Any = None,
+    region: Any = None,
+    curvature_threshold: float | None = None,
+    callback: Callable[[FlowState], Any] | None = None,
+    max_steps: int | None = None,
+    attraction: float = 4.0,
+    collapse: float = 0.01,
+    settle_tolerance: float = 1e-3,
+    node_spacing: float | None = None,
+    repair: bool = False,
+) -> MedialAxis:
+    """Curve skeleton of a closed mesh by the diffusion flow of paper 003.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh or path
+        A closed, manifold triangle mesh (several closed components are
+        allowed: each gets its own skeleton component).
+    dt : float, optional
+        Implicit time step in units of ``s**2``, ``s`` the median inner-ball
+        radius of the mesh (so results do not depend on scale). Default 1.0.
+        Smaller steps follow the flow more closely and take more steps.
+    fixed_points : sequence of int, optional
+        Input vertex indices that become skeletal points where they are: they
+        never move, each is a skeleton node and the skeleton reaches it.
+    region : (2, 3) array_like, optional
+        Axis-aligned box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``: only
+        vertices inside flow (the rest stay on the surface) and only they are
+        skeletonized; ``correspondence`` is ``-1`` for the others.
+    curvature_threshold : float, optional
+        Gaussian curvature (angle defect per area, eq. (7), in 1/length**2).
+        In every connected patch of the input surface where the curvature is at
+        least this, the vertex of highest curvature becomes a skeletal point at
+        its place, so the skeleton reaches into sharp convex tips (a capsule's
+        caps have ``1/r**2``). Lower thresholds make more tips reach the
+        surface; ``None`` (default) keeps none, and the skeleton ends inside
+        the tips, at the centres of their inner balls.
+    callback : callable, optional
+        ``callback(FlowState)`` after every step; returning ``False`` cancels
+        (:class:`~medialaxis.errors.Cancelled`).
+    max_steps : int, optional
+        Upper bound on the steps (default 60). Vertices still moving then are
+        frozen where they are and ``metadata["converged"]`` is ``False``.
+    attraction : float
+        Weight ``w`` (in 1/s**2) of the pull towards the inner-ball centres.
+    collapse : float
+        A vertex freezes when its one-ring area falls below this fraction of
+        its initial area.
+    settle_tolerance : float
+        A vertex that moves less than this (times ``s``) in a step has
+        stopped: it freezes as a skeletal point.
+    node_spacing : float, optional
+        Spacing of the skeleton nodes (length); default ``s / 2``.
+    repair : bool
+        Close small holes before refusing an open mesh.
+
+    Returns
+    -------
+    MedialAxis
+        ``points`` (s, 3), ``radii`` (mean distance from each node to the
+        surface points that collapsed onto it), ``edges``, no faces;
+        ``extras["correspondence"]`` (n_input,) is the node of each input
+        vertex; metadata holds ``steps``, ``converged``, ``dt``, ``repairs``.
+
+    Raises
+    ------
+    InvalidInputError
+        Open, non-manifold or non-finite meshes; bad option values.
+    EmptyShapeError
+        Empty meshes or meshes without volume; a region holding no vertex.
+    ComputationError
+        The flow diverged (non-finite or exploding positions).
+    Cancelled
+        The callback returned ``False``.
+
+    Examples
+    --------
+    >>> import medialaxis as mx
+    >>> from medialaxis.mesh.flow_samples import capsules_mesh
+    >>> capsule = capsules_mesh([[[0, 0, 0], [3, 0, 0]]], 0.5, pitch=0.1)
+    >>> sk = mx.medial_axis(capsule, method="flow")
+    >>> len(sk.endpoints), len(sk.junctions)
+    (2, 0)
+    """
+    from medialaxis.errors import EmptyShapeError
+
+    t_start = time.perf_counter()
+    dt_rel = _positive("dt", dt) or 1.0
+    threshold = None if curvature_threshold is None else float(curvature_threshold)
+    if threshold is not None and not np.isfinite(threshold):
+        raise InvalidInputError(f"curvature_threshold must be finite, got {curvature_threshold!r}")
+    if max_steps is None:
+        max_steps = 60
+    if int(max_steps) != max_steps or max_steps < 1:
+        raise InvalidInputError(f"max_steps must be a positive integer, got {max_steps!r}")
+    max_steps = int(max_steps)
+    attraction = float(_positive("attraction", attraction, allow_none=False) or 0.0)
+    collapse = float(_positive("collapse", collapse, allow_none=False) or 0.0)
+    if collapse >= 1:
+        raise InvalidInputError(f"collapse must be in (0, 1), got {collapse!r}")
+    spacing = _positive("node_spacing", node_spacing)
+    if callback is not None and not callable(callback):
+        raise InvalidInputError(f"callback must be callable, got {type(callback).__name__}")
+
+    clean, vertex_map, repairs = prepare_flow_mesh(mesh, repair=repair)
+    p0 = np.array(clean.vertices, dtype=np.float64)
+    faces = np.array(clean.faces, dtype=np.int64)
+    n = len(p0)
+    edges = ops.unique_edges(faces)
+    n_input = len(vertex_map)
+
+    fixed = np.zeros(0, dtype=np.int64)
+    if fixed_points is not None:
+        fp = np.asarray(fixed_points)
+        if fp.size and (fp.ndim != 1 or not np.issubdtype(fp.dtype, np.integer)):
+            raise InvalidInputError(f"fixed_points must be a 1D sequence of vertex indices, got {fixed_points!r}")
+        fp = fp.astype(np.int64).ravel()
+        if fp.size and (fp.min() < 0 or fp.max() >= n_input):
+            bad = fp[(fp < 0) | (fp >= n_input)][0]
+            raise InvalidInputError(f"fixed_points index {int(bad)} out of range for a mesh of {n_input} vertices")
+        fixed = np.unique(vertex_map[fp])
+    use = np.ones(n, dtype=bool)
+    if region is not None:
+        box = _check_box(region)
+        use = np.all((p0 >= box[0]) & (p0 <= box[1]), axis=1)
+        if not use.any():
+            raise EmptyShapeError(f"no mesh vertex lies inside the region {box.tolist()}")
+
+    normals = ops.vertex_normals(p0, faces)
+    diag = float(np.linalg.norm(p0.max(axis=0) - p0.min(axis=0)))
+    edge_length = float(np.linalg.norm(p0[edges[:, 0]] - p0[edges[:, 1]], axis=1).mean())
+    poles, pole_radius = ops.medial_poles(p0, normals, max_radius=diag, ignore=2.0 * edge_length)
+    s = float(np.median(pole_radius[use]))
+    if not s > 0:
+        raise ComputationError("could not estimate the thickness of the mesh (all inner-ball radii are zero)")
+    if threshold is not None:
+        tips = _curvature_tips(p0, faces, edges, threshold)
+        fixed = np.union1d(fixed, tips[use[tips]])
+    tau = dt_rel * s * s
+    mass0 = ops.vertex_areas(p0, faces)
+    lap0 = ops.cotangent_laplacian(p0, faces)
+    w = attraction / (s * s)
+    mass_floor = 1e-12 * float(mass0.mean())
+    frozen = ~use
+    frozen[fixed] = True
+    p = p0.copy()
+    steps, converged = 0, False
+    centre = p0.mean(axis=0)
+    # The operator is built once on the input surface (cotangent stiffness and
+    # lumped mass), so one sparse LU factorization serves every step and axis.
+    dirichlet = frozen.copy()  # user-fixed vertices and those outside the region
+    free = np.flatnonzero(~dirichlet)
+    mass = np.maximum(mass0, mass_floor)
+    a = (lap0 * tau + sparse.diags(mass * (1.0 + tau * w))).tocsr()
+    a_ff = a[free][:, free].tocsc()
+    coupling = a[free][:, np.flatnonzero(dirichlet)] @ p0[dirichlet] if dirichlet.any() else 0.0
+    solve = splinalg.factorized(a_ff)
+    attract = (tau * w * mass)[:, None] * poles
+    settle = settle_tolerance * s
+    for step in progress(range(1, max_steps + 1), desc="diffusion flow", total=max_steps):
+        rhs = (mass[:, None] * p + attract)[free] - coupling
+        x = np.column_stack([solve(rhs[:, d]) for d in range(3)])
+        p_new = p.copy()
+        p_new[free] = x
+        if not np.all(np.isfinite(p_new)) or np.abs(p_new - centre).max() > 10.0 * diag:
+            raise ComputationError(
+                f"the diffusion flow diverged at step {step} (dt={dt_rel} x {s * s:.3g}); try a smaller dt"
+            )
+        p_new[frozen] = p[frozen]  # skeletal points never move again
+        moved = np.linalg.norm(p_new - p, axis=1)
+        p = p_new
+        steps = step
+        # a vertex is skeletal once its one-ring has collapsed or it has stopped
+        collapsed = ~frozen & ((ops.vertex_areas(p, faces) < collapse * mass0) | (moved < settle))
+        frozen = frozen | collapsed
+        check_cancel(callback, FlowState(step, _readonly(p), _readonly(frozen), _readonly(faces), step * dt_rel))
+        if frozen.all():
+            converged = True
+            break
+    t_flow = time.perf_counter() - t_start
+    cell = spacing if spacing is not None else 0.5 * s
+    graph = skeleton_graph(p, p0, faces, cell=cell, use=use, fixed=fixed)
+    correspondence = np.where(vertex_map >= 0, graph.correspondence[vertex_map], -1)
+    metadata = {
+        "method": "flow",
+        "domain": "mesh",
+        "dt": dt_rel,
+        "time_unit": s * s,
+        "steps": steps,
+        "converged": converged,
+        "unfrozen_vertices": int((~frozen).sum()),
+        "node_spacing": cell,
+        "attraction": attraction,
+        "collapse": collapse,
+        "curvature_threshold": threshold,
+        "fixed_vertices": [int(v) for v in fixed],
+        "region": None if region is None else np.asarray(region, dtype=float).tolist(),
+        "repairs": list(repairs),
+        "n_vertices": n_input,
+        "flow_seconds": t_flow,
+        "seconds": time.perf_counter() - t_start,
+    }
+    return MedialAxis(
+        graph.points, graph.radii, graph.edges, extras={"correspondence": correspondence}, metadata=metadata
+    )
