@@ -20,6 +20,8 @@ __all__ = [
     "vertex_normals",
     "medial_poles",
     "unique_edges",
+    "unique_pairs",
+    "pole_targets",
 ]
 
 #: Cotangent weights are clipped to ``[0, MAX_COT]``: negative weights (obtuse
@@ -28,11 +30,21 @@ __all__ = [
 MAX_COT = 1.0e4
 
 
+def unique_pairs(pairs: np.ndarray) -> np.ndarray:
+    """Unique rows of a non-negative int ``(m, 2)`` array (1D keys: much faster than ``axis=0``)."""
+    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    if len(pairs) == 0:
+        return pairs
+    base = int(pairs.max()) + 1
+    keys = np.unique(pairs[:, 0] * base + pairs[:, 1])
+    return np.column_stack([keys // base, keys % base])
+
+
 def unique_edges(faces: np.ndarray) -> np.ndarray:
     """Sorted unique undirected edges ``(m, 2)`` of a face list ``(k, 3)``."""
     e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     e.sort(axis=1)
-    return np.unique(e, axis=0)
+    return unique_pairs(e)
 
 
 def _corner_cotangents(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -175,3 +187,36 @@ def medial_poles(
         active = active[ok]
     centres = points - radius[:, None] * normals
     return centres, radius
+
+
+def pole_targets(
+    points: np.ndarray, normals: np.ndarray, *, max_radius: float, ignore: float, max_samples: int = 20000
+) -> tuple[np.ndarray, np.ndarray]:
+    """Inner-ball centre and radius for every vertex, from at most ``max_samples`` samples.
+
+    Large meshes are thinned by a grid (one sample per cell, with the cell's
+    mean normal); each vertex takes the ball of its nearest sample.
+    The nearest-neighbour queries of the shrinking ball cost far more than the
+    flow, and the flow's smoothing does not need one ball per vertex.
+    """
+    n = len(points)
+    if n <= max_samples:
+        return medial_poles(points, normals, max_radius=max_radius, ignore=ignore)
+    lo = points.min(axis=0)
+    cell = max(ignore / 2.0, 1e-12)
+    for _ in range(30):
+        keys = np.floor((points - lo) / cell).astype(np.int64)
+        dims = keys.max(axis=0) + 1
+        flat = (keys[:, 0] * dims[1] + keys[:, 1]) * dims[2] + keys[:, 2]
+        uniq, first, inverse = np.unique(flat, return_index=True, return_inverse=True)
+        if len(uniq) <= max_samples:
+            break
+        cell *= 1.25
+    inverse = inverse.ravel()
+    k = len(uniq)
+    mean_normal = np.column_stack([np.bincount(inverse, weights=normals[:, d], minlength=k) for d in range(3)])
+    mean_normal /= np.maximum(np.linalg.norm(mean_normal, axis=1, keepdims=True), 1e-300)
+    sample_points = points[first]
+    centres, radii = medial_poles(sample_points, mean_normal, max_radius=max_radius, ignore=max(ignore, 2.0 * cell))
+    _, nearest = cKDTree(sample_points).query(points, k=1)
+    return centres[nearest], radii[nearest]

@@ -22,6 +22,7 @@ from scipy import sparse
 from scipy.sparse import csgraph
 
 from medialaxis.core import graph as _graph
+from medialaxis.mesh._flow_operators import unique_pairs
 
 __all__ = ["SkeletonGraph", "skeleton_graph", "handle_count"]
 
@@ -56,7 +57,9 @@ def handle_count(n_vertices: int, faces: np.ndarray) -> int:
     if len(faces) == 0:
         return 0
     e = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
-    edges, counts = np.unique(e, axis=0, return_counts=True)
+    base = n_vertices
+    keys, counts = np.unique(e[:, 0] * base + e[:, 1], return_counts=True)
+    edges = np.column_stack([keys // base, keys % base])
     used = np.unique(faces)
     ncomp, label = _graph.component_labels(n_vertices, edges)
     v = np.bincount(label[used], minlength=ncomp)
@@ -81,7 +84,9 @@ def _cluster(points: np.ndarray, edges: np.ndarray, use: np.ndarray, cell: float
     """Label of each used vertex: its grid cell split by mesh connectivity; ``own`` vertices alone."""
     n = len(points)
     keys = np.floor((points - points[use].min(axis=0)) / cell).astype(np.int64)
-    _, cell_id = np.unique(keys, axis=0, return_inverse=True)
+    keys -= keys.min(axis=0)
+    dims = keys.max(axis=0) + 1
+    _, cell_id = np.unique((keys[:, 0] * dims[1] + keys[:, 1]) * dims[2] + keys[:, 2], return_inverse=True)
     cell_id = cell_id.ravel()
     cell_id[~use] = -1
     cell_id[own] = -2 - np.arange(len(own))  # each fixed vertex is its own node
@@ -136,7 +141,7 @@ def _merge(label_of_node: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, np
     new = new.ravel()
     e = np.sort(new[edges], axis=1) if len(edges) else edges.reshape(0, 2)
     e = e[e[:, 0] != e[:, 1]]
-    e = np.unique(e, axis=0) if len(e) else e.reshape(0, 2)
+    e = unique_pairs(e)
     return new, e.astype(np.int64)
 
 
@@ -248,9 +253,7 @@ def skeleton_graph(
     use = np.ones(n, dtype=bool) if use is None else np.asarray(use, dtype=bool)
     fixed = np.zeros(0, dtype=np.int64) if fixed is None else np.asarray(fixed, dtype=np.int64)
     faces_in = faces[use[faces].all(axis=1)]
-    mesh_edges = np.unique(
-        np.sort(np.concatenate([faces_in[:, [0, 1]], faces_in[:, [1, 2]], faces_in[:, [2, 0]]]), axis=1), axis=0
-    )
+    mesh_edges = unique_pairs(np.sort(np.concatenate([faces_in[:, [0, 1]], faces_in[:, [1, 2]], faces_in[:, [2, 0]]]), axis=1))
     label = _cluster(contracted, mesh_edges, use, cell, fixed)
     m = int(label.max()) + 1
     used_idx = np.flatnonzero(use)
@@ -259,7 +262,7 @@ def skeleton_graph(
     pos /= count[:, None]
     pos[label[fixed]] = contracted[fixed]
     ne = np.sort(label[mesh_edges], axis=1)
-    ne = np.unique(ne[ne[:, 0] != ne[:, 1]], axis=0) if len(ne) else ne
+    ne = unique_pairs(ne[ne[:, 0] != ne[:, 1]])
     edges = _spanning_forest_with_cycles(pos, ne, handle_count(n, faces_in))
     protected = np.zeros(m, dtype=bool)
     protected[label[fixed]] = True

@@ -91,11 +91,13 @@ def nonmanifold_vertices(n_vertices: int, faces: np.ndarray) -> np.ndarray:
     corner = np.concatenate([faces, np.roll(faces, -1, axis=1), np.roll(faces, -2, axis=1)], axis=0)
     v, a, b = corner[:, 0], corner[:, 1], corner[:, 2]
     pairs = np.concatenate([np.column_stack([v, a]), np.column_stack([v, b])])
-    uniq, inv = np.unique(pairs, axis=0, return_inverse=True)
+    keys = pairs[:, 0] * n_vertices + pairs[:, 1]
+    ukeys, inv = np.unique(keys, return_inverse=True)
     inv = inv.ravel()
+    uniq = np.column_stack([ukeys // n_vertices, ukeys % n_vertices])
     k = len(v)
     _, label = _graph.component_labels(len(uniq), np.column_stack([inv[:k], inv[k:]]))
-    fans = np.unique(np.column_stack([uniq[:, 0], label]), axis=0)
+    fans = ops.unique_pairs(np.column_stack([uniq[:, 0], label]))
     count = np.bincount(fans[:, 0], minlength=n_vertices)
     return np.flatnonzero(count > 1)
 
@@ -317,7 +319,7 @@ def flow_skeleton(
     normals = ops.vertex_normals(p0, faces)
     diag = float(np.linalg.norm(p0.max(axis=0) - p0.min(axis=0)))
     edge_length = float(np.linalg.norm(p0[edges[:, 0]] - p0[edges[:, 1]], axis=1).mean())
-    poles, pole_radius = ops.medial_poles(p0, normals, max_radius=diag, ignore=2.0 * edge_length)
+    poles, pole_radius = ops.pole_targets(p0, normals, max_radius=0.5 * diag, ignore=2.0 * edge_length)
     s = float(np.median(pole_radius[use]))
     if not s > 0:
         raise ComputationError("could not estimate the thickness of the mesh (all inner-ball radii are zero)")
