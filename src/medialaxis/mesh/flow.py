@@ -136,15 +136,27 @@ def prepare_flow_mesh(mesh: Any, *, repair: bool = False) -> tuple[Any, np.ndarr
 
 
 def _curvature_tips(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, threshold: float) -> np.ndarray:
-    """Vertex of highest Gaussian curvature in each edge-connected patch where ``K >= threshold``."""
+    """The deepest vertex of each edge-connected patch where the Gaussian curvature is ``>= threshold``.
+
+    "Deepest" is farthest (along mesh edges) from the patch's rim, so a
+    rounded tip gives its apex rather than a noisy curvature maximum.
+    """
+    from scipy.sparse import csgraph
+
     k = ops.gaussian_curvature(points, faces)
     hot = k >= threshold
     if not hot.any():
         return np.zeros(0, dtype=np.int64)
-    sub = edges[hot[edges[:, 0]] & hot[edges[:, 1]]]
-    _, label = _graph.component_labels(len(points), sub)
+    inner = edges[hot[edges[:, 0]] & hot[edges[:, 1]]]
+    _, label = _graph.component_labels(len(points), inner)
+    rim_edges = edges[hot[edges[:, 0]] != hot[edges[:, 1]]]
+    rim = np.unique(rim_edges[hot[rim_edges]]) if len(rim_edges) else np.zeros(0, dtype=np.int64)
+    length = np.linalg.norm(points[inner[:, 0]] - points[inner[:, 1]], axis=1) + 1e-300
+    adj = sparse.coo_matrix((length, (inner[:, 0], inner[:, 1])), shape=(len(points),) * 2).tocsr()
+    depth = csgraph.dijkstra(adj, directed=False, indices=rim, min_only=True) if len(rim) else np.zeros(len(points))
+    depth = np.where(np.isfinite(depth), depth, np.inf)  # a closed patch without rim: any vertex
     idx = np.flatnonzero(hot)
-    order = idx[np.lexsort((-k[idx], label[idx]))]
+    order = idx[np.lexsort((-np.where(np.isinf(depth[idx]), 0.0, depth[idx]), label[idx]))]
     first = np.unique(label[order], return_index=True)[1]
     return np.sort(order[first])
 
@@ -220,8 +232,8 @@ def flow_skeleton(
     curvature_threshold : float, optional
         Gaussian curvature (angle defect per area, eq. (7), in 1/length**2).
         In every connected patch of the input surface where the curvature is at
-        least this, the vertex of highest curvature becomes a skeletal point at
-        its place, so the skeleton reaches into sharp convex tips (a capsule's
+        least this, the vertex deepest inside the patch (its apex) becomes a
+        skeletal point at its place, so the skeleton reaches into sharp convex tips (a capsule's
         caps have ``1/r**2``). Lower thresholds make more tips reach the
         surface; ``None`` (default) keeps none, and the skeleton ends inside
         the tips, at the centres of their inner balls.
