@@ -10,6 +10,7 @@ from __future__ import annotations
 from medialaxis._version import __version__
 from medialaxis.api import medial_axis
 from medialaxis.core.io import load
+from medialaxis.mesh.deform import deform
 from medialaxis.metrics import reconstruction_error
 from medialaxis.core.result import Branch, MedialAxis
 from medialaxis.errors import (
@@ -27,6 +28,7 @@ from medialaxis.errors import (
 __all__ = [
     "__version__",
     "medial_axis",
+    "deform",
     "load",
     "reconstruction_error",
     "MedialAxis",
