@@ -190,12 +190,19 @@ def medial_poles(
 
 
 def pole_targets(
-    points: np.ndarray, normals: np.ndarray, *, max_radius: float, ignore: float, max_samples: int = 20000
+    points: np.ndarray,
+    normals: np.ndarray,
+    *,
+    max_radius: float,
+    ignore: float,
+    max_samples: int = 20000,
+    neighbours: int = 8,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Inner-ball centre and radius for every vertex, from at most ``max_samples`` samples.
 
     Large meshes are thinned by a grid (one sample per cell, with the cell's
-    mean normal); each vertex takes the ball of its nearest sample.
+    mean normal); each vertex takes the inverse-distance weighted mean of the
+    balls of its ``neighbours`` nearest samples.
     The nearest-neighbour queries of the shrinking ball cost far more than the
     flow, and the flow's smoothing does not need one ball per vertex.
     """
@@ -218,5 +225,9 @@ def pole_targets(
     mean_normal /= np.maximum(np.linalg.norm(mean_normal, axis=1, keepdims=True), 1e-300)
     sample_points = points[first]
     centres, radii = medial_poles(sample_points, mean_normal, max_radius=max_radius, ignore=max(ignore, 2.0 * cell))
-    _, nearest = cKDTree(sample_points).query(points, k=1)
-    return centres[nearest], radii[nearest]
+    # average the balls of the nearest samples: one shared ball per sample
+    # would carry that sample's noise to all its vertices
+    dist, nearest = cKDTree(sample_points).query(points, k=min(neighbours, k))
+    weight = 1.0 / (dist + 1e-3 * cell)
+    weight /= weight.sum(axis=1, keepdims=True)
+    return np.einsum("nk,nkd->nd", weight, centres[nearest]), np.einsum("nk,nk->n", weight, radii[nearest])
