@@ -286,3 +286,17 @@ def test_medial_poles_of_a_sphere_are_its_centre():
     centres, radii = ops.medial_poles(p, ops.vertex_normals(p, f), max_radius=10.0, ignore=0.5)
     assert np.median(radii) == pytest.approx(2.0, abs=0.1)
     assert np.percentile(np.linalg.norm(centres, axis=1), 90) < 0.2
+
+
+def test_handle_count_is_the_genus():
+    from medialaxis.mesh.contract_graph import handle_count
+
+    torus = trimesh.creation.torus(major_radius=2.0, minor_radius=0.5)
+    sphere = trimesh.creation.icosphere(subdivisions=1)
+    both = trimesh.util.concatenate([torus, sphere])
+    tube = trimesh.creation.cylinder(radius=1.0, height=2.0, sections=16)
+    open_tube = np.asarray(tube.faces)[np.abs(np.asarray(tube.triangles_center)[:, 2]) < 0.99]  # no caps
+    assert handle_count(len(torus.vertices), np.asarray(torus.faces)) == 1
+    assert handle_count(len(sphere.vertices), np.asarray(sphere.faces)) == 0
+    assert handle_count(len(both.vertices), np.asarray(both.faces)) == 1
+    assert handle_count(len(tube.vertices), open_tube) == 0

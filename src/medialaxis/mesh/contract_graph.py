@@ -9,8 +9,12 @@ never merge), neighbouring groups are linked where a mesh edge joins them, and
 the resulting graph is thinned to a curve: a minimum spanning forest, plus as
 many of the longest independent cycles as the surface has handles (its genus,
 from the Euler characteristic), so the skeleton is homotopic to the solid.
-Short side branches that end inside a junction's ball, and junctions closer
-than their radius, are merged away.
+Short side branches that end inside a junction's ball, junctions closer
+than their radius, and the nodes inside a junction's ball are merged away.
+Finally each junction is moved to where the lines fitted to its branches
+meet and the nodes within 1.5 radii are put on those lines: near a junction
+the medial axis of a solid leaves the branch axes (the hub has medial
+sheets), and a curve skeleton continues each branch straight into it.
 """
 
 from __future__ import annotations

@@ -1,22 +1,29 @@
 """Curve skeletons of closed meshes by a diffusion flow (paper 003), with user control.
 
-The surface ``S`` evolves by the diffusion equation of paper 003, eq. (4),
-``dS/dt = D(N, kappa) laplacian(S)``, discretised with the cotangent Laplacian
-``L`` and lumped mass ``M`` of the *current* surface and solved implicitly
-(backward Euler, unconditionally stable) for the free vertices::
+The surface ``S`` evolves by a diffusion equation in the spirit of paper 003,
+eq. (4), ``dS/dt = D laplacian(S) + (grassfire term)``, discretised with the
+cotangent Laplacian ``L`` and lumped mass ``M`` of the *input* surface and
+solved implicitly (backward Euler, unconditionally stable)::
 
     (M + tau (L + w M)) p_next = M p + tau w M c
 
-The extra term pulls each vertex towards ``c``, the centre of its inner
-medial ball (shrinking-ball poles): it plays the role of the paper's normal
-term ``N`` (the grassfire direction) and keeps tips from retracting, so the
-surface collapses onto the medial axis rather than onto a point. A vertex
-whose one-ring area has shrunk below ``collapse`` times its initial area has
-met the opposite side of the surface: it is frozen there as a skeletal point
-(the paper's collision test, in a form that costs O(n) per step), and mesh
-edges shorter than a fraction of the thickness are collapsed (their end
-points move as one). The contracted mesh is then turned into a curve skeleton
-graph by :mod:`medialaxis.mesh.contract_graph`.
+``c`` is the centre of each vertex's inner medial ball (shrinking-ball poles,
+computed once): the pull towards it plays the role of the paper's normal
+term ``N`` (the grassfire direction) and keeps tips from retracting, while the
+Laplacian smooths, so the surface collapses onto a smoothed medial axis.
+Because the operator is built once, one sparse LU factorization serves every
+step and all three coordinates (only user-fixed vertices and vertices
+outside the region are eliminated, before factorizing).
+
+A vertex whose one-ring area has shrunk below ``collapse`` times its initial
+area, or that moved less than ``settle_tolerance`` in a step, has met the
+rest of the collapsing surface: it is frozen there as a skeletal point (the
+paper's collision test, in a form that costs O(n) per step); frozen vertices
+are put back after each solve, so they never move again. Degenerate edges are
+not collapsed one by one: the final grouping of
+:mod:`medialaxis.mesh.contract_graph` merges vertices that have come
+together, which is the equivalent of collapsing them, and turns the
+contracted mesh into the curve skeleton graph.
 
 User control, as in paper 003 section 4.2: ``fixed_points`` freezes chosen
 vertices from the start (the skeleton reaches them), ``region`` restricts the
@@ -46,7 +53,7 @@ from scipy.spatial import cKDTree
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
-from medialaxis.errors import ComputationError, InvalidInputError
+from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
 from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.contract_graph import skeleton_graph
 from medialaxis.mesh.inputs import _read, load_mesh
@@ -161,22 +168,6 @@ def _curvature_tips(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, th
     return np.sort(order[first])
 
 
-def _solve(a: sparse.csr_matrix, b: np.ndarray, x0: np.ndarray) -> np.ndarray:
-    """Solve the SPD system for three right-hand sides: Jacobi-preconditioned CG, SuperLU fallback."""
-    diag = a.diagonal()
-    pre = sparse.diags(1.0 / diag)
-    out = np.empty_like(b)
-    for d in range(b.shape[1]):
-        x, info = splinalg.cg(a, b[:, d], x0=x0[:, d], rtol=1e-9, maxiter=2000, M=pre)
-        if info != 0 or not np.all(np.isfinite(x)):
-            solve = splinalg.factorized(a.tocsc())  # one factorization for the remaining axes
-            for dd in range(d, b.shape[1]):
-                out[:, dd] = solve(b[:, dd])
-            return out
-        out[:, d] = x
-    return out
-
-
 def _check_box(region: Any) -> np.ndarray:
     box = np.asarray(region, dtype=np.float64)
     if box.shape != (2, 3) or not np.all(np.isfinite(box)) or np.any(box[0] > box[1]):
@@ -284,8 +275,6 @@ def flow_skeleton(
     >>> len(sk.endpoints), len(sk.junctions)
     (2, 0)
     """
-    from medialaxis.errors import EmptyShapeError
-
     t_start = time.perf_counter()
     dt_rel = _positive("dt", dt) or 1.0
     threshold = None if curvature_threshold is None else float(curvature_threshold)
