@@ -104,6 +104,41 @@ def _cluster(points: np.ndarray, edges: np.ndarray, use: np.ndarray, cell: float
     return np.where(use, remap[label], -1)
 
 
+def _absorb_stragglers(
+    label: np.ndarray, mesh_edges: np.ndarray, contracted: np.ndarray, used_idx: np.ndarray, fixed: np.ndarray
+) -> np.ndarray:
+    """Merge groups of a handful of vertices (left behind by the collapse) into a neighbouring group.
+
+    Such stragglers would each become a one-node side branch. A group is a
+    straggler when it holds fewer than 5% of the median group size (and
+    fewer than 3 vertices at least); it joins the linked group whose centre
+    is nearest. User-fixed vertices are never merged.
+    """
+    m = int(label.max()) + 1
+    count = np.bincount(label[used_idx], minlength=m)
+    small = count < max(3.0, 0.05 * float(np.median(count)))
+    small[label[fixed]] = False
+    if not small.any() or small.all():
+        return label
+    centre = np.column_stack([np.bincount(label[used_idx], weights=contracted[used_idx, d], minlength=m) for d in range(3)])
+    centre /= np.maximum(count, 1)[:, None]
+    pairs = label[mesh_edges]
+    pairs = unique_pairs(np.concatenate([pairs, pairs[:, ::-1]]))
+    pairs = pairs[(pairs[:, 0] != pairs[:, 1]) & small[pairs[:, 0]] & ~small[pairs[:, 1]]]
+    if len(pairs) == 0:
+        return label
+    dist = np.linalg.norm(centre[pairs[:, 0]] - centre[pairs[:, 1]], axis=1)
+    order = np.lexsort((dist, pairs[:, 0]))
+    first = np.unique(pairs[order, 0], return_index=True)[1]
+    target = np.arange(m)
+    target[pairs[order[first], 0]] = pairs[order[first], 1]
+    new = np.where(label >= 0, target[np.maximum(label, 0)], -1)
+    keep = np.unique(new[new >= 0])
+    remap = np.full(m, -1, dtype=np.int64)
+    remap[keep] = np.arange(len(keep))
+    return np.where(new >= 0, remap[np.maximum(new, 0)], -1)
+
+
 def _adjacency(node_edges: np.ndarray, weights: np.ndarray, m: int) -> sparse.csr_matrix:
     a = sparse.coo_matrix((weights, (node_edges[:, 0], node_edges[:, 1])), shape=(m, m)).tocsr()
     return (a + a.T).tocsr()
@@ -220,6 +255,44 @@ def _junction_ball(pos: np.ndarray, edges: np.ndarray, radii: np.ndarray, protec
     return None
 
 
+def _extend_leaves(
+    pos: np.ndarray,
+    adj: sparse.csr_matrix,
+    deg: np.ndarray,
+    node_of_vertex: np.ndarray,
+    contracted: np.ndarray,
+    protected: np.ndarray,
+    top: float = 0.1,
+) -> None:
+    """Move each free endpoint to the far end of the contracted points it holds.
+
+    A node sits at the mean of its group, up to half a cell short of where
+    the contracted branch ends; the endpoint is put at the mean of the
+    ``top`` fraction of its points that reach furthest along the branch.
+    """
+    leaves = np.flatnonzero((deg == 1) & ~protected)
+    if len(leaves) == 0:
+        return
+    order = np.argsort(node_of_vertex, kind="stable")
+    sorted_nodes = node_of_vertex[order]
+    for leaf in leaves:
+        lo, hi = np.searchsorted(sorted_nodes, [leaf, leaf + 1])
+        members = order[lo:hi]
+        if len(members) < 2:
+            continue
+        nbr = adj.indices[adj.indptr[leaf]]
+        direction = pos[leaf] - pos[nbr]
+        norm = np.linalg.norm(direction)
+        if norm == 0:
+            continue
+        reach = contracted[members] @ (direction / norm)
+        k = max(1, int(np.ceil(top * len(members))))
+        far = members[np.argsort(reach)[-k:]]
+        tip = contracted[far].mean(axis=0)
+        if (tip - pos[nbr]) @ direction > norm**2:  # only ever lengthen the branch
+            pos[leaf] = tip
+
+
 def skeleton_graph(
     contracted: np.ndarray,
     original: np.ndarray,
@@ -259,8 +332,9 @@ def skeleton_graph(
     faces_in = faces[use[faces].all(axis=1)]
     mesh_edges = unique_pairs(np.sort(np.concatenate([faces_in[:, [0, 1]], faces_in[:, [1, 2]], faces_in[:, [2, 0]]]), axis=1))
     label = _cluster(contracted, mesh_edges, use, cell, fixed)
-    m = int(label.max()) + 1
     used_idx = np.flatnonzero(use)
+    label = _absorb_stragglers(label, mesh_edges, contracted, used_idx, fixed)
+    m = int(label.max()) + 1
     count = np.bincount(label[used_idx], minlength=m).astype(np.float64)
     pos = np.column_stack([np.bincount(label[used_idx], weights=contracted[used_idx, d], minlength=m) for d in range(3)])
     pos /= count[:, None]
@@ -285,8 +359,8 @@ def skeleton_graph(
         deg = _graph.degree(len(pos), edges)
         adj = _graph.adjacency(len(pos), edges)
         # 1. leaf branches shorter than the ball of the junction they hang from,
-        #    shortest first, never more than deg - 2 per junction (a fork at a
-        #    tip loses one prong, not both)
+        #    those ending nearest the junction first, never more than deg - 2
+        #    per junction (a fork at a tip loses its stub, not both prongs)
         spurs = []
         for leaf in np.flatnonzero((deg == 1) & ~protected):
             chain, prev, cur, length = [leaf], -1, leaf, 0.0
@@ -300,8 +374,9 @@ def skeleton_graph(
                 if deg[cur] != 2 or protected[cur]:
                     break
                 chain.append(cur)
+            reach = float(np.linalg.norm(pos[leaf] - pos[cur]))
             if deg[cur] >= 3 and length < spur_factor * radii[cur] and not protected[chain].any():
-                spurs.append((length, cur, chain))
+                spurs.append((reach, cur, chain))
         removed = np.zeros(len(pos), dtype=np.int64)
         for _length, cur, chain in sorted(spurs, key=lambda t: t[0]):
             if deg[cur] - removed[cur] > 2 and target[cur] == cur:
@@ -342,4 +417,5 @@ def skeleton_graph(
     pos = pos.copy()
     for j in np.flatnonzero(deg >= 3):
         _straighten_junction(pos, adj, deg, j, radii[j])
+    _extend_leaves(pos, adj, deg, node_of_vertex, contracted, protected)
     return SkeletonGraph(pos, radii, edges.reshape(-1, 2).astype(np.int64), node_of_vertex.astype(np.int64))

@@ -19,7 +19,10 @@ A vertex whose one-ring area has shrunk below ``collapse`` times its initial
 area, or that moved less than ``settle_tolerance`` in a step, has met the
 rest of the collapsing surface: it is frozen there as a skeletal point (the
 paper's collision test, in a form that costs O(n) per step); frozen vertices
-are put back after each solve, so they never move again. Degenerate edges are
+are put back after each solve, so they never move during the flow; one last
+implicit mean-curvature step on the contracted surface (cotangent operator of
+the contracted geometry) then gathers each collapsed ring onto its centre.
+Degenerate edges are
 not collapsed one by one: the final grouping of
 :mod:`medialaxis.mesh.contract_graph` merges vertices that have come
 together, which is the equivalent of collapsing them, and turns the
@@ -199,6 +202,7 @@ def flow_skeleton(
     attraction: float = 4.0,
     collapse: float = 0.01,
     settle_tolerance: float = 1e-3,
+    final_collapse: float = 0.01,
     node_spacing: float | None = None,
     repair: bool = False,
 ) -> MedialAxis:
@@ -242,6 +246,10 @@ def flow_skeleton(
     settle_tolerance : float
         A vertex that moves less than this (times ``s``) in a step has
         stopped: it freezes as a skeletal point.
+    final_collapse : float
+        Duration (in units of ``s**2``) of one last implicit mean-curvature
+        step on the contracted surface, which gathers each collapsed ring onto
+        its centre before the graph is built (0 skips it).
     node_spacing : float, optional
         Spacing of the skeleton nodes (length); default ``s / 2``.
     repair : bool
@@ -287,6 +295,9 @@ def flow_skeleton(
     max_steps = int(max_steps)
     attraction = float(_positive("attraction", attraction, allow_none=False) or 0.0)
     collapse = float(_positive("collapse", collapse, allow_none=False) or 0.0)
+    final_collapse = float(final_collapse)
+    if not (np.isfinite(final_collapse) and final_collapse >= 0):
+        raise InvalidInputError(f"final_collapse must be a non-negative number, got {final_collapse!r}")
     if collapse >= 1:
         raise InvalidInputError(f"collapse must be in (0, 1), got {collapse!r}")
     spacing = _positive("node_spacing", node_spacing)
@@ -368,6 +379,22 @@ def flow_skeleton(
         if frozen.all():
             converged = True
             break
+    if final_collapse > 0:
+        # one mean-curvature step on the contracted surface: its operator has
+        # huge weights across the collapsed rings and small ones along the
+        # branches, so it pulls each ring onto its centre without retracting tips
+        lap_c = ops.cotangent_laplacian(p, faces)
+        mass_c = np.maximum(ops.vertex_areas(p, faces), mass_floor)
+        a_c = (sparse.diags(mass_c) + (final_collapse * s * s) * lap_c).tocsr()
+        a_cf = a_c[free][:, free].tocsc()
+        rhs_c = mass_c[free, None] * p[free]
+        if dirichlet.any():
+            rhs_c = rhs_c - a_c[free][:, np.flatnonzero(dirichlet)] @ p[dirichlet]
+        solve_c = splinalg.factorized(a_cf)
+        p_c = p.copy()
+        p_c[free] = np.column_stack([solve_c(rhs_c[:, d]) for d in range(3)])
+        if np.all(np.isfinite(p_c)):
+            p = p_c
     t_flow = time.perf_counter() - t_start
     cell = spacing if spacing is not None else 0.5 * s
     graph = skeleton_graph(p, p0, faces, cell=cell, use=use, fixed=fixed)
@@ -383,6 +410,7 @@ def flow_skeleton(
         "node_spacing": cell,
         "attraction": attraction,
         "collapse": collapse,
+        "final_collapse": final_collapse,
         "curvature_threshold": threshold,
         "fixed_vertices": [int(v) for v in fixed],
         "region": None if region is None else np.asarray(region, dtype=float).tolist(),
