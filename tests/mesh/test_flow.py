@@ -300,3 +300,15 @@ def test_handle_count_is_the_genus():
     assert handle_count(len(sphere.vertices), np.asarray(sphere.faces)) == 0
     assert handle_count(len(both.vertices), np.asarray(both.faces)) == 1
     assert handle_count(len(tube.vertices), open_tube) == 0
+
+
+@pytest.mark.parametrize("pitch", [0.07, 0.12])
+def test_tripod_targets_hold_at_other_resolutions(pitch):
+    mesh = tripod_mesh(radius=RADIUS, arm=3.0, pitch=pitch)
+    sk = mx.medial_axis(mesh, method="flow")
+    d = segment_distance(sk.points, tripod_segments(3.0))
+    assert np.percentile(d, 99) <= 0.1 and d.mean() <= 0.05
+    assert len(sk.endpoints) == 3 and len(sk.junctions) == 1
+    for tip in tripod_segments(3.0)[:, 1]:
+        assert np.linalg.norm(sk.points - tip, axis=1).min() <= RADIUS
+    assert abs(np.median(sk.radii) - RADIUS) <= 0.1
