@@ -312,3 +312,24 @@ def test_tripod_targets_hold_at_other_resolutions(pitch):
     for tip in tripod_segments(3.0)[:, 1]:
         assert np.linalg.norm(sk.points - tip, axis=1).min() <= RADIUS
     assert abs(np.median(sk.radii) - RADIUS) <= 0.1
+
+
+def test_radius_is_the_distance_to_the_surface(tripod, tripod_skeleton):
+    # independent reference: trimesh's exact closest point on every triangle
+    triangles = np.asarray(tripod.triangles)
+    nodes = tripod_skeleton.points
+    closest = trimesh.triangles.closest_point(
+        np.tile(triangles, (len(nodes), 1, 1)), np.repeat(nodes, len(triangles), axis=0)
+    )
+    distance = np.linalg.norm(closest - np.repeat(nodes, len(triangles), axis=0), axis=1)
+    distance = distance.reshape(len(nodes), len(triangles)).min(axis=1)
+    arms = segment_distance(nodes, np.zeros((1, 2, 3))) > 1.0  # away from the hub
+    assert np.median(np.abs(distance[arms] - tripod_skeleton.radii[arms])) < 0.05
+    assert distance.min() > 0.3  # no node near the surface
+
+
+def test_small_hole_is_closed_on_request(capsule):
+    holed = trimesh.Trimesh(capsule.vertices, capsule.faces[1:], process=False)
+    sk = mx.medial_axis(holed, method="flow", repair=True)
+    assert any("fill_holes" in r for r in sk.metadata["repairs"])
+    assert len(sk.endpoints) == 2
