@@ -141,7 +141,11 @@ def prepare_flow_mesh(mesh: Any, *, repair: bool = False) -> tuple[Any, np.ndarr
             "fans of faces); split them first"
         )
     raw_vertices = np.asarray(raw.vertices, dtype=np.float64)
-    _, vertex_map = cKDTree(np.asarray(clean.vertices)).query(raw_vertices, k=1)
+    clean_vertices = np.asarray(clean.vertices)
+    if raw_vertices.shape == clean_vertices.shape and np.array_equal(raw_vertices, clean_vertices):
+        vertex_map = np.arange(len(raw_vertices))
+    else:
+        _, vertex_map = cKDTree(clean_vertices).query(raw_vertices, k=1)
     return clean, np.asarray(vertex_map, dtype=np.int64), checked.repairs
 
 
