@@ -333,3 +333,19 @@ def test_small_hole_is_closed_on_request(capsule):
     sk = mx.medial_axis(holed, method="flow", repair=True)
     assert any("fill_holes" in r for r in sk.metadata["repairs"])
     assert len(sk.endpoints) == 2
+
+
+def test_triangle_soup_input_maps_every_input_vertex(capsule):
+    soup = trimesh.Trimesh(
+        np.asarray(capsule.triangles).reshape(-1, 3), np.arange(3 * len(capsule.faces)).reshape(-1, 3), process=False
+    )
+    sk = mx.medial_axis(
+        soup, method="flow", dt=None, fixed_points=None, region=None, curvature_threshold=None, callback=None,
+        max_steps=None,
+    )
+    assert sk.correspondence.shape == (len(soup.vertices),)
+    # copies of one point share a node
+    same = np.all(np.asarray(soup.vertices)[:, None] == np.asarray(soup.vertices)[None, :60], axis=2)
+    rows, cols = np.nonzero(same)
+    assert np.array_equal(sk.correspondence[rows], sk.correspondence[cols])
+    assert len(sk.endpoints) == 2
