@@ -226,8 +226,10 @@ def flow_skeleton(
         never move, each is a skeleton node and the skeleton reaches it.
     region : (2, 3) array_like, optional
         Axis-aligned box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``: only
-        vertices inside flow (the rest stay on the surface) and only they are
-        skeletonized; ``correspondence`` is ``-1`` for the others.
+        the part of the mesh in the box, plus a margin of three thicknesses
+        ``s``, flows (the rest stays on the surface, held still); the skeleton
+        is clipped to the box and ``correspondence`` is ``-1`` for vertices
+        outside it.
     curvature_threshold : float, optional
         Gaussian curvature (angle defect per area, eq. (7), in 1/length**2).
         In every connected patch of the input surface where the curvature is at
@@ -339,9 +341,15 @@ def flow_skeleton(
     s = float(np.median(pole_radius[use]))
     if not s > 0:
         raise ComputationError("could not estimate the thickness of the mesh (all inner-ball radii are zero)")
+    in_box = use.copy()
+    if region is not None:
+        # flow a margin beyond the box so the surface held still outside does
+        # not bend the axis inside it; the skeleton is clipped to the box
+        margin = 3.0 * s
+        use = np.all((p0 >= box[0] - margin) & (p0 <= box[1] + margin), axis=1)
     if threshold is not None:
         tips = _curvature_tips(p0, faces, edges, threshold)
-        fixed = np.union1d(fixed, tips[use[tips]])
+        fixed = np.union1d(fixed, tips[in_box[tips]])
     tau = dt_rel * s * s
     mass0 = ops.vertex_areas(p0, faces)
     lap0 = ops.cotangent_laplacian(p0, faces)
@@ -402,7 +410,17 @@ def flow_skeleton(
     t_flow = time.perf_counter() - t_start
     cell = spacing if spacing is not None else 0.5 * s
     graph = skeleton_graph(p, p0, faces, cell=cell, use=use, fixed=fixed)
-    correspondence = np.where(vertex_map >= 0, graph.correspondence[vertex_map], -1)
+    nodes, node_radii, node_edges, node_of_vertex = graph.points, graph.radii, graph.edges, graph.correspondence
+    if region is not None:
+        slack = 1e-9 * diag
+        keep = np.all((nodes >= box[0] - slack) & (nodes <= box[1] + slack), axis=1)
+        kept_edges = node_edges[keep[node_edges].all(axis=1)] if len(node_edges) else node_edges
+        old_index, node_edges = _graph.compact(len(nodes), kept_edges, keep_nodes=keep)
+        new_of_old = np.full(len(nodes) + 1, -1, dtype=np.int64)
+        new_of_old[old_index] = np.arange(len(old_index))
+        nodes, node_radii = nodes[old_index], node_radii[old_index]
+        node_of_vertex = np.where(in_box & (node_of_vertex >= 0), new_of_old[node_of_vertex], -1)
+    correspondence = np.where(vertex_map >= 0, node_of_vertex[vertex_map], -1)
     metadata = {
         "method": "flow",
         "domain": "mesh",
@@ -423,6 +441,4 @@ def flow_skeleton(
         "flow_seconds": t_flow,
         "seconds": time.perf_counter() - t_start,
     }
-    return MedialAxis(
-        graph.points, graph.radii, graph.edges, extras={"correspondence": correspondence}, metadata=metadata
-    )
+    return MedialAxis(nodes, node_radii, node_edges, extras={"correspondence": correspondence}, metadata=metadata)
