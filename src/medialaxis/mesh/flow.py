@@ -61,7 +61,12 @@ from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.contract_graph import skeleton_graph
 from medialaxis.mesh.inputs import _read, load_mesh
 
-__all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices"]
+#: Smallest total Gaussian curvature (sum of angle defects, radians) of a
+#: patch above ``curvature_threshold`` that counts as a tip: an eighth of a
+#: cube corner's pi/2; a hemispherical cap has 2 pi.
+MIN_TIP_CURVATURE = np.pi / 16
+
+__all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices", "smoothed_gaussian_curvature"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -149,15 +154,39 @@ def prepare_flow_mesh(mesh: Any, *, repair: bool = False) -> tuple[Any, np.ndarr
     return clean, np.asarray(vertex_map, dtype=np.int64), checked.repairs
 
 
-def _curvature_tips(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, threshold: float) -> np.ndarray:
+def smoothed_gaussian_curvature(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, radius: float) -> np.ndarray:
+    """Angle-defect Gaussian curvature (eq. 7) averaged over about ``radius`` of surface ``(n,)``.
+
+    The discrete curvature of a sampled surface is noisy vertex to vertex
+    (marching-cubes meshes especially); the total curvature and area are
+    summed over ``radius / mean edge length`` rings before dividing.
+    """
+    area = ops.vertex_areas(points, faces)
+    defect = ops.gaussian_curvature(points, faces) * area
+    length = float(np.linalg.norm(points[edges[:, 0]] - points[edges[:, 1]], axis=1).mean())
+    rings = int(np.clip(np.ceil(radius / max(length, 1e-300)), 0, 50))
+    n = len(points)
+    spread = sparse.coo_matrix((np.ones(2 * len(edges)), (edges.ravel(), edges[:, ::-1].ravel())), shape=(n, n))
+    spread = (spread + sparse.identity(n)).tocsr()
+    for _ in range(rings):
+        defect = spread @ defect
+        area = spread @ area
+    return defect / np.maximum(area, 1e-300)
+
+
+def _curvature_tips(
+    points: np.ndarray, faces: np.ndarray, edges: np.ndarray, threshold: float, radius: float
+) -> np.ndarray:
     """The deepest vertex of each edge-connected patch where the Gaussian curvature is ``>= threshold``.
 
     "Deepest" is farthest (along mesh edges) from the patch's rim, so a
-    rounded tip gives its apex rather than a noisy curvature maximum.
+    rounded tip gives its apex rather than a noisy curvature maximum. Patches
+    whose total curvature (sum of angle defects) is below
+    :data:`MIN_TIP_CURVATURE` are noise, not tips, and are skipped.
     """
     from scipy.sparse import csgraph
 
-    k = ops.gaussian_curvature(points, faces)
+    k = smoothed_gaussian_curvature(points, faces, edges, radius)
     hot = k >= threshold
     if not hot.any():
         return np.zeros(0, dtype=np.int64)
@@ -169,7 +198,12 @@ def _curvature_tips(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, th
     adj = sparse.coo_matrix((length, (inner[:, 0], inner[:, 1])), shape=(len(points),) * 2).tocsr()
     depth = csgraph.dijkstra(adj, directed=False, indices=rim, min_only=True) if len(rim) else np.zeros(len(points))
     depth = np.where(np.isfinite(depth), depth, np.inf)  # a closed patch without rim: any vertex
-    idx = np.flatnonzero(hot)
+    # a tip must carry some total curvature: lone noisy vertices do not count
+    defect = ops.gaussian_curvature(points, faces) * ops.vertex_areas(points, faces)
+    total = np.bincount(label[hot], weights=defect[hot], minlength=len(points))
+    idx = np.flatnonzero(hot & (total[label] >= MIN_TIP_CURVATURE))
+    if idx.size == 0:
+        return np.zeros(0, dtype=np.int64)
     order = idx[np.lexsort((-np.where(np.isinf(depth[idx]), 0.0, depth[idx]), label[idx]))]
     first = np.unique(label[order], return_index=True)[1]
     return np.sort(order[first])
@@ -231,13 +265,15 @@ def flow_skeleton(
         is clipped to the box and ``correspondence`` is ``-1`` for vertices
         outside it.
     curvature_threshold : float, optional
-        Gaussian curvature (angle defect per area, eq. (7), in 1/length**2).
-        In every connected patch of the input surface where the curvature is at
+        Gaussian curvature (angle defect per area, eq. (7), in 1/length**2,
+        averaged over a disc of radius ``s / 2`` because the per-vertex value
+        of a sampled surface is noisy). In every connected patch of the input surface where the curvature is at
         least this, the vertex deepest inside the patch (its apex) becomes a
         skeletal point at its place, so the skeleton reaches into sharp convex tips (a capsule's
         caps have ``1/r**2``). Lower thresholds make more tips reach the
         surface; ``None`` (default) keeps none, and the skeleton ends inside
-        the tips, at the centres of their inner balls.
+        the tips, at the centres of their inner balls. Patches of total
+        curvature below ``MIN_TIP_CURVATURE`` (pi/16) are noise and ignored.
     callback : callable, optional
         ``callback(FlowState)`` after every step; returning ``False`` cancels
         (:class:`~medialaxis.errors.Cancelled`).
@@ -348,7 +384,7 @@ def flow_skeleton(
         margin = 3.0 * s
         use = np.all((p0 >= box[0] - margin) & (p0 <= box[1] + margin), axis=1)
     if threshold is not None:
-        tips = _curvature_tips(p0, faces, edges, threshold)
+        tips = _curvature_tips(p0, faces, edges, threshold, 0.5 * s)
         fixed = np.union1d(fixed, tips[in_box[tips]])
     tau = dt_rel * s * s
     mass0 = ops.vertex_areas(p0, faces)
