@@ -350,3 +350,16 @@ def test_triangle_soup_input_maps_every_input_vertex(capsule):
     rows, cols = np.nonzero(same)
     assert np.array_equal(sk.correspondence[rows], sk.correspondence[cols])
     assert len(sk.endpoints) == 2
+
+
+def test_curvature_tips_of_a_noisy_tripod(tripod):
+    # marching-cubes curvature is noisy vertex to vertex; the averaged
+    # curvature finds the three arm caps and the dome on top of the hub
+    sk = mx.medial_axis(tripod, method="flow", curvature_threshold=0.8 / RADIUS**2)
+    fixed = np.asarray(tripod.vertices)[sk.metadata["fixed_vertices"]]
+    assert len(fixed) == 4
+    surface_tips = [t * (1 + RADIUS / np.linalg.norm(t)) for t in tripod_segments(3.0)[:, 1]]
+    for tip in surface_tips:
+        assert np.linalg.norm(fixed - tip, axis=1).min() < 0.15
+    assert fixed[:, 2].max() > RADIUS * 0.9  # the hub's top
+    assert len(sk.endpoints) == 4 and len(sk.junctions) == 1
