@@ -9,10 +9,9 @@ from __future__ import annotations
 
 from medialaxis._version import __version__
 from medialaxis.api import medial_axis
-from medialaxis.compare import distance_matrix, shape_distance
 from medialaxis.core.io import load
-from medialaxis.metrics import reconstruction_error
 from medialaxis.core.result import Branch, MedialAxis
+from medialaxis.metrics import reconstruction_error
 from medialaxis.errors import (
     Cancelled,
     ComputationError,
@@ -30,6 +29,7 @@ __all__ = [
     "medial_axis",
     "shape_distance",
     "distance_matrix",
+    "deform",
     "load",
     "reconstruction_error",
     "MedialAxis",
@@ -44,3 +44,22 @@ __all__ = [
     "ComputationError",
     "Cancelled",
 ]
+
+
+# Entry points of heavier layers load on first use, so ``import medialaxis``
+# stays light (no numba compilation, no trimesh).
+_LAZY = {
+    "shape_distance": "medialaxis.compare",
+    "distance_matrix": "medialaxis.compare",
+    "deform": "medialaxis.mesh.deform",
+}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'medialaxis' has no attribute {name!r}")

@@ -24,7 +24,9 @@ METHODS: dict[str, dict[str, str]] = {
     "planar": {
         "voronoi": "medialaxis.planar.pipeline:voronoi_medial_axis",
     },
-    "mesh": {},
+    "mesh": {
+        "flow": "medialaxis.mesh.flow:flow_skeleton",
+    },
     "volume": {
         "midsurface": "medialaxis.volume.pipeline:midsurface_medial_axis",
         "voxels": "medialaxis.volume.pipeline:medial_voxel_axis",

@@ -84,6 +84,8 @@ def _add_compute(sub: Any) -> None:
     p.add_argument("--steps", type=Path, default=None,
                    help="save the pipeline stages: planar, one figure (PNG/SVG/PDF); volume, one mesh file per stage "
                         "named STEM_<k>_<stage>.<ext> (.ply .vtk .obj .json .npz)")
+    p.add_argument("--frames", type=Path, default=None,
+                   help="mesh flow: write each step to this folder (step_NNNN.ply and flow.html)")
     p.add_argument("--option", action="append", default=[], metavar="KEY=VALUE",
                    help="extra method option (value parsed as JSON when possible); repeatable")
     p.set_defaults(run=_run_compute)
@@ -123,8 +125,17 @@ def _run_compute(args: argparse.Namespace) -> int:
         ma = stages.result
         save_stages_figure(stages, args.steps)
     else:
+        writer = None
+        if args.frames is not None:
+            from medialaxis.mesh.flow_frames import FrameWriter
+
+            if mx._dispatch.classify(str(args.input), args.method) != "mesh" or args.method != "flow":
+                raise UsageError("--frames is available for meshes with --method flow")
+            writer = options["callback"] = FrameWriter(args.frames)
         ma = mx.medial_axis(str(args.input), method=args.method, lam=args.lam, threshold=args.threshold,
                             spacing=spacing, **options)
+        if writer is not None:
+            outputs += writer.finish()
     for out in args.output:
         ma.save(out)
     print(f"{args.input}: {_summary(ma)}")

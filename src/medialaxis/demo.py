@@ -59,7 +59,7 @@ DEMO_CASES: list[tuple[str, Callable[[Path], Any]]] = [
 
 
 #: Domain modules that may define their own ``DEMO_CASES`` list.
-DOMAIN_DEMOS = ("medialaxis.mesh.demo", "medialaxis.volume.demo", "medialaxis.compare.demo")
+DOMAIN_DEMOS = ("medialaxis.mesh.demo", "medialaxis.mesh.demo_flow", "medialaxis.volume.demo", "medialaxis.compare.demo")
 
 
 def all_cases() -> list[tuple[str, Callable[[Path], Any]]]:

@@ -1,0 +1,480 @@
+"""Curve skeletons of closed meshes by a diffusion flow (paper 003), with user control.
+
+The surface ``S`` evolves by a diffusion equation in the spirit of paper 003,
+eq. (4), ``dS/dt = D laplacian(S) + (grassfire term)``, discretised with the
+cotangent Laplacian ``L`` and lumped mass ``M`` of the *input* surface and
+solved implicitly (backward Euler, unconditionally stable)::
+
+    (M + tau (L + w M)) p_next = M p + tau w M c
+
+``c`` is the centre of each vertex's inner medial ball (shrinking-ball poles,
+computed once): the pull towards it plays the role of the paper's normal
+term ``N`` (the grassfire direction) and keeps tips from retracting, while the
+Laplacian smooths, so the surface collapses onto a smoothed medial axis.
+Because the operator is built once, one sparse LU factorization serves every
+step and all three coordinates (only user-fixed vertices and vertices
+outside the region are eliminated, before factorizing).
+
+A vertex whose one-ring area has shrunk below ``collapse`` times its initial
+area, or that moved less than ``settle_tolerance`` in a step, has met the
+rest of the collapsing surface: it is frozen there as a skeletal point (the
+paper's collision test, in a form that costs O(n) per step); frozen vertices
+are put back after each solve, so they never move during the flow; one last
+implicit mean-curvature step on the contracted surface (cotangent operator of
+the contracted geometry) then gathers each collapsed ring onto its centre.
+Degenerate edges are
+not collapsed one by one: the final grouping of
+:mod:`medialaxis.mesh.contract_graph` merges vertices that have come
+together, which is the equivalent of collapsing them, and turns the
+contracted mesh into the curve skeleton graph.
+
+User control, as in paper 003 section 4.2: ``fixed_points`` freezes chosen
+vertices from the start (the skeleton reaches them), ``region`` restricts the
+flow to a box, ``curvature_threshold`` turns convex tips of high Gaussian
+curvature (eq. 7) into skeletal points, ``callback`` watches every step.
+
+References
+----------
+Paper 003: "Medial Axis Extraction and Shape Manipulation of Solid Objects
+Using Parabolic PDEs", sections 3-4.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy import sparse
+from scipy.sparse import linalg as splinalg
+from scipy.spatial import cKDTree
+
+from medialaxis._progress import check_cancel, progress
+from medialaxis.core import graph as _graph
+from medialaxis.core.result import MedialAxis
+from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
+from medialaxis.mesh import _flow_operators as ops
+from medialaxis.mesh.contract_graph import skeleton_graph
+from medialaxis.mesh.inputs import _read, load_mesh
+
+#: Smallest total Gaussian curvature (sum of angle defects, radians) of a
+#: patch above ``curvature_threshold`` that counts as a tip: an eighth of a
+#: cube corner's pi/2; a hemispherical cap has 2 pi.
+MIN_TIP_CURVATURE = np.pi / 16
+
+__all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices", "smoothed_gaussian_curvature"]
+
+
+@dataclasses.dataclass(frozen=True)
+class FlowState:
+    """What ``callback(state)`` receives after every step of the flow.
+
+    Attributes
+    ----------
+    step : int
+        1 for the first step.
+    positions : (n, 3) float64 ndarray, read-only
+        Current positions of the cleaned mesh's vertices.
+    frozen : (n,) bool ndarray, read-only
+        Vertices that are skeletal points (frozen) so far.
+    faces : (k, 3) int64 ndarray, read-only
+        Faces of the cleaned mesh (constant).
+    time : float
+        Flow time reached (in units of the squared median thickness).
+    """
+
+    step: int
+    positions: np.ndarray
+    frozen: np.ndarray
+    faces: np.ndarray
+    time: float
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, copy=True)
+    a.setflags(write=False)
+    return a
+
+
+def nonmanifold_vertices(n_vertices: int, faces: np.ndarray) -> np.ndarray:
+    """Vertices whose incident faces form more than one fan (a "bow-tie") ``(b,)``."""
+    # nodes: directed (vertex, neighbour) pairs; each face corner links its two neighbours
+    corner = np.concatenate([faces, np.roll(faces, -1, axis=1), np.roll(faces, -2, axis=1)], axis=0)
+    v, a, b = corner[:, 0], corner[:, 1], corner[:, 2]
+    pairs = np.concatenate([np.column_stack([v, a]), np.column_stack([v, b])])
+    keys = pairs[:, 0] * n_vertices + pairs[:, 1]
+    ukeys, inv = np.unique(keys, return_inverse=True)
+    inv = inv.ravel()
+    uniq = np.column_stack([ukeys // n_vertices, ukeys % n_vertices])
+    k = len(v)
+    _, label = _graph.component_labels(len(uniq), np.column_stack([inv[:k], inv[k:]]))
+    fans = ops.unique_pairs(np.column_stack([uniq[:, 0], label]))
+    count = np.bincount(fans[:, 0], minlength=n_vertices)
+    return np.flatnonzero(count > 1)
+
+
+def prepare_flow_mesh(mesh: Any, *, repair: bool = False) -> tuple[Any, np.ndarray, tuple[str, ...]]:
+    """Validate a closed mesh for the flow.
+
+    Returns
+    -------
+    clean : trimesh.Trimesh
+        Cleaned watertight copy (see :func:`medialaxis.mesh.inputs.load_mesh`).
+    vertex_map : (n_input,) int64 ndarray
+        Vertex of ``clean`` for each input vertex (merged duplicates share one).
+    repairs : tuple of str
+
+    Raises
+    ------
+    InvalidInputError
+        Open or non-manifold meshes (edges or vertices), non-finite coordinates.
+    EmptyShapeError, InputFileError
+        See :func:`medialaxis.mesh.inputs.load_mesh`.
+    """
+    raw = _read(Path(mesh)) if isinstance(mesh, (str, os.PathLike)) else mesh
+    checked = load_mesh(raw, watertight=True, repair=repair)
+    clean = checked.mesh
+    faces = np.asarray(clean.faces, dtype=np.int64)
+    bad = nonmanifold_vertices(len(clean.vertices), faces)
+    if len(bad):
+        raise InvalidInputError(
+            f"the mesh has {len(bad)} non-manifold vertices (e.g. vertex {int(bad[0])} joins separate "
+            "fans of faces); split them first"
+        )
+    raw_vertices = np.asarray(raw.vertices, dtype=np.float64)
+    clean_vertices = np.asarray(clean.vertices)
+    if raw_vertices.shape == clean_vertices.shape and np.array_equal(raw_vertices, clean_vertices):
+        vertex_map = np.arange(len(raw_vertices))
+    else:
+        _, vertex_map = cKDTree(clean_vertices).query(raw_vertices, k=1)
+    return clean, np.asarray(vertex_map, dtype=np.int64), checked.repairs
+
+
+def smoothed_gaussian_curvature(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, radius: float) -> np.ndarray:
+    """Angle-defect Gaussian curvature (eq. 7) averaged over about ``radius`` of surface ``(n,)``.
+
+    The discrete curvature of a sampled surface is noisy vertex to vertex
+    (marching-cubes meshes especially); the total curvature and area are
+    summed over ``radius / mean edge length`` rings before dividing.
+    """
+    area = ops.vertex_areas(points, faces)
+    defect = ops.gaussian_curvature(points, faces) * area
+    length = float(np.linalg.norm(points[edges[:, 0]] - points[edges[:, 1]], axis=1).mean())
+    rings = int(np.clip(np.ceil(radius / max(length, 1e-300)), 0, 50))
+    n = len(points)
+    spread = sparse.coo_matrix((np.ones(2 * len(edges)), (edges.ravel(), edges[:, ::-1].ravel())), shape=(n, n))
+    spread = (spread + sparse.identity(n)).tocsr()
+    for _ in range(rings):
+        defect = spread @ defect
+        area = spread @ area
+    return defect / np.maximum(area, 1e-300)
+
+
+def _curvature_tips(
+    points: np.ndarray, faces: np.ndarray, edges: np.ndarray, threshold: float, radius: float
+) -> np.ndarray:
+    """The deepest vertex of each edge-connected patch where the Gaussian curvature is ``>= threshold``.
+
+    "Deepest" is farthest (along mesh edges) from the patch's rim, so a
+    rounded tip gives its apex rather than a noisy curvature maximum. Patches
+    whose total curvature (sum of angle defects) is below
+    :data:`MIN_TIP_CURVATURE` are noise, not tips, and are skipped.
+    """
+    from scipy.sparse import csgraph
+
+    k = smoothed_gaussian_curvature(points, faces, edges, radius)
+    hot = k >= threshold
+    if not hot.any():
+        return np.zeros(0, dtype=np.int64)
+    inner = edges[hot[edges[:, 0]] & hot[edges[:, 1]]]
+    _, label = _graph.component_labels(len(points), inner)
+    rim_edges = edges[hot[edges[:, 0]] != hot[edges[:, 1]]]
+    rim = np.unique(rim_edges[hot[rim_edges]]) if len(rim_edges) else np.zeros(0, dtype=np.int64)
+    length = np.linalg.norm(points[inner[:, 0]] - points[inner[:, 1]], axis=1) + 1e-300
+    adj = sparse.coo_matrix((length, (inner[:, 0], inner[:, 1])), shape=(len(points),) * 2).tocsr()
+    depth = csgraph.dijkstra(adj, directed=False, indices=rim, min_only=True) if len(rim) else np.zeros(len(points))
+    depth = np.where(np.isfinite(depth), depth, np.inf)  # a closed patch without rim: any vertex
+    # a tip must carry some total curvature: lone noisy vertices do not count
+    defect = ops.gaussian_curvature(points, faces) * ops.vertex_areas(points, faces)
+    total = np.bincount(label[hot], weights=defect[hot], minlength=len(points))
+    idx = np.flatnonzero(hot & (total[label] >= MIN_TIP_CURVATURE))
+    if idx.size == 0:
+        return np.zeros(0, dtype=np.int64)
+    order = idx[np.lexsort((-np.where(np.isinf(depth[idx]), 0.0, depth[idx]), label[idx]))]
+    first = np.unique(label[order], return_index=True)[1]
+    return np.sort(order[first])
+
+
+def _check_box(region: Any) -> np.ndarray:
+    box = np.asarray(region, dtype=np.float64)
+    if box.shape != (2, 3) or not np.all(np.isfinite(box)) or np.any(box[0] > box[1]):
+        raise InvalidInputError(f"region must be a finite (2, 3) box [[xmin, ymin, zmin], [xmax, ymax, zmax]], got {region!r}")
+    return box
+
+
+def _positive(name: str, value: Any, *, allow_none: bool = True) -> float | None:
+    if value is None and allow_none:
+        return None
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{name} must be a positive number, got {value!r}") from None
+    if not (np.isfinite(v) and v > 0):
+        raise InvalidInputError(f"{name} must be a positive number, got {value!r}")
+    return v
+
+
+def flow_skeleton(
+    mesh: Any,
+    *,
+    dt: float | None = None,
+    fixed_points: Any = None,
+    region: Any = None,
+    curvature_threshold: float | None = None,
+    callback: Callable[[FlowState], Any] | None = None,
+    max_steps: int | None = None,
+    attraction: float = 4.0,
+    collapse: float = 0.01,
+    settle_tolerance: float = 1e-3,
+    final_collapse: float = 0.01,
+    node_spacing: float | None = None,
+    repair: bool = False,
+) -> MedialAxis:
+    """Curve skeleton of a closed mesh by the diffusion flow of paper 003.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh or path
+        A closed, manifold triangle mesh (several closed components are
+        allowed: each gets its own skeleton component).
+    dt : float, optional
+        Implicit time step in units of ``s**2``, ``s`` the median inner-ball
+        radius of the mesh (so results do not depend on scale). Default 1.0.
+        Smaller steps follow the flow more closely and take more steps.
+    fixed_points : sequence of int, optional
+        Input vertex indices that become skeletal points where they are: they
+        never move, each is a skeleton node and the skeleton reaches it.
+    region : (2, 3) array_like, optional
+        Axis-aligned box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``: only
+        the part of the mesh in the box, plus a margin of three thicknesses
+        ``s``, flows (the rest stays on the surface, held still); the skeleton
+        is clipped to the box and ``correspondence`` is ``-1`` for vertices
+        outside it.
+    curvature_threshold : float, optional
+        Gaussian curvature (angle defect per area, eq. (7), in 1/length**2,
+        averaged over a disc of radius ``s / 2`` because the per-vertex value
+        of a sampled surface is noisy). In every connected patch of the input surface where the curvature is at
+        least this, the vertex deepest inside the patch (its apex) becomes a
+        skeletal point at its place, so the skeleton reaches into sharp convex tips (a capsule's
+        caps have ``1/r**2``). Lower thresholds make more tips reach the
+        surface; ``None`` (default) keeps none, and the skeleton ends inside
+        the tips, at the centres of their inner balls. Patches of total
+        curvature below ``MIN_TIP_CURVATURE`` (pi/16) are noise and ignored.
+    callback : callable, optional
+        ``callback(FlowState)`` after every step; returning ``False`` cancels
+        (:class:`~medialaxis.errors.Cancelled`).
+    max_steps : int, optional
+        Upper bound on the steps (default 60). Vertices still moving then are
+        frozen where they are and ``metadata["converged"]`` is ``False``.
+    attraction : float
+        Weight ``w`` (in 1/s**2) of the pull towards the inner-ball centres.
+    collapse : float
+        A vertex freezes when its one-ring area falls below this fraction of
+        its initial area.
+    settle_tolerance : float
+        A vertex that moves less than this (times ``s``) in a step has
+        stopped: it freezes as a skeletal point.
+    final_collapse : float
+        Duration (in units of ``s**2``) of one last implicit mean-curvature
+        step on the contracted surface, which gathers each collapsed ring onto
+        its centre before the graph is built (0 skips it).
+    node_spacing : float, optional
+        Spacing of the skeleton nodes (length); default ``s / 2``.
+    repair : bool
+        Close small holes before refusing an open mesh.
+
+    Returns
+    -------
+    MedialAxis
+        ``points`` (s, 3), ``radii`` (mean distance from each node to the
+        surface points that collapsed onto it), ``edges``, no faces;
+        ``extras["correspondence"]`` (n_input,) is the node of each input
+        vertex; metadata holds ``steps``, ``converged``, ``dt``, ``repairs``.
+
+    Raises
+    ------
+    InvalidInputError
+        Open, non-manifold or non-finite meshes; bad option values.
+    EmptyShapeError
+        Empty meshes or meshes without volume; a region holding no vertex.
+    ComputationError
+        The flow diverged (non-finite or exploding positions).
+    Cancelled
+        The callback returned ``False``.
+
+    Examples
+    --------
+    >>> import medialaxis as mx
+    >>> from medialaxis.mesh.flow_samples import capsules_mesh
+    >>> capsule = capsules_mesh([[[0, 0, 0], [3, 0, 0]]], 0.5, pitch=0.1)
+    >>> sk = mx.medial_axis(capsule, method="flow")
+    >>> len(sk.endpoints), len(sk.junctions)
+    (2, 0)
+    """
+    t_start = time.perf_counter()
+    dt_rel = _positive("dt", dt) or 1.0
+    threshold = None if curvature_threshold is None else float(curvature_threshold)
+    if threshold is not None and not np.isfinite(threshold):
+        raise InvalidInputError(f"curvature_threshold must be finite, got {curvature_threshold!r}")
+    if max_steps is None:
+        max_steps = 60
+    if int(max_steps) != max_steps or max_steps < 1:
+        raise InvalidInputError(f"max_steps must be a positive integer, got {max_steps!r}")
+    max_steps = int(max_steps)
+    attraction = float(_positive("attraction", attraction, allow_none=False) or 0.0)
+    collapse = float(_positive("collapse", collapse, allow_none=False) or 0.0)
+    final_collapse = float(final_collapse)
+    if not (np.isfinite(final_collapse) and final_collapse >= 0):
+        raise InvalidInputError(f"final_collapse must be a non-negative number, got {final_collapse!r}")
+    if collapse >= 1:
+        raise InvalidInputError(f"collapse must be in (0, 1), got {collapse!r}")
+    spacing = _positive("node_spacing", node_spacing)
+    if callback is not None and not callable(callback):
+        raise InvalidInputError(f"callback must be callable, got {type(callback).__name__}")
+
+    clean, vertex_map, repairs = prepare_flow_mesh(mesh, repair=repair)
+    p0 = np.array(clean.vertices, dtype=np.float64)
+    faces = np.array(clean.faces, dtype=np.int64)
+    n = len(p0)
+    edges = ops.unique_edges(faces)
+    n_input = len(vertex_map)
+
+    fixed = np.zeros(0, dtype=np.int64)
+    if fixed_points is not None:
+        fp = np.asarray(fixed_points)
+        if fp.size and (fp.ndim != 1 or not np.issubdtype(fp.dtype, np.integer)):
+            raise InvalidInputError(f"fixed_points must be a 1D sequence of vertex indices, got {fixed_points!r}")
+        fp = fp.astype(np.int64).ravel()
+        if fp.size and (fp.min() < 0 or fp.max() >= n_input):
+            bad = fp[(fp < 0) | (fp >= n_input)][0]
+            raise InvalidInputError(f"fixed_points index {int(bad)} out of range for a mesh of {n_input} vertices")
+        fixed = np.unique(vertex_map[fp])
+    use = np.ones(n, dtype=bool)
+    if region is not None:
+        box = _check_box(region)
+        use = np.all((p0 >= box[0]) & (p0 <= box[1]), axis=1)
+        if not use.any():
+            raise EmptyShapeError(f"no mesh vertex lies inside the region {box.tolist()}")
+
+    normals = ops.vertex_normals(p0, faces)
+    diag = float(np.linalg.norm(p0.max(axis=0) - p0.min(axis=0)))
+    edge_length = float(np.linalg.norm(p0[edges[:, 0]] - p0[edges[:, 1]], axis=1).mean())
+    poles, pole_radius = ops.pole_targets(p0, normals, max_radius=0.5 * diag, ignore=2.0 * edge_length)
+    s = float(np.median(pole_radius[use]))
+    if not s > 0:
+        raise ComputationError("could not estimate the thickness of the mesh (all inner-ball radii are zero)")
+    in_box = use.copy()
+    if region is not None:
+        # flow a margin beyond the box so the surface held still outside does
+        # not bend the axis inside it; the skeleton is clipped to the box
+        margin = 3.0 * s
+        use = np.all((p0 >= box[0] - margin) & (p0 <= box[1] + margin), axis=1)
+    if threshold is not None:
+        tips = _curvature_tips(p0, faces, edges, threshold, 0.5 * s)
+        fixed = np.union1d(fixed, tips[in_box[tips]])
+    tau = dt_rel * s * s
+    mass0 = ops.vertex_areas(p0, faces)
+    lap0 = ops.cotangent_laplacian(p0, faces)
+    w = attraction / (s * s)
+    mass_floor = 1e-12 * float(mass0.mean())
+    frozen = ~use
+    frozen[fixed] = True
+    p = p0.copy()
+    steps, converged = 0, False
+    centre = p0.mean(axis=0)
+    # The operator is built once on the input surface (cotangent stiffness and
+    # lumped mass), so one sparse LU factorization serves every step and axis.
+    dirichlet = frozen.copy()  # user-fixed vertices and those outside the region
+    free = np.flatnonzero(~dirichlet)
+    mass = np.maximum(mass0, mass_floor)
+    a = (lap0 * tau + sparse.diags(mass * (1.0 + tau * w))).tocsr()
+    a_ff = a[free][:, free].tocsc()
+    coupling = a[free][:, np.flatnonzero(dirichlet)] @ p0[dirichlet] if dirichlet.any() else 0.0
+    solve = splinalg.factorized(a_ff)
+    attract = (tau * w * mass)[:, None] * poles
+    settle = settle_tolerance * s
+    for step in progress(range(1, max_steps + 1), desc="diffusion flow", total=max_steps):
+        rhs = (mass[:, None] * p + attract)[free] - coupling
+        x = np.column_stack([solve(rhs[:, d]) for d in range(3)])
+        p_new = p.copy()
+        p_new[free] = x
+        if not np.all(np.isfinite(p_new)) or np.abs(p_new - centre).max() > 10.0 * diag:
+            raise ComputationError(
+                f"the diffusion flow diverged at step {step} (dt={dt_rel} x {s * s:.3g}); try a smaller dt"
+            )
+        p_new[frozen] = p[frozen]  # skeletal points never move again
+        moved = np.linalg.norm(p_new - p, axis=1)
+        p = p_new
+        steps = step
+        # a vertex is skeletal once its one-ring has collapsed or it has stopped
+        collapsed = ~frozen & ((ops.vertex_areas(p, faces) < collapse * mass0) | (moved < settle))
+        frozen = frozen | collapsed
+        check_cancel(callback, FlowState(step, _readonly(p), _readonly(frozen), _readonly(faces), step * dt_rel))
+        if frozen.all():
+            converged = True
+            break
+    if final_collapse > 0:
+        # one mean-curvature step on the contracted surface: its operator has
+        # huge weights across the collapsed rings and small ones along the
+        # branches, so it pulls each ring onto its centre without retracting tips
+        lap_c = ops.cotangent_laplacian(p, faces)
+        mass_c = np.maximum(ops.vertex_areas(p, faces), mass_floor)
+        a_c = (sparse.diags(mass_c) + (final_collapse * s * s) * lap_c).tocsr()
+        a_cf = a_c[free][:, free].tocsc()
+        rhs_c = mass_c[free, None] * p[free]
+        if dirichlet.any():
+            rhs_c = rhs_c - a_c[free][:, np.flatnonzero(dirichlet)] @ p[dirichlet]
+        solve_c = splinalg.factorized(a_cf)
+        p_c = p.copy()
+        p_c[free] = np.column_stack([solve_c(rhs_c[:, d]) for d in range(3)])
+        if np.all(np.isfinite(p_c)):
+            p = p_c
+    t_flow = time.perf_counter() - t_start
+    cell = spacing if spacing is not None else 0.5 * s
+    graph = skeleton_graph(p, p0, faces, cell=cell, use=use, fixed=fixed)
+    nodes, node_radii, node_edges, node_of_vertex = graph.points, graph.radii, graph.edges, graph.correspondence
+    if region is not None:
+        slack = 1e-9 * diag
+        keep = np.all((nodes >= box[0] - slack) & (nodes <= box[1] + slack), axis=1)
+        kept_edges = node_edges[keep[node_edges].all(axis=1)] if len(node_edges) else node_edges
+        old_index, node_edges = _graph.compact(len(nodes), kept_edges, keep_nodes=keep)
+        new_of_old = np.full(len(nodes) + 1, -1, dtype=np.int64)
+        new_of_old[old_index] = np.arange(len(old_index))
+        nodes, node_radii = nodes[old_index], node_radii[old_index]
+        node_of_vertex = np.where(in_box & (node_of_vertex >= 0), new_of_old[node_of_vertex], -1)
+    correspondence = np.where(vertex_map >= 0, node_of_vertex[vertex_map], -1)
+    metadata = {
+        "method": "flow",
+        "domain": "mesh",
+        "dt": dt_rel,
+        "time_unit": s * s,
+        "steps": steps,
+        "converged": converged,
+        "unfrozen_vertices": int((~frozen).sum()),
+        "node_spacing": cell,
+        "attraction": attraction,
+        "collapse": collapse,
+        "final_collapse": final_collapse,
+        "curvature_threshold": threshold,
+        "fixed_vertices": [int(v) for v in fixed],
+        "region": None if region is None else np.asarray(region, dtype=float).tolist(),
+        "repairs": list(repairs),
+        "n_vertices": n_input,
+        "flow_seconds": t_flow,
+        "seconds": time.perf_counter() - t_start,
+    }
+    return MedialAxis(nodes, node_radii, node_edges, extras={"correspondence": correspondence}, metadata=metadata)
