@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-from hypothesis import given
+from hypothesis import given, note
 from hypothesis import strategies as st
 from shapely import affinity
 
@@ -35,6 +35,7 @@ def test_points_inside_radius_is_distance_and_balls_rebuild_the_shape(poly):
     poly = _polygonal(poly)
     if poly is None:
         return
+    note(f"polygon: {poly.wkt}")
     ma = mx.medial_axis(poly)
     tol = ma.metadata["tolerance"]
     # inside (up to the simplification tolerance)
@@ -65,6 +66,7 @@ def test_equivariant_under_rotation_scale_translation(poly, angle, scale, shift)
         g = affinity.scale(g, scale, scale, origin=(0, 0))
         return affinity.translate(g, *shift)
 
+    note(f"polygon: {poly.wkt}")
     a = mx.medial_axis(poly)
     b = mx.medial_axis(move(poly))
     np.testing.assert_allclose(b.radii.max(), scale * a.radii.max(), rtol=1e-3)

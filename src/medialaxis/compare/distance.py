@@ -267,7 +267,7 @@ def match_endpoints(
     >>> from medialaxis.compare import match_endpoints
     >>> bar = np.zeros((60, 90), bool); bar[20:40, 10:80] = True
     >>> match_endpoints(bar, bar)[1]
-    [(0, 0), (1, 1)]
+    [(0, 0), (1, 1), (2, 2), (3, 3)]
     """
     params = _params(alpha, beta, gamma, skip, unmatched)
     sa = shape_signature(a, n_samples=n_samples, prune=prune, **axis_options)

@@ -371,8 +371,8 @@ def signature(
     >>> from medialaxis.compare import signature
     >>> mask = np.zeros((40, 80), bool); mask[10:30, 10:70] = True
     >>> sig = signature(mx.medial_axis(mask))
-    >>> sig.n_endpoints, sig.radii.shape   # the short corner branches are pruned
-    (2, (2, 2, 24))
+    >>> sig.n_endpoints, sig.radii.shape   # a rectangle: four corner branches
+    (4, (4, 4, 24))
     """
     if not isinstance(ma, MedialAxis):
         raise InvalidInputError(f"expected a MedialAxis, got {type(ma).__name__}")

@@ -148,7 +148,7 @@ def _result(
 def _pruned(raw: MedialAxis, lam: float, detour: float) -> MedialAxis:
     """Prune ``raw`` (which carries contact data as extras) with ``lam`` and ``detour``."""
     old, edges = prune_graph(
-        len(raw.points),
+        raw.radii,
         raw.edges,
         raw.extras["edge_contact_diameter"],
         raw.extras["edge_contact_arc"],

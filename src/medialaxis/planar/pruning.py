@@ -22,8 +22,8 @@ keeps the homotopy type of the raw axis: one component per connected shape,
 one cycle per hole, and necks narrower than ``lam`` stay connected.
 
 The detour test decides which branches exist; ``lam`` alone decides how far
-they reach: from each endpoint the branch regrows along the raw axis (the
-continuation of largest contact diameter) while the contact diameter stays
+they reach: from each endpoint the branch regrows along the raw axis (up to
+the first fork) while the contact diameter stays
 at least ``lam``, the contacts are not consecutive samples (the Voronoi
 edge dual to a boundary piece runs to the boundary, not along the axis) and
 the boundary still detours by a tenth of ``detour`` (boundary noise does not)
@@ -92,13 +92,14 @@ def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) 
     return cluster.reshape(-1), cluster[edges[kept_edges]].reshape(-1, 2), kept_edges
 
 
-def regrow_tips(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarray, contact_diameter: np.ndarray) -> np.ndarray:
+def regrow_tips(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarray) -> np.ndarray:
     """Extend every endpoint of the kept graph along ``growable`` removed edges.
 
-    At a fork the edge of largest contact diameter is taken.
-
-    Returns the new keep mask. Each step goes to a node not yet in the kept
-    graph, so no cycle or junction is created.
+    A tip grows while exactly one growable edge leads on to a node not yet in
+    the kept graph; at a fork it stops, since neither side is significant
+    and picking one would depend on round-off (a mirror-symmetric shape
+    would lose its symmetry). Growing only extends trees, so it creates no
+    cycle or junction. Returns the new keep mask.
     """
     from medialaxis.core.graph import adjacency, degree
 
@@ -107,26 +108,22 @@ def regrow_tips(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarra
         return keep
     adj = adjacency(n, edges)
     indptr, nbrs, eids = adj.indptr, adj.indices, adj.data - 1
-    deg = degree(n, edges[keep])
-    used = deg > 0
-    for start in np.flatnonzero(deg == 1):
+    used = degree(n, edges[keep]) > 0
+    for start in np.flatnonzero(degree(n, edges[keep]) == 1):
         node = int(start)
         while True:
-            best, best_d = -1, -np.inf
-            for k in range(indptr[node], indptr[node + 1]):
-                e = eids[k]
-                if growable[e] and not keep[e] and not used[nbrs[k]] and contact_diameter[e] > best_d:
-                    best, best_d = k, contact_diameter[e]
-            if best < 0:
+            ways = [k for k in range(indptr[node], indptr[node + 1])
+                    if growable[eids[k]] and not keep[eids[k]] and not used[nbrs[k]]]
+            if len(ways) != 1:
                 break
-            keep[eids[best]] = True
-            node = int(nbrs[best])
+            keep[eids[ways[0]]] = True
+            node = int(nbrs[ways[0]])
             used[node] = True
     return keep
 
 
 def prune_graph(
-    n: int,
+    radii: np.ndarray,
     edges: np.ndarray,
     contact_diameter: np.ndarray,
     contact_arc: np.ndarray,
@@ -136,14 +133,15 @@ def prune_graph(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Peel insignificant leaf edges; return ``(kept_node_ids, kept_edges_renumbered)``.
 
-    A component whose edges all go keeps its node of largest contact
-    diameter (a disc keeps its centre).
+    A component whose edges all go keeps its node of largest radius (a disc
+    or a regular polygon keeps its centre).
     """
+    n = len(radii)
     removable = ~significant_edges(contact_diameter, contact_arc, lam, detour)
     keep = peel_leaves(n, edges, removable)
     excess = contact_arc - contact_diameter
     growable = (contact_diameter >= lam) & ~adjacent_contacts & (excess >= REGROW_DETOUR * detour * contact_diameter)
-    keep = regrow_tips(n, edges, keep, growable, contact_diameter)
+    keep = regrow_tips(n, edges, keep, growable)
     kept = edges[keep]
     keep_nodes = np.zeros(n, bool)
     if n:
@@ -152,11 +150,8 @@ def prune_graph(
         n_comp, label = connected_components(adj, directed=False)
         has_edge = np.zeros(n_comp, bool)
         has_edge[label[kept.ravel()]] = True
-        score = np.zeros(n)
-        np.maximum.at(score, edges[:, 0], contact_diameter)
-        np.maximum.at(score, edges[:, 1], contact_diameter)
         best = np.full(n_comp, -1, np.int64)
-        order = np.lexsort((-score, label))
+        order = np.lexsort((-radii, label))
         first = np.r_[True, label[order][1:] != label[order][:-1]]
         best[label[order][first]] = order[first]
         lonely = best[~has_edge]
