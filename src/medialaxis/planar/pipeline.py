@@ -113,36 +113,21 @@ def _sample_and_triangulate(
 ) -> tuple[BoundarySample, Triangulation, np.ndarray]:
     area = max(region.area, 1e-300)
     start = max(min_length, np.sqrt(area) / 8.0)
-    arcs = initial_arcs(rings, start)
+    arcs: list[np.ndarray] | None = initial_arcs(rings, start)
+    settled = False
     for _ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
         smp = sample(rings, arcs)
         tri = triangulate(smp.points)
         inside = inner_triangles(tri, region)
+        if settled:
+            break
         conforming, radius = _piece_state(tri, inside, smp)
-        new = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length)
-        if new is None:
+        arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length)
+        if arcs is None:
             break
-        added = sum(map(len, new)) - len(smp.points)
-        arcs = new
-        if conforming.all() and added < 0.005 * len(smp.points):
-            # a handful of pieces near tips: one more triangulation settles them
-            smp = sample(rings, arcs)
-            tri = triangulate(smp.points)
-            inside = inner_triangles(tri, region)
-            break
+        # Only a handful of pieces near tips were split: triangulate once more and stop.
+        settled = conforming.all() and sum(map(len, arcs)) - len(smp.points) < 0.005 * len(smp.points)
     return smp, tri, inside
-
-
-def _result(
-    points: np.ndarray,
-    radii: np.ndarray,
-    edges: np.ndarray,
-    extras: dict[str, np.ndarray],
-    metadata: dict[str, Any],
-    shape: Any,
-    raw: MedialAxis | None,
-) -> MedialAxis:
-    return MedialAxis(points, radii, edges, extras=extras, metadata=metadata, shape=shape, raw=raw)
 
 
 def _pruned(raw: MedialAxis, lam: float, detour: float) -> MedialAxis:
@@ -157,7 +142,7 @@ def _pruned(raw: MedialAxis, lam: float, detour: float) -> MedialAxis:
         detour,
     )
     metadata = dict(raw.metadata, lam=lam, detour=detour, pruned=True)
-    return _result(raw.points[old], raw.radii[old], edges, {}, metadata, raw.shape, raw)
+    return MedialAxis(raw.points[old], raw.radii[old], edges, metadata=metadata, shape=raw.shape, raw=raw)
 
 
 def planar_stages(
@@ -226,18 +211,17 @@ def planar_stages(
         metadata["threshold"] = src.threshold
     if src.repaired:
         metadata["repaired"] = src.repaired
-    raw = _result(
+    raw = MedialAxis(
         points,
         radii,
         edges,
-        {
+        extras={
             "edge_contact_diameter": ax.contact_diameter[kept],
             "edge_contact_arc": ax.contact_arc[kept],
             "edge_adjacent_contacts": ax.adjacent[kept],
         },
-        dict(metadata, pruned=False),
-        region,
-        None,
+        metadata=dict(metadata, pruned=False),
+        shape=region,
     )
     result = _pruned(raw, lam, detour)
     return Stages(src, rings, smp, tri, inside, raw, result)
