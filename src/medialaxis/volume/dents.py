@@ -30,7 +30,7 @@ def face_normals(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
 
 
 def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
-                 excluded: np.ndarray | None = None) -> np.ndarray:
+                 excluded: np.ndarray | None = None, rings: int = 1) -> np.ndarray:
     """New positions of the junction vertices by minimising eq. (1).
 
     Parameters
@@ -43,6 +43,10 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
         Vertices whose faces are not used as planes (default: ``junction``).
         The pipeline also moves free-edge vertices this way, using planes of
         faces with neither junction nor free-edge vertices.
+    rings : int
+        Planes come from the faces touching the vertex's ``rings``-ring
+        (1: the paper's neighbourhood; 2 reaches past a row of excluded
+        vertices, as at the corner where a junction line meets a free edge).
 
     Returns
     -------
@@ -68,7 +72,10 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
     incidence = sparse.csr_matrix((np.ones(3 * nf), (faces.ravel(), np.repeat(np.arange(nf), 3))), shape=(nv, nf))
     ring = (incidence @ incidence.T).tocsr()  # vertex -> vertices sharing a face (incl. itself)
     rows = np.flatnonzero(junction)
-    near = (ring[rows] @ incidence).tocoo()  # junction vertex -> faces touching its one-ring
+    reach = ring[rows]
+    for _ in range(rings - 1):
+        reach = reach @ ring
+    near = (reach @ incidence).tocoo()  # junction vertex -> faces touching its one-ring
     clean = ~(junction if excluded is None else np.asarray(excluded, bool))[faces].any(axis=1)
     keep = clean[near.col]
     owner, face = rows[near.row[keep]], near.col[keep]

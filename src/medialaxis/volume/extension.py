@@ -123,9 +123,49 @@ def _max_normal_component(points: np.ndarray, faces: np.ndarray, vertices: np.nd
     return out
 
 
+#: Eigen-directions of the face-normal scatter at a vertex holding more than
+#: this share of it are normals of a sheet through the vertex.
+SHEET_NORMAL_SHARE = 0.15
+
+
+def _in_sheet_planes(points: np.ndarray, faces: np.ndarray, vertices: np.ndarray,
+                     directions: np.ndarray) -> np.ndarray:
+    """Directions with their components along the vertices' sheet normals removed.
+
+    The normals are the main eigen-directions of the scatter ``sum n n^T`` of
+    the unit normals of the faces at each vertex: one on a sheet, two where
+    sheets meet (leaving only the junction line's direction). Returned
+    vectors are not renormalised: a short one was mostly out of the sheets.
+    """
+    from medialaxis.volume.dents import face_normals
+
+    normals = face_normals(points, faces)
+    slot = np.full(len(points), -1, np.int64)
+    slot[vertices] = np.arange(len(vertices))
+    scatter = np.zeros((len(vertices), 3, 3))
+    nnT = normals[:, :, None] * normals[:, None, :]
+    for corner in range(3):
+        s = slot[faces[:, corner]]
+        has = s >= 0
+        np.add.at(scatter, s[has], nnT[has])
+    value, vector = np.linalg.eigh(scatter)
+    total = np.maximum(value.sum(axis=1, keepdims=True), 1e-12)
+    keep = value / total <= SHEET_NORMAL_SHARE  # (k, 3): eigen-directions in the sheets' planes
+    coef = np.einsum("kij,ki->kj", vector, directions) * keep
+    return np.einsum("kij,kj->ki", vector, coef)
+
+
 def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.ndarray, vertices: np.ndarray,
-                          directions: np.ndarray) -> np.ndarray:
-    """Directions of junction-line ends: away from their one junction neighbour."""
+                          directions: np.ndarray, tolerance: float = 0.0, reach: float = 0.0) -> np.ndarray:
+    """Directions of junction-line ends: away from their one junction neighbour.
+
+    The faces at a line's end belong to several sheets, and the outward
+    directions of their boundary edges do not agree; the line's own direction
+    does. Free-boundary vertices on the line beyond its end (within
+    ``tolerance`` of it and ``reach`` of the end: the corners of the sheets
+    there) take the line's direction too, instead of a diagonal into the
+    other sheet.
+    """
     e = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
     e = e[junction[e[:, 0]] & junction[e[:, 1]]]
     ends = np.concatenate([e, e[:, ::-1]])  # (vertex, junction neighbour)
@@ -133,12 +173,19 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
     out = directions.copy()
     slot = np.full(len(points), -1, np.int64)
     slot[vertices] = np.arange(len(vertices))
-    one = ends[(degree[ends[:, 0]] == 1) & (slot[ends[:, 0]] >= 0)]
+    one = ends[(degree[ends[:, 0]] == 1)]
     d = points[one[:, 0]] - points[one[:, 1]]
     d /= np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
-    rows = slot[one[:, 0]]
-    agree = np.einsum("ij,ij->i", d, directions[rows]) > 0  # only where the mesh agrees it is outward
-    out[rows[agree]] = d[agree]
+    if tolerance > 0 and len(one):
+        candidates = vertices[~junction[vertices]]
+        for end, t in zip(one[:, 0], d):
+            rel = points[candidates] - points[end]
+            along = rel @ t
+            across = np.linalg.norm(rel - along[:, None] * t, axis=1)
+            on_line = candidates[(along > 0) & (along <= reach) & (across <= tolerance)]
+            out[slot[on_line]] = t
+    has = slot[one[:, 0]] >= 0
+    out[slot[one[has, 0]]] = d[has]
     return out
 
 
@@ -184,8 +231,12 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     if len(edges) == 0:
         return points, faces, np.empty(0, np.int64)
     vertices, directions = outward_directions(points, edges, opposite)
+    directions = _in_sheet_planes(points, faces, vertices, directions)
+    in_plane = np.linalg.norm(directions, axis=1)
+    directions = np.divide(directions, in_plane[:, None], out=np.zeros_like(directions), where=in_plane[:, None] > 0.5)
     if junction is not None:
-        directions = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions)
+        directions = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions,
+                                           tolerance=1.5 * float(spacing.max()), reach=max_length)
     good = np.linalg.norm(directions, axis=1) > 0.5
     if free is not None:
         free = np.asarray(free, bool)

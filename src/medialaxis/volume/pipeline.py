@@ -35,6 +35,10 @@ __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "Volu
 #: the offset from the planes of the k faces beside the vertex.
 FREE_EDGE_PASSES = 3
 
+#: Free-edge vertices take planes from faces this many rings away: beside
+#: the end of a junction line their one-ring holds no clean face.
+FREE_EDGE_RINGS = 2
+
 
 @dataclasses.dataclass(frozen=True)
 class VolumeStages:
@@ -155,7 +159,7 @@ def volume_stages(
             # on the planes of the interior faces next to them (eq. 1 as well)
             moved = state["points"]
             for _ in range(FREE_EDGE_PASSES):
-                moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special)
+                moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
             if remove_dents:
                 moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
             state["points"] = moved
