@@ -144,6 +144,7 @@ def score_arrays(points, faces, radii, phantom) -> dict:
         "junction_vertex_max": float(d[near_v].max()),
         "dent_vertex_max": float(d[inner_v].max()),
         "junction_truth_max": float(dist[near_t].max()),
+        "junction_coverage": float(np.mean(dist[near_t] <= 1.0)),
         "median_thickness": float(np.median(2 * radii)),
         "topology": topo,
     }

@@ -182,7 +182,7 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
             rel = points[candidates] - points[end]
             along = rel @ t
             across = np.linalg.norm(rel - along[:, None] * t, axis=1)
-            on_line = candidates[(along > 0) & (along <= reach) & (across <= tolerance)]
+            on_line = candidates[(along > -tolerance) & (along <= reach) & (across <= tolerance)]
             out[slot[on_line]] = t
     has = slot[one[:, 0]] >= 0
     out[slot[one[has, 0]]] = d[has]

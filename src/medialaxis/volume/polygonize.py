@@ -353,8 +353,54 @@ def _ear_triangles(polygon: list[int], points: np.ndarray) -> list[list[int]]:
     return out
 
 
+def _close_line_ends(faces: np.ndarray, junction: np.ndarray, free: np.ndarray, points: np.ndarray,
+                     max_edges: int = 6) -> np.ndarray:
+    """Join the last junction vertex of a line to a sheet that stops short of it.
+
+    At the end of a junction line ``(..., n, e)`` a sheet may hold triangles
+    up to ``n`` only: its boundary runs from ``n`` through sheet vertices to
+    its free edge, and leaves a notch beside the line's last edge. When that
+    path (at most ``max_edges`` edges, ending at the first free-edge vertex)
+    shares no face with ``e``, it is fanned to ``e``.
+    """
+    count, e = _edge_counts(faces)
+    single = e[count == 1]
+    if len(single) == 0:
+        return faces
+    nbrs: dict[int, list[int]] = {}
+    for a, b in single.tolist():
+        nbrs.setdefault(a, []).append(b)
+        nbrs.setdefault(b, []).append(a)
+    edges = np.unique(e.reshape(-1, 2), axis=0)
+    line = edges[junction[edges[:, 0]] & junction[edges[:, 1]]]
+    ends = np.concatenate([line, line[:, ::-1]])
+    degree = np.bincount(ends[:, 0], minlength=len(points))
+    touching: dict[int, set[int]] = {}
+    for f in faces.tolist():
+        for v in f:
+            touching.setdefault(v, set()).update(f)
+    new: list[list[int]] = []
+    for end, inner in ends[degree[ends[:, 0]] == 1].tolist():
+        for first in nbrs.get(inner, []):
+            path, prev, cur = [inner], inner, first
+            while len(path) <= max_edges and not junction[cur]:
+                path.append(cur)
+                if free[cur]:
+                    break
+                ahead = [v for v in nbrs.get(cur, []) if v != prev]
+                if len(ahead) != 1:
+                    break
+                prev, cur = cur, ahead[0]
+            if len(path) < 2 or not free[path[-1]] or touching.get(end, set()) & set(path[1:]):
+                continue
+            new += [[end, path[i], path[i + 1]] for i in range(len(path) - 1)]
+    if not new:
+        return faces
+    return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+
+
 def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | None = None,
-                 normal: np.ndarray | None = None, rounds: int = 4) -> np.ndarray:
+                 normal: np.ndarray | None = None, rounds: int = 4, free: np.ndarray | None = None) -> np.ndarray:
     """Remove folded and surplus triangles and close small holes.
 
     1. Where neighbouring blocks split the same degenerate quad across both
@@ -367,7 +413,9 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
     3. Notches beside junction edges (a path of at most eight boundary edges
        from one end of a junction edge to the other) are closed, so every
        sheet at a junction line has triangles on each of its edges.
-    4. Holes bounded by three or four edges (or a notch of three boundary
+    4. With ``free`` (free-edge vertices): a sheet that stops one edge short
+       of a junction line's end is fanned to that end (:func:`_close_line_ends`).
+    5. Holes bounded by three or four edges (or a notch of three boundary
        edges against an edge) are closed.
 
     Parameters
@@ -396,6 +444,8 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
     if len(faces):
         where = points if points is not None else np.zeros((int(faces.max()) + 1, 3))
         faces = _close_junction_notches(faces, junction, where)
+        if free is not None:
+            faces = _close_line_ends(faces, junction, np.asarray(free, bool), where)
         faces = _close_small_holes(faces, where)
     return faces
 
@@ -547,5 +597,5 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     vertex_junction = kind[picks] == JUNCTION
     faces = _triangles(label_grid, voxels, points, sheet_grid)
     faces = faces[~vertex_junction[faces].all(axis=1)]  # junction lines carry no faces of their own
-    faces = repair_faces(faces, vertex_junction, points, medial.normal[picks])
+    faces = repair_faces(faces, vertex_junction, points, medial.normal[picks], free=kind[picks] == BOUNDARY)
     return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label)
