@@ -129,7 +129,7 @@ SHEET_NORMAL_SHARE = 0.15
 
 
 def _in_sheet_planes(points: np.ndarray, faces: np.ndarray, vertices: np.ndarray,
-                     directions: np.ndarray) -> np.ndarray:
+                     directions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Directions with their components along the vertices' sheet normals removed.
 
     The normals are the main eigen-directions of the scatter ``sum n n^T`` of
@@ -152,11 +152,17 @@ def _in_sheet_planes(points: np.ndarray, faces: np.ndarray, vertices: np.ndarray
     total = np.maximum(value.sum(axis=1, keepdims=True), 1e-12)
     keep = value / total <= SHEET_NORMAL_SHARE  # (k, 3): eigen-directions in the sheets' planes
     coef = np.einsum("kij,ki->kj", vector, directions) * keep
-    return np.einsum("kij,kj->ki", vector, coef)
+    return np.einsum("kij,kj->ki", vector, coef), vector, ~keep & (value > 0)
+
+
+#: A junction line's direction replaces a vertex's outward direction unless
+#: they point this much apart (cosine below minus this).
+LINE_AGREEMENT = 0.3
 
 
 def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.ndarray, vertices: np.ndarray,
-                          directions: np.ndarray, tolerance: float = 0.0, reach: float = 0.0) -> np.ndarray:
+                          directions: np.ndarray, tolerance: float = 0.0, reach: float = 0.0,
+                          outward: np.ndarray | None = None) -> np.ndarray:
     """Directions of junction-line ends: away from their one junction neighbour.
 
     The faces at a line's end belong to several sheets, and the outward
@@ -164,7 +170,9 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
     does. Free-boundary vertices on the line beyond its end (within
     ``tolerance`` of it and ``reach`` of the end: the corners of the sheets
     there) take the line's direction too, instead of a diagonal into the
-    other sheet.
+    other sheet. With ``outward`` (the boundary edges' own directions), a
+    vertex keeps its direction where the line's points back into the mesh
+    (a short junction piece along a crease).
     """
     e = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
     e = e[junction[e[:, 0]] & junction[e[:, 1]]]
@@ -182,16 +190,21 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
             rel = points[candidates] - points[end]
             along = rel @ t
             across = np.linalg.norm(rel - along[:, None] * t, axis=1)
-            on_line = candidates[(along > -tolerance) & (along <= reach) & (across <= tolerance)]
-            out[slot[on_line]] = t
-    has = slot[one[:, 0]] >= 0
-    out[slot[one[has, 0]]] = d[has]
+            on_line = slot[candidates[(along > -tolerance) & (along <= reach) & (across <= tolerance)]]
+            if outward is not None:
+                on_line = on_line[outward[on_line] @ t > -LINE_AGREEMENT]
+            out[on_line] = t
+    rows = slot[one[:, 0]]
+    has = rows >= 0
+    if outward is not None:
+        has[has] = np.einsum("ij,ij->i", outward[rows[has]], d[has]) > -LINE_AGREEMENT
+    out[rows[has]] = d[has]
     return out
 
 
 def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: float, spacing: np.ndarray,
                 max_length: float, plane_normals: tuple[np.ndarray, np.ndarray] | None = None,
-                free: np.ndarray | None = None, junction: np.ndarray | None = None,
+                free: np.ndarray | None = None, junction: np.ndarray | None = None, probe: float = 0.0,
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Extend the free boundary of a mid-surface mesh to the isosurface.
 
@@ -218,6 +231,12 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     junction : (v,) bool ndarray, optional
         Junction vertices. A junction vertex with one junction neighbour ends
         a junction line and is extended along that line.
+    probe : float, optional
+        When > 0: a ray is kept only if, one voxel inside its hit, the grey
+        values ``probe`` away along each sheet normal at the vertex are
+        background (the part ends beside the sheet there; it does not where
+        a ray runs along a sheet into a crease or another plate). Rays along
+        junction lines are not probed.
 
     Returns
     -------
@@ -230,13 +249,14 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     edges, opposite = boundary_edges(faces)
     if len(edges) == 0:
         return points, faces, np.empty(0, np.int64)
-    vertices, directions = outward_directions(points, edges, opposite)
-    directions = _in_sheet_planes(points, faces, vertices, directions)
+    vertices, outward = outward_directions(points, edges, opposite)
+    directions, eigen, is_normal = _in_sheet_planes(points, faces, vertices, outward)
     in_plane = np.linalg.norm(directions, axis=1)
     directions = np.divide(directions, in_plane[:, None], out=np.zeros_like(directions), where=in_plane[:, None] > 0.5)
+    planar = directions.copy()
     if junction is not None:
         directions = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions,
-                                           tolerance=1.5 * float(spacing.max()), reach=max_length)
+                                           tolerance=1.5 * float(spacing.max()), reach=max_length, outward=outward)
     good = np.linalg.norm(directions, axis=1) > 0.5
     if free is not None:
         free = np.asarray(free, bool)
@@ -251,6 +271,19 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     step = 0.25 * float(spacing.min())
     length = march_to_iso(grey, iso, spacing, points[vertices], directions, max_length, step)
     grow = np.isfinite(length) & (length > 0.25 * step)
+    if probe > 0:
+        # the part must end on both sides of the sheet just inside the hit:
+        # a ray along a sheet into a crease or another plate exits through
+        # that plate's face, where the part goes on beside the sheet
+        along_line = np.einsum("ij,ij->i", directions, planar[good]) < 0.999
+        inner = points[vertices] + np.nan_to_num(length - float(spacing.max()))[:, None] * directions
+        for k in range(3):
+            n = eigen[good][:, :, k]
+            use = is_normal[good][:, k] & grow & ~along_line
+            for sign in (1.0, -1.0):
+                probe_point = (inner + sign * probe * n) / spacing
+                val = ndimage.map_coordinates(grey, probe_point.T, order=1, mode="constant", cval=iso - 1.0)
+                grow &= ~(use & (val > iso))
     vertices, directions, length = vertices[grow], directions[grow], length[grow]
     new_index = np.full(len(points), -1, np.int64)
     new_index[vertices] = len(points) + np.arange(len(vertices))

@@ -171,6 +171,7 @@ def volume_stages(
                 state["points"], state["faces"], src.grey, src.iso, src.spacing,
                 max_length=1.5 * state["thickness"] + 2.0 * sample_radius,
                 free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
+                probe=0.5 * state["thickness"] + 2.0 * float(src.spacing.max()),
             )
             state["points"], state["faces"] = points, faces
             state["radii"] = np.concatenate([state["radii"], state["radii"][source]])

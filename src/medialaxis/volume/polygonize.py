@@ -238,8 +238,14 @@ def _drop_surplus(faces: np.ndarray, junction: np.ndarray, points: np.ndarray, n
     return faces[~drop]
 
 
-def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = 4) -> np.ndarray:
-    """Close holes bounded by at most ``max_edges`` edges.
+#: Holes bounded by at most this many edges are closed (where a sheet bends
+#: sharply, its Voronoi regions can miss a few triangles); free edges of a
+#: part are far longer loops at the sampling density.
+SMALL_HOLE_EDGES = 8
+
+
+def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = SMALL_HOLE_EDGES) -> np.ndarray:
+    """Close holes bounded by at most ``max_edges`` edges (shortest diagonals first).
 
     A hole is a cycle of boundary edges, or a path of boundary edges whose
     ends are joined by an edge of the mesh (a notch beside a junction edge).
@@ -269,14 +275,7 @@ def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = 4
             cycle = _walk(edges, int(a))
         else:
             continue
-        if len(cycle) == 3:
-            new.append(cycle)
-        elif len(cycle) == 4:
-            a, b, c2, d = cycle
-            if np.linalg.norm(points[a] - points[c2]) <= np.linalg.norm(points[b] - points[d]):
-                new += [[a, b, c2], [a, c2, d]]
-            else:
-                new += [[a, b, d], [b, c2, d]]
+        new += _ear_triangles(cycle, points)
     if not new:
         return faces
     return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
@@ -297,46 +296,111 @@ def _walk(edges: np.ndarray, start: int) -> list[int]:
         order.append(cur)
 
 
+def _line_path(line_nbrs: dict[int, list[int]], a: int, b: int, max_hops: int) -> list[int] | None:
+    """Vertices from ``a`` to ``b`` along junction edges (at most ``max_hops``), or None."""
+    previous = {a: a}
+    frontier = [a]
+    for _ in range(max_hops):
+        nxt = []
+        for v in frontier:
+            for w in line_nbrs.get(v, []):
+                if w not in previous:
+                    previous[w] = v
+                    nxt.append(w)
+        frontier = nxt
+        if b in previous:
+            path = [b]
+            while path[-1] != a:
+                path.append(previous[path[-1]])
+            return path[::-1]
+    return None
+
+
 def _close_junction_notches(faces: np.ndarray, junction: np.ndarray, points: np.ndarray,
-                            max_edges: int = 8) -> np.ndarray:
+                            max_edges: int = 8, max_hops: int = 3, free: np.ndarray | None = None) -> np.ndarray:
     """Close the notches of a sheet beside its junction edges.
 
-    Where a sheet misses the triangles between a junction edge ``(a, b)`` and
-    its own vertices, a path of boundary edges runs from ``a`` to ``b``
-    through sheet vertices. Each such path of at most ``max_edges`` edges,
-    with the junction edge, bounds a hole: it is triangulated by cutting off
-    the ear with the shortest diagonal first.
+    Where a sheet misses the triangles along a junction line, a path of
+    boundary edges runs from one junction vertex ``a`` through sheet vertices
+    to another ``b`` at most ``max_hops`` junction edges along the line. Each
+    such path of at most ``max_edges`` edges, with the line from ``b`` back
+    to ``a``, bounds a hole: it is triangulated by cutting off the ear with
+    the shortest diagonal first. Paths through ``free`` vertices (the part's
+    free edges, at a line's end) are left to :func:`_close_line_ends`.
     """
     count, e = _edge_counts(faces)
     single = e[count == 1]
     if len(single) == 0:
         return faces
+    if free is None:
+        free = np.zeros(len(junction), bool)
     nbrs: dict[int, list[int]] = {}
     for a, b in single.tolist():
         nbrs.setdefault(a, []).append(b)
         nbrs.setdefault(b, []).append(a)
     edges = np.unique(e.reshape(-1, 2), axis=0)
-    line = edges[junction[edges[:, 0]] & junction[edges[:, 1]]]
+    line_nbrs: dict[int, list[int]] = {}
+    for a, b in edges[junction[edges[:, 0]] & junction[edges[:, 1]]].tolist():
+        line_nbrs.setdefault(a, []).append(b)
+        line_nbrs.setdefault(b, []).append(a)
     seen: set[frozenset[int]] = set()
     new: list[list[int]] = []
-    for a, b in line.tolist():
-        for start, goal in ((a, b), (b, a)):
-            for first in nbrs.get(start, []):
-                path, prev, cur = [start], start, first
-                while len(path) <= max_edges and not junction[cur]:
-                    path.append(cur)
-                    ahead = [v for v in nbrs.get(cur, []) if v != prev]
-                    if len(ahead) != 1:
-                        break
-                    prev, cur = cur, ahead[0]
-                if cur != goal or len(path) < 2 or frozenset(path) in seen:
-                    continue
-                seen.add(frozenset(path + [goal]))
-                seen.add(frozenset(path))
-                new += _ear_triangles(path + [goal], points)
+    for start in line_nbrs:
+        for first in nbrs.get(start, []):
+            path, prev, cur = [start], start, first
+            while len(path) <= max_edges and not junction[cur]:
+                path.append(cur)
+                ahead = [v for v in nbrs.get(cur, []) if v != prev]
+                if len(ahead) != 1:
+                    break
+                prev, cur = cur, ahead[0]
+            if not junction[cur] or cur == start or len(path) < 2 or frozenset(path[1:]) in seen \
+                    or free[path[1:]].any():
+                continue
+            back = _line_path(line_nbrs, cur, start, max_hops)
+            if back is None:
+                continue
+            seen.add(frozenset(path[1:]))
+            new += _ear_triangles(path + back[:-1], points)
     if not new:
         return faces
     return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+
+
+def _drop_double_quads(faces: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Where a quad is covered by both of its splits (four faces on four
+    vertices, a flat tetrahedron), keep the split across the shorter diagonal."""
+    count, e = _edge_counts(faces)
+    if not (count >= 3).any():
+        return faces
+    present = {tuple(f) for f in faces.tolist()}
+    index = {f: i for i, f in enumerate(map(tuple, faces.tolist()))}
+    drop: set[int] = set()
+    for i in np.flatnonzero((count >= 3).any(axis=1)):
+        a, b, c = faces[i].tolist()
+        for f2 in np.flatnonzero((faces == a).any(axis=1) & (faces == b).any(axis=1)):
+            d = [v for v in faces[f2].tolist() if v not in (a, b)]
+            if len(d) != 1 or d[0] == c:
+                continue
+            quad = sorted((a, b, c, d[0]))
+            tris = [tuple(t) for t in itertools.combinations(quad, 3)]
+            if not all(t in present for t in tris):
+                continue
+            # the two splits: diagonals are the pairs whose faces hold both
+            pairs = [((quad[0], quad[1]), (quad[2], quad[3])), ((quad[0], quad[2]), (quad[1], quad[3])),
+                     ((quad[0], quad[3]), (quad[1], quad[2]))]
+            lengths = {pr: float(np.linalg.norm(points[pr[0]] - points[pr[1]])) for pair in pairs for pr in pair}
+            # in a tetrahedron any pair of opposite edges can serve as the two
+            # diagonals; drop the two faces on the longest edge
+            longest = max(lengths, key=lengths.get)
+            for tri in tris:
+                if longest[0] in tri and longest[1] in tri:
+                    drop.add(index[tri])
+    if not drop:
+        return faces
+    keep = np.ones(len(faces), bool)
+    keep[list(drop)] = False
+    return faces[keep]
 
 
 def _ear_triangles(polygon: list[int], points: np.ndarray) -> list[list[int]]:
@@ -410,13 +474,15 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
     2. With ``points`` and ``normal`` (vertex sheet normals): on edges from a
        junction vertex to a sheet vertex with three or more faces, only the
        two faces closest to that sheet's plane stay.
-    3. Notches beside junction edges (a path of at most eight boundary edges
-       from one end of a junction edge to the other) are closed, so every
-       sheet at a junction line has triangles on each of its edges.
+    3. Quads covered by both splits lose the two faces on their longest
+       edge; notches beside junction lines (a path of at most eight boundary
+       edges between two junction vertices up to three junction edges apart)
+       are closed, so every sheet at a junction line has triangles on each
+       of its edges.
     4. With ``free`` (free-edge vertices): a sheet that stops one edge short
        of a junction line's end is fanned to that end (:func:`_close_line_ends`).
-    5. Holes bounded by three or four edges (or a notch of three boundary
-       edges against an edge) are closed.
+    5. Holes bounded by at most ``SMALL_HOLE_EDGES`` edges (or a notch of
+       boundary edges against an edge) are closed.
 
     Parameters
     ----------
@@ -443,7 +509,8 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
         faces = faces[~folded]
     if len(faces):
         where = points if points is not None else np.zeros((int(faces.max()) + 1, 3))
-        faces = _close_junction_notches(faces, junction, where)
+        faces = _drop_double_quads(faces, where)
+        faces = _close_junction_notches(faces, junction, where, free=free)
         if free is not None:
             faces = _close_line_ends(faces, junction, np.asarray(free, bool), where)
         faces = _close_small_holes(faces, where)
