@@ -27,13 +27,18 @@ from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.extension import extend_mesh
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, estimate_thickness, medial_voxels
-from medialaxis.volume.polygonize import BOUNDARY, EXTENSION, JUNCTION, Polygonization, polygonize
+from medialaxis.volume.polygonize import (
+    BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, Polygonization, polygonize,
+)
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
 
 #: Passes of eq. (1) for free-edge vertices: each pass keeps 1 / (1 + k) of
 #: the offset from the planes of the k faces beside the vertex.
 FREE_EDGE_PASSES = 3
+
+#: Passes of eq. (1) for crease vertices.
+CREASE_PASSES = 2
 
 #: Free-edge vertices take planes from faces this many rings away: beside
 #: the end of a junction line their one-ring holds no clean face.
@@ -162,6 +167,11 @@ def volume_stages(
                 moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
             if remove_dents:
                 moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
+                # creases (a sheet bending sharply) are rounded like dents: put
+                # them on the planes of the faces on either side
+                crease = (kind == SURFACE) & (state["medial"].coherence[state["mesh"].picks] < CREASE_COHERENCE)
+                for _ in range(CREASE_PASSES):
+                    moved = _remove_dents(moved, state["faces"], crease, special | crease)
             state["points"] = moved
             state["dented_points"] = moved
         elif stage == "extension" and extend:
