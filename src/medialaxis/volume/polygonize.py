@@ -463,6 +463,27 @@ def _close_line_ends(faces: np.ndarray, junction: np.ndarray, free: np.ndarray, 
     return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
 
 
+def _close_boundary_triangles(faces: np.ndarray) -> np.ndarray:
+    """Add the missing face of every three boundary edges that form a triangle
+    (a three-edge hole, also where it touches others at a pinched vertex)."""
+    count, e = _edge_counts(faces)
+    single = e[count == 1]
+    nbrs: dict[int, set[int]] = {}
+    for a, b in single.tolist():
+        nbrs.setdefault(a, set()).add(b)
+        nbrs.setdefault(b, set()).add(a)
+    present = {tuple(f) for f in faces.tolist()}
+    new = set()
+    for a, b in single.tolist():
+        for c in nbrs[a] & nbrs[b]:
+            tri = tuple(sorted((a, b, c)))
+            if tri not in present:
+                new.add(tri)
+    if not new:
+        return faces
+    return np.unique(np.concatenate([faces, np.array(sorted(new), np.int64)]), axis=0)
+
+
 def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | None = None,
                  normal: np.ndarray | None = None, rounds: int = 4, free: np.ndarray | None = None) -> np.ndarray:
     """Remove folded and surplus triangles and close small holes.
@@ -482,7 +503,8 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
     4. With ``free`` (free-edge vertices): a sheet that stops one edge short
        of a junction line's end is fanned to that end (:func:`_close_line_ends`).
     5. Holes bounded by at most ``SMALL_HOLE_EDGES`` edges (or a notch of
-       boundary edges against an edge) are closed.
+       boundary edges against an edge), and any three boundary edges forming
+       a triangle, are closed.
 
     Parameters
     ----------
@@ -514,6 +536,7 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
         if free is not None:
             faces = _close_line_ends(faces, junction, np.asarray(free, bool), where)
         faces = _close_small_holes(faces, where)
+        faces = _close_boundary_triangles(faces)
     return faces
 
 
