@@ -253,7 +253,8 @@ def midsurface_medial_axis(
         Never modified.
     iso, threshold : float, optional
         Foreground is ``grey > iso`` (``threshold`` is the dispatcher's name
-        for it). Default 0.5 for bool input, else Otsu's threshold.
+        for it). Default 0.5 for bool input, else ISO-50: half-way between
+        the mean grey levels of Otsu's two classes (:func:`~medialaxis.volume.inputs.iso50`).
     thickness : float, optional
         Nominal plate thickness (the paper's epsilon), physical units.
         Default: estimated from the nearest-boundary transform.

@@ -4,12 +4,21 @@
    background components around them (Malandain).
 2. Pick representatives in the order junction, crease, boundary, surface,
    each pick removing the medial voxels within its sampling radius.
-3. Grow the picks' discrete Voronoi regions over the medial voxels
-   (breadth-first, 26-adjacency) and connect picks whose regions touch.
+3. Split the medial voxels into sheets that meet at the junction voxels
+   (:func:`sheet_ids`). Split the junction voxels between the junction
+   picks along the lines, then grow the picks' discrete Voronoi regions
+   over each sheet from its own picks and from all junction voxels
+   (:func:`~medialaxis.volume._kernels.sheet_labels`): regions never cross
+   from one sheet to another, and every sheet at a junction line sees the
+   same chain of junction regions.
 4. A triangle joins three picks whose regions meet in one 2x2x2 block of
-   voxels and touch pairwise; four regions meeting without diagonals (a
-   degenerate Voronoi vertex) give two triangles across the shorter
-   diagonal. Junction edges are shared by three or more triangles.
+   voxels of one sheet (plus junction voxels) and touch pairwise; four
+   regions meeting without diagonals (a degenerate Voronoi vertex) give two
+   triangles across the shorter diagonal. Junction edges are shared by the
+   triangles of all sheets at the line (three at a T, four at an X).
+5. Repairs (:func:`repair_faces`): folded and doubly split quads go; the
+   notches a sheet leaves beside a junction line, at a line's end, and
+   small holes are closed.
 """
 
 from __future__ import annotations
