@@ -386,25 +386,19 @@ def _drop_double_quads(faces: np.ndarray, points: np.ndarray) -> np.ndarray:
     index = {f: i for i, f in enumerate(map(tuple, faces.tolist()))}
     drop: set[int] = set()
     for i in np.flatnonzero((count >= 3).any(axis=1)):
-        a, b, c = faces[i].tolist()
-        for f2 in np.flatnonzero((faces == a).any(axis=1) & (faces == b).any(axis=1)):
-            d = [v for v in faces[f2].tolist() if v not in (a, b)]
-            if len(d) != 1 or d[0] == c:
-                continue
-            quad = sorted((a, b, c, d[0]))
-            tris = [tuple(t) for t in itertools.combinations(quad, 3)]
-            if not all(t in present for t in tris):
-                continue
-            # the two splits: diagonals are the pairs whose faces hold both
-            pairs = [((quad[0], quad[1]), (quad[2], quad[3])), ((quad[0], quad[2]), (quad[1], quad[3])),
-                     ((quad[0], quad[3]), (quad[1], quad[2]))]
-            lengths = {pr: float(np.linalg.norm(points[pr[0]] - points[pr[1]])) for pair in pairs for pr in pair}
-            # in a tetrahedron any pair of opposite edges can serve as the two
-            # diagonals; drop the two faces on the longest edge
-            longest = max(lengths, key=lengths.get)
-            for tri in tris:
-                if longest[0] in tri and longest[1] in tri:
-                    drop.add(index[tri])
+        for a, b in itertools.combinations(faces[i].tolist(), 2):
+            for other in np.flatnonzero((faces == a).any(axis=1) & (faces == b).any(axis=1)).tolist():
+                quad = sorted(set(faces[i].tolist()) | set(faces[other].tolist()))
+                if len(quad) != 4:
+                    continue
+                tris = [tuple(t) for t in itertools.combinations(quad, 3)]
+                if not all(t in present for t in tris):
+                    continue
+                # any two opposite edges of the flat tetrahedron are the
+                # diagonals of one split: drop the faces on the longest edge
+                longest = max(itertools.combinations(quad, 2),
+                              key=lambda pq: float(np.linalg.norm(points[pq[0]] - points[pq[1]])))
+                drop.update(index[t] for t in tris if longest[0] in t and longest[1] in t)
     if not drop:
         return faces
     keep = np.ones(len(faces), bool)
