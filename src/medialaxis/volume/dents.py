@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import sparse
 
-__all__ = ["remove_dents", "face_normals"]
+__all__ = ["remove_dents", "face_normals", "bent_vertices"]
 
 
 def face_normals(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -90,3 +90,36 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
     b[rows] += points[rows]
     out[rows] = np.linalg.solve(A[rows], b[rows][:, :, None])[:, :, 0]
     return out
+
+
+def bent_vertices(points: np.ndarray, faces: np.ndarray, share: float = 0.1) -> np.ndarray:
+    """Vertices where the mesh bends: the normals of their faces span two directions.
+
+    Parameters
+    ----------
+    points : (v, 3) float64 ndarray
+    faces : (f, 3) int64 ndarray
+    share : float
+        Smallest share of the second eigenvalue of the scatter ``sum n n^T``
+        of the unit normals of a vertex's faces (0 on a flat sheet, 0.5 where
+        two perpendicular sheets meet in equal parts).
+
+    Returns
+    -------
+    (v,) bool ndarray
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    >>> bent_vertices(pts, np.array([[0, 1, 2], [0, 1, 3]])).tolist()
+    [True, True, False, False]
+    """
+    normals = face_normals(points, faces)
+    scatter = np.zeros((len(points), 3, 3))
+    nnT = normals[:, :, None] * normals[:, None, :]
+    for corner in range(3):
+        np.add.at(scatter, faces[:, corner], nnT)
+    value = np.linalg.eigvalsh(scatter)  # ascending
+    total = value.sum(axis=1)
+    return np.divide(value[:, 1], total, out=np.zeros(len(points)), where=total > 0) > share

@@ -22,6 +22,7 @@ import numpy as np
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
+from medialaxis.volume.dents import bent_vertices
 from medialaxis.volume.dents import remove_dents as _remove_dents
 from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.extension import extend_mesh
@@ -170,8 +171,9 @@ def volume_stages(
                 # creases (a sheet bending sharply) are rounded like dents: put
                 # them on the planes of the faces on either side
                 crease = (kind == SURFACE) & (state["medial"].coherence[state["mesh"].picks] < CREASE_COHERENCE)
+                crease |= (kind == SURFACE) & bent_vertices(moved, state["faces"])
                 for _ in range(CREASE_PASSES):
-                    moved = _remove_dents(moved, state["faces"], crease, special | crease)
+                    moved = _remove_dents(moved, state["faces"], crease, special | crease, rings=2)
             state["points"] = moved
             state["dented_points"] = moved
         elif stage == "extension" and extend:
