@@ -64,9 +64,9 @@ def test_member_is_a_tube_with_a_flange(noise_seed, rng):
     assert (topo.components, topo.euler) == (1, 0), topo
     assert topo.junction_edges > 0
     d = distance_to_rects(ma.points, ph.midsurface)
-    assert np.percentile(d, 99) <= 0.6  # creases sharpened by eq. (1)
-    assert d.max() <= 2.0
-    assert coverage(_truth(ph), ma.points, ma.faces)[0] >= 0.97
+    assert np.percentile(d, 99) <= 0.5  # creases sharpened by eq. (1)
+    assert d.max() <= 2.0  # no extension ray across a crease
+    assert coverage(_truth(ph), ma.points, ma.faces)[0] >= 0.98
 
 
 def test_sheet_ids_split_a_voxel_t_at_its_junction():

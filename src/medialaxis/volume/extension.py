@@ -232,9 +232,9 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         Junction vertices. A junction vertex with one junction neighbour ends
         a junction line and is extended along that line.
     probe : float, optional
-        When > 0: a ray is kept only if, one voxel inside its hit, the grey
-        values ``probe`` away along each sheet normal at the vertex are
-        background (the part ends beside the sheet there; it does not where
+        When > 0: a ray is kept only if, half-way to its hit and one voxel
+        before it, the grey values ``probe`` away along each sheet normal at
+        the vertex are background (the part ends beside the sheet there; it does not where
         a ray runs along a sheet into a crease or another plate). Rays along
         junction lines are not probed.
 
@@ -272,18 +272,21 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     length = march_to_iso(grey, iso, spacing, points[vertices], directions, max_length, step)
     grow = np.isfinite(length) & (length > 0.25 * step)
     if probe > 0:
-        # the part must end on both sides of the sheet just inside the hit:
-        # a ray along a sheet into a crease or another plate exits through
-        # that plate's face, where the part goes on beside the sheet
+        # the part must end on both sides of the sheet, half-way to the hit
+        # and just before it: a ray along a sheet into a crease or another
+        # plate exits through that plate's face, where the part goes on
+        # beside the sheet
         along_line = np.einsum("ij,ij->i", directions, planar[good]) < 0.999
-        inner = points[vertices] + np.nan_to_num(length - float(spacing.max()))[:, None] * directions
-        for k in range(3):
-            n = eigen[good][:, :, k]
-            use = is_normal[good][:, k] & grow & ~along_line
-            for sign in (1.0, -1.0):
-                probe_point = (inner + sign * probe * n) / spacing
-                val = ndimage.map_coordinates(grey, probe_point.T, order=1, mode="constant", cval=iso - 1.0)
-                grow &= ~(use & (val > iso))
+        reach = np.nan_to_num(length)
+        for inner in (points[vertices] + 0.5 * reach[:, None] * directions,
+                      points[vertices] + np.maximum(reach - float(spacing.max()), 0)[:, None] * directions):
+            for k in range(3):
+                n = eigen[good][:, :, k]
+                use = is_normal[good][:, k] & grow & ~along_line
+                for sign in (1.0, -1.0):
+                    probe_point = (inner + sign * probe * n) / spacing
+                    val = ndimage.map_coordinates(grey, probe_point.T, order=1, mode="constant", cval=iso - 1.0)
+                    grow &= ~(use & (val > iso))
     vertices, directions, length = vertices[grow], directions[grow], length[grow]
     new_index = np.full(len(points), -1, np.int64)
     new_index[vertices] = len(points) + np.arange(len(vertices))
