@@ -162,7 +162,7 @@ LINE_AGREEMENT = 0.3
 
 def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.ndarray, vertices: np.ndarray,
                           directions: np.ndarray, tolerance: float = 0.0, reach: float = 0.0,
-                          outward: np.ndarray | None = None) -> np.ndarray:
+                          outward: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Directions of junction-line ends: away from their one junction neighbour.
 
     The faces at a line's end belong to several sheets, and the outward
@@ -173,12 +173,19 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
     other sheet. With ``outward`` (the boundary edges' own directions), a
     vertex keeps its direction where the line's points back into the mesh
     (a short junction piece along a crease).
+
+    Returns
+    -------
+    directions : (k, 3) float64 ndarray
+    on_line : (k,) bool ndarray
+        Vertices that took a line's direction.
     """
     e = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
     e = e[junction[e[:, 0]] & junction[e[:, 1]]]
     ends = np.concatenate([e, e[:, ::-1]])  # (vertex, junction neighbour)
     degree = np.bincount(ends[:, 0], minlength=len(points))
     out = directions.copy()
+    taken = np.zeros(len(vertices), bool)
     slot = np.full(len(points), -1, np.int64)
     slot[vertices] = np.arange(len(vertices))
     one = ends[(degree[ends[:, 0]] == 1)]
@@ -194,12 +201,14 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
             if outward is not None:
                 on_line = on_line[outward[on_line] @ t > -LINE_AGREEMENT]
             out[on_line] = t
+            taken[on_line] = True
     rows = slot[one[:, 0]]
     has = rows >= 0
     if outward is not None:
         has[has] = np.einsum("ij,ij->i", outward[rows[has]], d[has]) > -LINE_AGREEMENT
     out[rows[has]] = d[has]
-    return out
+    taken[rows[has]] = True
+    return out, taken
 
 
 def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: float, spacing: np.ndarray,
@@ -253,9 +262,9 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     directions, eigen, is_normal = _in_sheet_planes(points, faces, vertices, outward)
     in_plane = np.linalg.norm(directions, axis=1)
     directions = np.divide(directions, in_plane[:, None], out=np.zeros_like(directions), where=in_plane[:, None] > 0.5)
-    planar = directions.copy()
+    along_line = np.zeros(len(vertices), bool)
     if junction is not None:
-        directions = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions,
+        directions, along_line = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions,
                                            tolerance=1.5 * float(spacing.max()), reach=max_length, outward=outward)
     good = np.linalg.norm(directions, axis=1) > 0.5
     if free is not None:
@@ -276,7 +285,7 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         # and just before it: a ray along a sheet into a crease or another
         # plate exits through that plate's face, where the part goes on
         # beside the sheet
-        along_line = np.einsum("ij,ij->i", directions, planar[good]) < 0.999
+        along_line = along_line[good]
         reach = np.nan_to_num(length)
         for inner in (points[vertices] + 0.5 * reach[:, None] * directions,
                       points[vertices] + np.maximum(reach - float(spacing.max()), 0)[:, None] * directions):
