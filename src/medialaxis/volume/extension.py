@@ -274,8 +274,10 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         reach[edges[free[edges[:, 0]], 1]] = True
         good &= reach[vertices]
     # only rays in the plane of every face at the vertex: boundary edges of
-    # small holes (or folds) would otherwise shoot across the plate
-    good &= _max_normal_component(points, faces, vertices, directions, plane_normals) < MAX_NORMAL_COMPONENT
+    # small holes (or folds) would otherwise shoot across the plate; the small
+    # faces at a junction line's end tilt, and its direction is trusted there
+    tilt = _max_normal_component(points, faces, vertices, directions, plane_normals)
+    good &= along_line | (tilt < MAX_NORMAL_COMPONENT)
     vertices, directions = vertices[good], directions[good]
     step = 0.25 * float(spacing.min())
     length = march_to_iso(grey, iso, spacing, points[vertices], directions, max_length, step)
