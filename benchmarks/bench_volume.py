@@ -144,6 +144,7 @@ def score_arrays(points, faces, radii, phantom) -> dict:
         "junction_vertex_max": float(d[near_v].max()),
         "dent_vertex_max": float(d[inner_v].max()),
         "junction_truth_max": float(dist[near_t].max()),
+        "junction_coverage": float(np.mean(dist[near_t] <= 1.0)),
         "median_thickness": float(np.median(2 * radii)),
         "topology": topo,
     }
@@ -152,6 +153,26 @@ def score_arrays(points, faces, radii, phantom) -> dict:
 def score(path: str, phantom) -> dict:
     z = np.load(path + ".ours.npz")
     return score_arrays(z["points"], z["faces"], z["radii"], phantom)
+
+
+def other_phantoms() -> list[tuple[str, int, int, dict]]:
+    """The member (tube with a flange: Euler 0) and the X junction (Euler 1), over seeds."""
+    import medialaxis as mx
+    from medialaxis.volume.phantoms import member_phantom, x_phantom
+    from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
+
+    rows = []
+    for name, make in (("member", member_phantom), ("X", x_phantom)):
+        for noise_seed, rng in ((0, 0), (1, 0), (2, 0), (0, 1), (3, 1), (4, 0)):
+            ph = make(rng=noise_seed)
+            ma = mx.medial_axis(ph.volume, method="midsurface", iso=0.5, rng=rng)
+            d = distance_to_rects(ma.points, ph.midsurface)
+            truth = np.concatenate([r.sample(0.5) for r in ph.midsurface])
+            rows.append((name, noise_seed, rng, {
+                "p99": float(np.percentile(d, 99)), "max": float(d.max()),
+                "coverage": coverage(truth, ma.points, ma.faces)[0], "topology": mesh_topology(ma.faces),
+            }))
+    return rows
 
 
 def robustness(shape: tuple[int, int, int]) -> list[tuple[int, int, float, dict]]:
@@ -219,6 +240,8 @@ def main() -> None:
         ("true mid-surface within 1 voxel of the mesh >= 98.5%", s["coverage"], s["coverage"] >= 0.985),
         ("  of it within 2 voxels of a free edge (extension)", s["coverage_free_edges"], s["coverage_free_edges"] >= 0.985),
         ("max deviation of vertices near the junction <= 0.75", s["junction_vertex_max"], s["junction_vertex_max"] <= 0.75),
+        ("  true mid-surface near the junction within 1 voxel (no slit)", s["junction_coverage"],
+         s["junction_coverage"] >= 0.985),
         ("  same, away from the plate ends (the dent) <= 0.75", s["dent_vertex_max"], s["dent_vertex_max"] <= 0.75),
         ("median thickness within 10% of 6", s["median_thickness"], abs(s["median_thickness"] - 6) <= 0.6),
         ("one connected mesh", t.components, t.components == 1),
@@ -235,12 +258,19 @@ def main() -> None:
     if not args.quick:
         rows = robustness(tuple(args.shape))
         print("\nrobustness: noise seed x sampling seed (rng), same T, in-process:")
-        print("  noise rng  time_s  p99    max    cover   free    junct  dent   thick  euler  comps")
+        print("  noise rng  time_s  p99    max    cover   free    junct  dent   jcover  thick  euler  comps  jedges")
         for noise_seed, rng, secs, r in rows:
             tp = r["topology"]
             print(f"  {noise_seed:5d} {rng:3d}  {secs:6.2f}  {r['vertex_p99']:.3f}  {r['vertex_max']:.3f}  {r['coverage']:.4f}  "
                   f"{r['coverage_free_edges']:.4f}  {r['junction_vertex_max']:.3f}  {r['dent_vertex_max']:.3f}  "
-                  f"{r['median_thickness']:.3f}  {tp.euler:5d}  {tp.components:5d}")
+                  f"{r['junction_coverage']:.4f}  {r['median_thickness']:.3f}  {tp.euler:5d}  {tp.components:5d}  "
+                  f"{tp.junction_edges:6d}")
+        print("\nmember (expected Euler 0) and X junction (expected Euler 1), noise seed x rng:")
+        print("  phantom noise rng  p99    max    cover   euler  comps  jedges")
+        for name, noise_seed, rng, r in other_phantoms():
+            tp = r["topology"]
+            print(f"  {name:7s} {noise_seed:5d} {rng:3d}  {r['p99']:.3f}  {r['max']:.3f}  {r['coverage']:.4f}  "
+                  f"{tp.euler:5d}  {tp.components:5d}  {tp.junction_edges:6d}")
 
 
 if __name__ == "__main__":

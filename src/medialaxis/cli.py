@@ -76,7 +76,9 @@ def _add_compute(sub: Any) -> None:
                    help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj .vtk); repeatable")
     p.add_argument("--method", default=None, help="method within the input's domain (default: the domain's default)")
     p.add_argument("--lam", type=float, default=None, help="lambda: smallest contact-set diameter kept (output units)")
-    p.add_argument("--threshold", type=float, default=None, help="grey level of the foreground (default: Otsu)")
+    p.add_argument("--threshold", type=float, default=None,
+                   help="grey level of the foreground (default: images, Otsu's threshold; volumes, ISO-50: "
+                        "half-way between the mean grey levels of Otsu's two classes; 0.5 for bool input)")
     p.add_argument("--spacing", type=float, nargs="+", default=None, help="pixel/voxel size per array axis")
     p.add_argument("--tolerance", type=float, default=None, help="planar accuracy parameter (output units)")
     p.add_argument("--detour", type=float, default=None, help="planar pruning detour ratio")

@@ -62,3 +62,24 @@ def test_geodesic_labels_match_reference(seed, nseeds):
     fast = K.geodesic_labels(index, vox, seeds, K.OFFSETS_26, spacing)
     assert np.array_equal(fast, K.geodesic_labels_reference(vox, seeds, spacing))
     assert np.array_equal(fast[seeds], np.arange(len(seeds)))
+
+
+@given(st.integers(0, 10_000), st.integers(1, 6))
+def test_sheet_labels_match_reference(seed, nseeds):
+    occ = _random_sheet(seed, p=0.6)
+    vox = np.argwhere(occ)
+    index = np.full(occ.shape, -1, np.int32)
+    index[tuple(vox.T)] = np.arange(len(vox))
+    rng = np.random.default_rng(seed)
+    sheet = rng.integers(-1, 3, len(vox))  # -1: junction voxels (all seeds), else 3 sheets
+    junction = np.flatnonzero(sheet < 0)
+    others = rng.choice(np.flatnonzero(sheet >= 0), size=min(nseeds, int((sheet >= 0).sum())), replace=False)
+    seeds = np.concatenate([junction, others]).astype(np.int64)
+    seed_label = np.concatenate([rng.integers(0, 2, len(junction)), 2 + np.arange(len(others))]).astype(np.int64)
+    spacing = np.array([1.0, 1.0, 2.0])
+    fast = K.sheet_labels(index, vox, seeds, seed_label, sheet, K.OFFSETS_26, spacing)
+    assert np.array_equal(fast, K.sheet_labels_reference(vox, seeds, seed_label, sheet, spacing))
+    assert np.array_equal(fast[seeds], seed_label)
+    # a region never holds voxels of two sheets
+    for lab in np.unique(fast[fast >= 2]):
+        assert len(np.unique(sheet[fast == lab])) == 1

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import sparse
 
-__all__ = ["remove_dents", "face_normals"]
+__all__ = ["remove_dents", "face_normals", "bent_vertices"]
 
 
 def face_normals(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -30,7 +30,7 @@ def face_normals(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
 
 
 def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
-                 excluded: np.ndarray | None = None) -> np.ndarray:
+                 excluded: np.ndarray | None = None, rings: int = 1) -> np.ndarray:
     """New positions of the junction vertices by minimising eq. (1).
 
     Parameters
@@ -43,6 +43,10 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
         Vertices whose faces are not used as planes (default: ``junction``).
         The pipeline also moves free-edge vertices this way, using planes of
         faces with neither junction nor free-edge vertices.
+    rings : int
+        Planes come from the faces touching the vertex's ``rings``-ring
+        (1: the paper's neighbourhood; 2 reaches past a row of excluded
+        vertices, as at the corner where a junction line meets a free edge).
 
     Returns
     -------
@@ -68,7 +72,10 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
     incidence = sparse.csr_matrix((np.ones(3 * nf), (faces.ravel(), np.repeat(np.arange(nf), 3))), shape=(nv, nf))
     ring = (incidence @ incidence.T).tocsr()  # vertex -> vertices sharing a face (incl. itself)
     rows = np.flatnonzero(junction)
-    near = (ring[rows] @ incidence).tocoo()  # junction vertex -> faces touching its one-ring
+    reach = ring[rows]
+    for _ in range(rings - 1):
+        reach = reach @ ring
+    near = (reach @ incidence).tocoo()  # junction vertex -> faces touching its one-ring
     clean = ~(junction if excluded is None else np.asarray(excluded, bool))[faces].any(axis=1)
     keep = clean[near.col]
     owner, face = rows[near.row[keep]], near.col[keep]
@@ -83,3 +90,36 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
     b[rows] += points[rows]
     out[rows] = np.linalg.solve(A[rows], b[rows][:, :, None])[:, :, 0]
     return out
+
+
+def bent_vertices(points: np.ndarray, faces: np.ndarray, share: float = 0.1) -> np.ndarray:
+    """Vertices where the mesh bends: the normals of their faces span two directions.
+
+    Parameters
+    ----------
+    points : (v, 3) float64 ndarray
+    faces : (f, 3) int64 ndarray
+    share : float
+        Smallest share of the second eigenvalue of the scatter ``sum n n^T``
+        of the unit normals of a vertex's faces (0 on a flat sheet, 0.5 where
+        two perpendicular sheets meet in equal parts).
+
+    Returns
+    -------
+    (v,) bool ndarray
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    >>> bent_vertices(pts, np.array([[0, 1, 2], [0, 1, 3]])).tolist()
+    [True, True, False, False]
+    """
+    normals = face_normals(points, faces)
+    scatter = np.zeros((len(points), 3, 3))
+    nnT = normals[:, :, None] * normals[:, None, :]
+    for corner in range(3):
+        np.add.at(scatter, faces[:, corner], nnT)
+    value = np.linalg.eigvalsh(scatter)  # ascending
+    total = value.sum(axis=1)
+    return np.divide(value[:, 1], total, out=np.zeros(len(points)), where=total > 0) > share

@@ -123,28 +123,97 @@ def _max_normal_component(points: np.ndarray, faces: np.ndarray, vertices: np.nd
     return out
 
 
+#: Eigen-directions of the face-normal scatter at a vertex holding more than
+#: this share of it are normals of a sheet through the vertex.
+SHEET_NORMAL_SHARE = 0.15
+
+
+def _in_sheet_planes(points: np.ndarray, faces: np.ndarray, vertices: np.ndarray,
+                     directions: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Directions with their components along the vertices' sheet normals removed.
+
+    The normals are the main eigen-directions of the scatter ``sum n n^T`` of
+    the unit normals of the faces at each vertex: one on a sheet, two where
+    sheets meet (leaving only the junction line's direction). Returned
+    vectors are not renormalised: a short one was mostly out of the sheets.
+    """
+    from medialaxis.volume.dents import face_normals
+
+    normals = face_normals(points, faces)
+    slot = np.full(len(points), -1, np.int64)
+    slot[vertices] = np.arange(len(vertices))
+    scatter = np.zeros((len(vertices), 3, 3))
+    nnT = normals[:, :, None] * normals[:, None, :]
+    for corner in range(3):
+        s = slot[faces[:, corner]]
+        has = s >= 0
+        np.add.at(scatter, s[has], nnT[has])
+    value, vector = np.linalg.eigh(scatter)
+    total = np.maximum(value.sum(axis=1, keepdims=True), 1e-12)
+    keep = value / total <= SHEET_NORMAL_SHARE  # (k, 3): eigen-directions in the sheets' planes
+    coef = np.einsum("kij,ki->kj", vector, directions) * keep
+    return np.einsum("kij,kj->ki", vector, coef), vector, ~keep & (value > 0)
+
+
+#: A junction line's direction replaces a vertex's outward direction unless
+#: they point this much apart (cosine below minus this).
+LINE_AGREEMENT = 0.3
+
+
 def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.ndarray, vertices: np.ndarray,
-                          directions: np.ndarray) -> np.ndarray:
-    """Directions of junction-line ends: away from their one junction neighbour."""
+                          directions: np.ndarray, tolerance: float = 0.0, reach: float = 0.0,
+                          outward: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Directions of junction-line ends: away from their one junction neighbour.
+
+    The faces at a line's end belong to several sheets, and the outward
+    directions of their boundary edges do not agree; the line's own direction
+    does. Free-boundary vertices on the line beyond its end (within
+    ``tolerance`` of it and ``reach`` of the end: the corners of the sheets
+    there) take the line's direction too, instead of a diagonal into the
+    other sheet. With ``outward`` (the boundary edges' own directions), a
+    vertex keeps its direction where the line's points back into the mesh
+    (a short junction piece along a crease).
+
+    Returns
+    -------
+    directions : (k, 3) float64 ndarray
+    on_line : (k,) bool ndarray
+        Vertices that took a line's direction.
+    """
     e = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
     e = e[junction[e[:, 0]] & junction[e[:, 1]]]
     ends = np.concatenate([e, e[:, ::-1]])  # (vertex, junction neighbour)
     degree = np.bincount(ends[:, 0], minlength=len(points))
     out = directions.copy()
+    taken = np.zeros(len(vertices), bool)
     slot = np.full(len(points), -1, np.int64)
     slot[vertices] = np.arange(len(vertices))
-    one = ends[(degree[ends[:, 0]] == 1) & (slot[ends[:, 0]] >= 0)]
+    one = ends[(degree[ends[:, 0]] == 1)]
     d = points[one[:, 0]] - points[one[:, 1]]
     d /= np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
+    if tolerance > 0 and len(one):
+        candidates = vertices[~junction[vertices]]
+        for end, t in zip(one[:, 0], d):
+            rel = points[candidates] - points[end]
+            along = rel @ t
+            across = np.linalg.norm(rel - along[:, None] * t, axis=1)
+            on_line = slot[candidates[(along > -tolerance) & (along <= reach) & (across <= tolerance)]]
+            if outward is not None:
+                on_line = on_line[outward[on_line] @ t > -LINE_AGREEMENT]
+            out[on_line] = t
+            taken[on_line] = True
     rows = slot[one[:, 0]]
-    agree = np.einsum("ij,ij->i", d, directions[rows]) > 0  # only where the mesh agrees it is outward
-    out[rows[agree]] = d[agree]
-    return out
+    has = rows >= 0
+    if outward is not None:
+        has[has] = np.einsum("ij,ij->i", outward[rows[has]], d[has]) > -LINE_AGREEMENT
+    out[rows[has]] = d[has]
+    taken[rows[has]] = True
+    return out, taken
 
 
 def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: float, spacing: np.ndarray,
                 max_length: float, plane_normals: tuple[np.ndarray, np.ndarray] | None = None,
-                free: np.ndarray | None = None, junction: np.ndarray | None = None,
+                free: np.ndarray | None = None, junction: np.ndarray | None = None, probe: float = 0.0,
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Extend the free boundary of a mid-surface mesh to the isosurface.
 
@@ -171,6 +240,12 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     junction : (v,) bool ndarray, optional
         Junction vertices. A junction vertex with one junction neighbour ends
         a junction line and is extended along that line.
+    probe : float, optional
+        When > 0: a ray is kept only if, half-way to its hit and one voxel
+        before it, the grey values ``probe`` away along each sheet normal at
+        the vertex are background (the part ends beside the sheet there; it does not where
+        a ray runs along a sheet into a crease or another plate). Rays along
+        junction lines are not probed.
 
     Returns
     -------
@@ -183,9 +258,14 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     edges, opposite = boundary_edges(faces)
     if len(edges) == 0:
         return points, faces, np.empty(0, np.int64)
-    vertices, directions = outward_directions(points, edges, opposite)
+    vertices, outward = outward_directions(points, edges, opposite)
+    directions, eigen, is_normal = _in_sheet_planes(points, faces, vertices, outward)
+    in_plane = np.linalg.norm(directions, axis=1)
+    directions = np.divide(directions, in_plane[:, None], out=np.zeros_like(directions), where=in_plane[:, None] > 0.5)
+    along_line = np.zeros(len(vertices), bool)
     if junction is not None:
-        directions = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions)
+        directions, along_line = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions,
+                                           tolerance=1.5 * float(spacing.max()), reach=max_length, outward=outward)
     good = np.linalg.norm(directions, axis=1) > 0.5
     if free is not None:
         free = np.asarray(free, bool)
@@ -194,12 +274,30 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         reach[edges[free[edges[:, 0]], 1]] = True
         good &= reach[vertices]
     # only rays in the plane of every face at the vertex: boundary edges of
-    # small holes (or folds) would otherwise shoot across the plate
-    good &= _max_normal_component(points, faces, vertices, directions, plane_normals) < MAX_NORMAL_COMPONENT
+    # small holes (or folds) would otherwise shoot across the plate; the small
+    # faces at a junction line's end tilt, and its direction is trusted there
+    tilt = _max_normal_component(points, faces, vertices, directions, plane_normals)
+    good &= along_line | (tilt < MAX_NORMAL_COMPONENT)
     vertices, directions = vertices[good], directions[good]
     step = 0.25 * float(spacing.min())
     length = march_to_iso(grey, iso, spacing, points[vertices], directions, max_length, step)
     grow = np.isfinite(length) & (length > 0.25 * step)
+    if probe > 0:
+        # the part must end on both sides of the sheet, half-way to the hit
+        # and just before it: a ray along a sheet into a crease or another
+        # plate exits through that plate's face, where the part goes on
+        # beside the sheet
+        along_line = along_line[good]
+        reach = np.nan_to_num(length)
+        for inner in (points[vertices] + 0.5 * reach[:, None] * directions,
+                      points[vertices] + np.maximum(reach - float(spacing.max()), 0)[:, None] * directions):
+            for k in range(3):
+                n = eigen[good][:, :, k]
+                use = is_normal[good][:, k] & grow & ~along_line
+                for sign in (1.0, -1.0):
+                    probe_point = (inner + sign * probe * n) / spacing
+                    val = ndimage.map_coordinates(grey, probe_point.T, order=1, mode="constant", cval=iso - 1.0)
+                    grow &= ~(use & (val > iso))
     vertices, directions, length = vertices[grow], directions[grow], length[grow]
     new_index = np.full(len(points), -1, np.int64)
     new_index[vertices] = len(points) + np.arange(len(vertices))

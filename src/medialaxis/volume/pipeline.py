@@ -22,18 +22,28 @@ import numpy as np
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
+from medialaxis.volume.dents import bent_vertices
 from medialaxis.volume.dents import remove_dents as _remove_dents
 from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.extension import extend_mesh
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, estimate_thickness, medial_voxels
-from medialaxis.volume.polygonize import BOUNDARY, EXTENSION, JUNCTION, Polygonization, polygonize
+from medialaxis.volume.polygonize import (
+    BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, Polygonization, polygonize,
+)
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
 
 #: Passes of eq. (1) for free-edge vertices: each pass keeps 1 / (1 + k) of
 #: the offset from the planes of the k faces beside the vertex.
 FREE_EDGE_PASSES = 3
+
+#: Passes of eq. (1) for crease vertices.
+CREASE_PASSES = 2
+
+#: Free-edge vertices take planes from faces this many rings away: beside
+#: the end of a junction line their one-ring holds no clean face.
+FREE_EDGE_RINGS = 2
 
 
 @dataclasses.dataclass(frozen=True)
@@ -155,9 +165,15 @@ def volume_stages(
             # on the planes of the interior faces next to them (eq. 1 as well)
             moved = state["points"]
             for _ in range(FREE_EDGE_PASSES):
-                moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special)
+                moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
             if remove_dents:
                 moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
+                # creases (a sheet bending sharply) are rounded like dents: put
+                # them on the planes of the faces on either side
+                crease = (kind == SURFACE) & (state["medial"].coherence[state["mesh"].picks] < CREASE_COHERENCE)
+                crease |= (kind == SURFACE) & bent_vertices(moved, state["faces"])
+                for _ in range(CREASE_PASSES):
+                    moved = _remove_dents(moved, state["faces"], crease, special | crease, rings=2)
             state["points"] = moved
             state["dented_points"] = moved
         elif stage == "extension" and extend:
@@ -167,6 +183,7 @@ def volume_stages(
                 state["points"], state["faces"], src.grey, src.iso, src.spacing,
                 max_length=1.5 * state["thickness"] + 2.0 * sample_radius,
                 free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
+                probe=0.5 * state["thickness"] + 2.0 * float(src.spacing.max()),
             )
             state["points"], state["faces"] = points, faces
             state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
@@ -238,7 +255,8 @@ def midsurface_medial_axis(
         Never modified.
     iso, threshold : float, optional
         Foreground is ``grey > iso`` (``threshold`` is the dispatcher's name
-        for it). Default 0.5 for bool input, else Otsu's threshold.
+        for it). Default 0.5 for bool input, else ISO-50: half-way between
+        the mean grey levels of Otsu's two classes (:func:`~medialaxis.volume.inputs.iso50`).
     thickness : float, optional
         Nominal plate thickness (the paper's epsilon), physical units.
         Default: estimated from the nearest-boundary transform.

@@ -4,12 +4,21 @@
    background components around them (Malandain).
 2. Pick representatives in the order junction, crease, boundary, surface,
    each pick removing the medial voxels within its sampling radius.
-3. Grow the picks' discrete Voronoi regions over the medial voxels
-   (breadth-first, 26-adjacency) and connect picks whose regions touch.
+3. Split the medial voxels into sheets that meet at the junction voxels
+   (:func:`sheet_ids`). Split the junction voxels between the junction
+   picks along the lines, then grow the picks' discrete Voronoi regions
+   over each sheet from its own picks and from all junction voxels
+   (:func:`~medialaxis.volume._kernels.sheet_labels`): regions never cross
+   from one sheet to another, and every sheet at a junction line sees the
+   same chain of junction regions.
 4. A triangle joins three picks whose regions meet in one 2x2x2 block of
-   voxels and touch pairwise; four regions meeting without diagonals (a
-   degenerate Voronoi vertex) give two triangles across the shorter
-   diagonal. Junction edges are shared by three or more triangles.
+   voxels of one sheet (plus junction voxels) and touch pairwise; four
+   regions meeting without diagonals (a degenerate Voronoi vertex) give two
+   triangles across the shorter diagonal. Junction edges are shared by the
+   triangles of all sheets at the line (three at a T, four at an X).
+5. Repairs (:func:`repair_faces`): folded and doubly split quads go; the
+   notches a sheet leaves beside a junction line, at a line's end, and
+   small holes are closed.
 """
 
 from __future__ import annotations
@@ -96,8 +105,12 @@ def _pair_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
     return lo.astype(np.int64) * n + hi
 
 
-def _region_edges(label_grid: np.ndarray, n: int) -> np.ndarray:
-    """Sorted unique keys of label pairs that are 6-adjacent (share a voxel face) somewhere."""
+def _region_edges(label_grid: np.ndarray, n: int, sheet_grid: np.ndarray | None = None) -> np.ndarray:
+    """Sorted unique keys of label pairs that are 6-adjacent (share a voxel face) somewhere.
+
+    With ``sheet_grid`` (sheet of each voxel, -1 junction), only pairs in one
+    sheet, or with a junction voxel, count.
+    """
     keys = []
     for axis in range(3):
         lo = [slice(None)] * 3
@@ -105,6 +118,9 @@ def _region_edges(label_grid: np.ndarray, n: int) -> np.ndarray:
         lo[axis], hi[axis] = slice(None, -1), slice(1, None)
         a, b = label_grid[tuple(lo)], label_grid[tuple(hi)]
         touch = (a >= 0) & (b >= 0) & (a != b)
+        if sheet_grid is not None:
+            sa, sb = sheet_grid[tuple(lo)], sheet_grid[tuple(hi)]
+            touch &= (sa == sb) | (sa == -1) | (sb == -1)
         keys.append(_pair_keys(a[touch], b[touch], n))
     return np.unique(np.concatenate(keys))
 
@@ -115,8 +131,14 @@ def _has(keys: np.ndarray, query: np.ndarray) -> np.ndarray:
     return keys[pos] == query if len(keys) else np.zeros(len(query), bool)
 
 
-def _block_labels(label_grid: np.ndarray, voxels: np.ndarray) -> np.ndarray:
-    """Sorted labels (-1 padded) of every 2x2x2 block that holds a medial voxel."""
+def _block_labels(label_grid: np.ndarray, voxels: np.ndarray, sheet_grid: np.ndarray | None = None) -> np.ndarray:
+    """Sorted labels (-1 padded) of every 2x2x2 block that holds a medial voxel.
+
+    With ``sheet_grid`` (sheet of each voxel, -1 junction, -2 empty), a block
+    gives one row per sheet in it, with the labels of that sheet's voxels and
+    of the junction voxels; blocks of junction voxels only give none. Regions
+    of two sheets thus never form a triangle.
+    """
     corners = np.array(list(itertools.product((0, 1), repeat=3)), np.int64)
     origins = (voxels[:, None, :] - corners[None, :, :]).reshape(-1, 3)
     shape = np.array(label_grid.shape)
@@ -125,6 +147,17 @@ def _block_labels(label_grid: np.ndarray, voxels: np.ndarray) -> np.ndarray:
     origins = np.stack(np.unravel_index(flat, label_grid.shape), axis=1)
     cells = origins[:, None, :] + corners[None, :, :]
     labels = label_grid[cells[..., 0], cells[..., 1], cells[..., 2]]
+    if sheet_grid is not None:
+        sheets = sheet_grid[cells[..., 0], cells[..., 1], cells[..., 2]]
+        real = sheets >= 0
+        top = np.where(real, sheets, -1).max(axis=1)
+        bottom = np.where(real, sheets, np.iinfo(sheets.dtype).max).min(axis=1)
+        rows = [labels[(top >= 0) & (top == bottom)]]
+        for b in np.flatnonzero((top >= 0) & (top != bottom)):
+            for sheet in np.unique(sheets[b][real[b]]):
+                keep = (sheets[b] == sheet) | (sheets[b] == -1)
+                rows.append(np.where(keep, labels[b], -1)[None, :])
+        labels = np.concatenate(rows)
     labels.sort(axis=1)
     # blank repeated labels so each row lists its distinct labels
     labels[:, 1:][labels[:, 1:] == labels[:, :-1]] = -1
@@ -159,10 +192,11 @@ def _split_quad(labs: np.ndarray, points: np.ndarray, edges: np.ndarray, n: int)
     return [(la, lb, lc), (la, lb, ld)]
 
 
-def _triangles(label_grid: np.ndarray, voxels: np.ndarray, points: np.ndarray) -> np.ndarray:
+def _triangles(label_grid: np.ndarray, voxels: np.ndarray, points: np.ndarray,
+               sheet_grid: np.ndarray | None = None) -> np.ndarray:
     n = len(points)
-    edges = _region_edges(label_grid, n)
-    blocks = _block_labels(label_grid, voxels)
+    edges = _region_edges(label_grid, n, sheet_grid)
+    blocks = _block_labels(label_grid, voxels, sheet_grid)
     distinct = (blocks >= 0).sum(axis=1)
     faces = [blocks[distinct == 3][:, -3:].astype(np.int64)]
     extra: list[tuple[int, int, int]] = []
@@ -213,8 +247,14 @@ def _drop_surplus(faces: np.ndarray, junction: np.ndarray, points: np.ndarray, n
     return faces[~drop]
 
 
-def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = 4) -> np.ndarray:
-    """Close holes bounded by at most ``max_edges`` edges.
+#: Holes bounded by at most this many edges are closed (where a sheet bends
+#: sharply, its Voronoi regions can miss a few triangles); free edges of a
+#: part are far longer loops at the sampling density.
+SMALL_HOLE_EDGES = 8
+
+
+def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = SMALL_HOLE_EDGES) -> np.ndarray:
+    """Close holes bounded by at most ``max_edges`` edges (shortest diagonals first).
 
     A hole is a cycle of boundary edges, or a path of boundary edges whose
     ends are joined by an edge of the mesh (a notch beside a junction edge).
@@ -244,14 +284,7 @@ def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = 4
             cycle = _walk(edges, int(a))
         else:
             continue
-        if len(cycle) == 3:
-            new.append(cycle)
-        elif len(cycle) == 4:
-            a, b, c2, d = cycle
-            if np.linalg.norm(points[a] - points[c2]) <= np.linalg.norm(points[b] - points[d]):
-                new += [[a, b, c2], [a, c2, d]]
-            else:
-                new += [[a, b, d], [b, c2, d]]
+        new += _ear_triangles(cycle, points)
     if not new:
         return faces
     return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
@@ -272,8 +305,190 @@ def _walk(edges: np.ndarray, start: int) -> list[int]:
         order.append(cur)
 
 
+def _line_path(line_nbrs: dict[int, list[int]], a: int, b: int, max_hops: int) -> list[int] | None:
+    """Vertices from ``a`` to ``b`` along junction edges (at most ``max_hops``), or None."""
+    previous = {a: a}
+    frontier = [a]
+    for _ in range(max_hops):
+        nxt = []
+        for v in frontier:
+            for w in line_nbrs.get(v, []):
+                if w not in previous:
+                    previous[w] = v
+                    nxt.append(w)
+        frontier = nxt
+        if b in previous:
+            path = [b]
+            while path[-1] != a:
+                path.append(previous[path[-1]])
+            return path[::-1]
+    return None
+
+
+def _close_junction_notches(faces: np.ndarray, junction: np.ndarray, points: np.ndarray,
+                            max_edges: int = 8, max_hops: int = 3, free: np.ndarray | None = None) -> np.ndarray:
+    """Close the notches of a sheet beside its junction edges.
+
+    Where a sheet misses the triangles along a junction line, a path of
+    boundary edges runs from one junction vertex ``a`` through sheet vertices
+    to another ``b`` at most ``max_hops`` junction edges along the line. Each
+    such path of at most ``max_edges`` edges, with the line from ``b`` back
+    to ``a``, bounds a hole: it is triangulated by cutting off the ear with
+    the shortest diagonal first. Paths through ``free`` vertices (the part's
+    free edges, at a line's end) are left to :func:`_close_line_ends`.
+    """
+    count, e = _edge_counts(faces)
+    single = e[count == 1]
+    if len(single) == 0:
+        return faces
+    if free is None:
+        free = np.zeros(len(junction), bool)
+    nbrs: dict[int, list[int]] = {}
+    for a, b in single.tolist():
+        nbrs.setdefault(a, []).append(b)
+        nbrs.setdefault(b, []).append(a)
+    edges = np.unique(e.reshape(-1, 2), axis=0)
+    line_nbrs: dict[int, list[int]] = {}
+    for a, b in edges[junction[edges[:, 0]] & junction[edges[:, 1]]].tolist():
+        line_nbrs.setdefault(a, []).append(b)
+        line_nbrs.setdefault(b, []).append(a)
+    seen: set[frozenset[int]] = set()
+    new: list[list[int]] = []
+    for start in line_nbrs:
+        for first in nbrs.get(start, []):
+            path, prev, cur = [start], start, first
+            while len(path) <= max_edges and not junction[cur]:
+                path.append(cur)
+                ahead = [v for v in nbrs.get(cur, []) if v != prev]
+                if len(ahead) != 1:
+                    break
+                prev, cur = cur, ahead[0]
+            if not junction[cur] or cur == start or len(path) < 2 or frozenset(path[1:]) in seen \
+                    or free[path[1:]].any():
+                continue
+            back = _line_path(line_nbrs, cur, start, max_hops)
+            if back is None:
+                continue
+            seen.add(frozenset(path[1:]))
+            new += _ear_triangles(path + back[:-1], points)
+    if not new:
+        return faces
+    return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+
+
+def _drop_double_quads(faces: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Where a quad is covered by both of its splits (four faces on four
+    vertices, a flat tetrahedron), keep the split across the shorter diagonal."""
+    count, e = _edge_counts(faces)
+    if not (count >= 3).any():
+        return faces
+    present = {tuple(f) for f in faces.tolist()}
+    index = {f: i for i, f in enumerate(map(tuple, faces.tolist()))}
+    drop: set[int] = set()
+    for i in np.flatnonzero((count >= 3).any(axis=1)):
+        for a, b in itertools.combinations(faces[i].tolist(), 2):
+            for other in np.flatnonzero((faces == a).any(axis=1) & (faces == b).any(axis=1)).tolist():
+                quad = sorted(set(faces[i].tolist()) | set(faces[other].tolist()))
+                if len(quad) != 4:
+                    continue
+                tris = [tuple(t) for t in itertools.combinations(quad, 3)]
+                if not all(t in present for t in tris):
+                    continue
+                # any two opposite edges of the flat tetrahedron are the
+                # diagonals of one split: drop the faces on the longest edge
+                longest = max(itertools.combinations(quad, 2),
+                              key=lambda pq: float(np.linalg.norm(points[pq[0]] - points[pq[1]])))
+                drop.update(index[t] for t in tris if longest[0] in t and longest[1] in t)
+    if not drop:
+        return faces
+    keep = np.ones(len(faces), bool)
+    keep[list(drop)] = False
+    return faces[keep]
+
+
+def _ear_triangles(polygon: list[int], points: np.ndarray) -> list[list[int]]:
+    """Triangles of a small closed polygon, shortest diagonals first."""
+    poly = list(polygon)
+    out = []
+    while len(poly) > 3:
+        k = len(poly)
+        diag = [float(np.linalg.norm(points[poly[i - 1]] - points[poly[(i + 1) % k]])) for i in range(k)]
+        i = int(np.argmin(diag))
+        out.append([poly[i - 1], poly[i], poly[(i + 1) % k]])
+        del poly[i]
+    out.append(poly)
+    return out
+
+
+def _close_line_ends(faces: np.ndarray, junction: np.ndarray, free: np.ndarray, points: np.ndarray,
+                     max_edges: int = 6) -> np.ndarray:
+    """Join the last junction vertex of a line to a sheet that stops short of it.
+
+    At the end of a junction line ``(..., n, e)`` a sheet may hold triangles
+    up to ``n`` only: its boundary runs from ``n`` through sheet vertices to
+    its free edge, and leaves a notch beside the line's last edge. When that
+    path (at most ``max_edges`` edges, ending at the first free-edge vertex)
+    shares no face with ``e``, it is fanned to ``e``.
+    """
+    count, e = _edge_counts(faces)
+    single = e[count == 1]
+    if len(single) == 0:
+        return faces
+    nbrs: dict[int, list[int]] = {}
+    for a, b in single.tolist():
+        nbrs.setdefault(a, []).append(b)
+        nbrs.setdefault(b, []).append(a)
+    edges = np.unique(e.reshape(-1, 2), axis=0)
+    line = edges[junction[edges[:, 0]] & junction[edges[:, 1]]]
+    ends = np.concatenate([line, line[:, ::-1]])
+    degree = np.bincount(ends[:, 0], minlength=len(points))
+    touching: dict[int, set[int]] = {}
+    for f in faces.tolist():
+        for v in f:
+            touching.setdefault(v, set()).update(f)
+    new: list[list[int]] = []
+    for end, inner in ends[degree[ends[:, 0]] == 1].tolist():
+        for first in nbrs.get(inner, []):
+            path, prev, cur = [inner], inner, first
+            while len(path) <= max_edges and not junction[cur]:
+                path.append(cur)
+                if free[cur]:
+                    break
+                ahead = [v for v in nbrs.get(cur, []) if v != prev]
+                if len(ahead) != 1:
+                    break
+                prev, cur = cur, ahead[0]
+            if len(path) < 2 or not free[path[-1]] or touching.get(end, set()) & set(path[1:]):
+                continue
+            new += [[end, path[i], path[i + 1]] for i in range(len(path) - 1)]
+    if not new:
+        return faces
+    return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+
+
+def _close_boundary_triangles(faces: np.ndarray) -> np.ndarray:
+    """Add the missing face of every three boundary edges that form a triangle
+    (a three-edge hole, also where it touches others at a pinched vertex)."""
+    count, e = _edge_counts(faces)
+    single = e[count == 1]
+    nbrs: dict[int, set[int]] = {}
+    for a, b in single.tolist():
+        nbrs.setdefault(a, set()).add(b)
+        nbrs.setdefault(b, set()).add(a)
+    present = {tuple(f) for f in faces.tolist()}
+    new = set()
+    for a, b in single.tolist():
+        for c in nbrs[a] & nbrs[b]:
+            tri = tuple(sorted((a, b, c)))
+            if tri not in present:
+                new.add(tri)
+    if not new:
+        return faces
+    return np.unique(np.concatenate([faces, np.array(sorted(new), np.int64)]), axis=0)
+
+
 def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | None = None,
-                 normal: np.ndarray | None = None, rounds: int = 4) -> np.ndarray:
+                 normal: np.ndarray | None = None, rounds: int = 4, free: np.ndarray | None = None) -> np.ndarray:
     """Remove folded and surplus triangles and close small holes.
 
     1. Where neighbouring blocks split the same degenerate quad across both
@@ -283,8 +498,16 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
     2. With ``points`` and ``normal`` (vertex sheet normals): on edges from a
        junction vertex to a sheet vertex with three or more faces, only the
        two faces closest to that sheet's plane stay.
-    3. Holes bounded by three or four edges (or a notch of three boundary
-       edges against a junction edge) are closed.
+    3. Quads covered by both splits lose the two faces on their longest
+       edge; notches beside junction lines (a path of at most eight boundary
+       edges between two junction vertices up to three junction edges apart)
+       are closed, so every sheet at a junction line has triangles on each
+       of its edges.
+    4. With ``free`` (free-edge vertices): a sheet that stops one edge short
+       of a junction line's end is fanned to that end (:func:`_close_line_ends`).
+    5. Holes bounded by at most ``SMALL_HOLE_EDGES`` edges (or a notch of
+       boundary edges against an edge), and any three boundary edges forming
+       a triangle, are closed.
 
     Parameters
     ----------
@@ -310,8 +533,112 @@ def repair_faces(faces: np.ndarray, junction: np.ndarray, points: np.ndarray | N
             break
         faces = faces[~folded]
     if len(faces):
-        faces = _close_small_holes(faces, points if points is not None else np.zeros((int(faces.max()) + 1, 3)))
+        where = points if points is not None else np.zeros((int(faces.max()) + 1, 3))
+        faces = _drop_double_quads(faces, where)
+        faces = _close_junction_notches(faces, junction, where, free=free)
+        if free is not None:
+            faces = _close_line_ends(faces, junction, np.asarray(free, bool), where)
+        faces = _close_small_holes(faces, where)
+        faces = _close_boundary_triangles(faces)
     return faces
+
+
+#: Medial voxels closer than this (voxels) to a junction voxel do not join
+#: sheets: near a junction the sheets touch one another diagonally.
+SHEET_SEPARATION = 3.0
+
+#: Sheets of fewer voxels are noise: their voxels join the nearest sheet.
+MIN_SHEET_VOXELS = 20
+
+
+def _neighbour_pairs(index: np.ndarray, voxels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rows (i, j) of 26-adjacent medial voxels, each pair once."""
+    half = _kernels.OFFSETS_26[:13]
+    shape = np.array(index.shape)
+    rows_i, rows_j = [], []
+    for off in half:
+        nb = voxels + off
+        ok = np.all((nb >= 0) & (nb < shape), axis=1)
+        j = np.full(len(voxels), -1, np.int64)
+        j[ok] = index[nb[ok, 0], nb[ok, 1], nb[ok, 2]]
+        has = j >= 0
+        rows_i.append(np.flatnonzero(has))
+        rows_j.append(j[has])
+    return np.concatenate(rows_i), np.concatenate(rows_j)
+
+
+def sheet_ids(index: np.ndarray, voxels: np.ndarray, junction: np.ndarray, spacing: np.ndarray) -> np.ndarray:
+    """Split the medial voxels into sheets that meet at junction voxels.
+
+    Voxels farther than ``SHEET_SEPARATION`` voxels from every junction voxel
+    form sheets by 26-connectivity; the voxels near the junctions then join
+    the sheet they are geodesically nearest to (never through a junction
+    voxel).
+
+    Parameters
+    ----------
+    index : (Z, Y, X) int ndarray
+        Row of each medial voxel, -1 elsewhere.
+    voxels : (n, 3) int64 ndarray
+    junction : (n,) bool ndarray
+    spacing : (3,) float64 ndarray
+
+    Returns
+    -------
+    (n,) int64 ndarray
+        Sheet number, -1 for junction voxels.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    n = len(voxels)
+    if not junction.any():
+        free = np.ones(n, bool)
+    else:
+        near, _ = cKDTree(voxels[junction]).query(voxels, k=1, distance_upper_bound=SHEET_SEPARATION + 1e-9)
+        free = ~np.isfinite(near) | (near > SHEET_SEPARATION)
+    i, j = _neighbour_pairs(index, voxels)
+    keep = free[i] & free[j]
+    graph = coo_matrix((np.ones(int(keep.sum())), (i[keep], j[keep])), shape=(n, n))
+    _, comp = connected_components(graph, directed=False)
+    size = np.bincount(comp[free], minlength=n)
+    core = free & (size[comp] >= MIN_SHEET_VOXELS)
+    if not core.any():
+        return np.where(junction, -1, 0).astype(np.int64)
+    _, sheet = np.unique(comp[core], return_inverse=True)
+    seeds = np.flatnonzero(core)
+    grow = np.where(junction, -1, 0).astype(np.int64)
+    out = _kernels.sheet_labels(index, voxels, seeds, sheet.astype(np.int64), grow, _kernels.OFFSETS_26, spacing)
+    out[junction] = -1
+    out[(out < 0) & ~junction] = 0 if len(seeds) else -1  # cut off from every sheet: rare specks
+    return out
+
+
+def _labels(index: np.ndarray, voxels: np.ndarray, picks: np.ndarray, junction: np.ndarray, sheet: np.ndarray,
+            spacing: np.ndarray) -> np.ndarray:
+    """Vertex (pick number) of every medial voxel: Voronoi regions kept inside sheets.
+
+    The junction voxels are first split between the junction picks along
+    the junction lines; then they, with the other picks, grow regions into
+    the sheets. Every sheet at a junction line thus sees the same chain of
+    junction regions, and their triangles share the junction edges.
+    """
+    from scipy.spatial import cKDTree
+
+    on_line = np.where(junction, 0, -1).astype(np.int64)
+    vertex = np.arange(len(picks), dtype=np.int64)
+    at_junction = junction[picks]
+    jlabel = _kernels.sheet_labels(index, voxels, picks[at_junction], vertex[at_junction], on_line,
+                                   _kernels.OFFSETS_26, spacing)
+    lost = junction & (jlabel < 0)
+    if lost.any() and at_junction.any():  # junction voxels cut off from every junction pick
+        _, nearest = cKDTree(voxels[picks[at_junction]] * spacing).query(voxels[lost] * spacing, k=1)
+        jlabel[lost] = vertex[at_junction][nearest]
+    rows = np.flatnonzero(junction & (jlabel >= 0))
+    seeds = np.concatenate([rows, picks[~at_junction]]).astype(np.int64)
+    seed_label = np.concatenate([jlabel[rows], vertex[~at_junction]]).astype(np.int64)
+    return _kernels.sheet_labels(index, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, spacing)
 
 
 def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0) -> Polygonization:
@@ -351,11 +678,17 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     radius = np.maximum(density * medial.radius, 1.5 * float(features.spacing.max()))
     radius[kind == JUNCTION] *= JUNCTION_SPACING
     picks = _kernels.greedy_subsample(index, voxels, order, radius, features.spacing)
-    label = _kernels.geodesic_labels(index, voxels, picks, _kernels.OFFSETS_26, features.spacing)
+    junction = kind == JUNCTION
+    sheet = sheet_ids(index, voxels, junction, features.spacing)
+    label = _labels(index, voxels, picks, junction, sheet, features.spacing)
     del index
     label_grid = np.full(shape, -1, np.int32)
     label_grid[tuple(voxels.T)] = label
+    sheet_grid = np.full(shape, -2, np.int32)
+    sheet_grid[tuple(voxels.T)] = sheet
     points = medial.position[picks]
-    faces = repair_faces(_triangles(label_grid, voxels, points), kind[picks] == JUNCTION, points,
-                         medial.normal[picks])
+    vertex_junction = kind[picks] == JUNCTION
+    faces = _triangles(label_grid, voxels, points, sheet_grid)
+    faces = faces[~vertex_junction[faces].all(axis=1)]  # junction lines carry no faces of their own
+    faces = repair_faces(faces, vertex_junction, points, medial.normal[picks], free=kind[picks] == BOUNDARY)
     return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label)
