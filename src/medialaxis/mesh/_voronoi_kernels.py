@@ -1,0 +1,323 @@
+"""Compiled kernels of the Voronoi mesh pipeline: closest points on triangles.
+
+:func:`closest_on_candidates` finds, for each query point, the closest point
+among a per-query list of candidate triangles (a CSR list), with the Voronoi
+region of the triangle it falls in (a vertex, an edge or the face), so the
+caller can sign the distance with the angle-weighted pseudo-normal
+(Baerentzen and Aanaes 2005). :func:`closest_point_reference` is a
+brute-force NumPy version over every triangle, used by the tests.
+"""
+
+from __future__ import annotations
+
+import heapq
+
+import numpy as np
+from numba import njit, prange
+
+__all__ = ["closest_on_candidates", "closest_point_reference", "collapse_facets", "collapse_free_sides", "REGION_FACE"]
+
+#: Region codes: 0, 1, 2 = vertex a, b, c; 3, 4, 5 = edge ab, bc, ca; 6 = face.
+REGION_FACE = 6
+
+
+@njit(cache=True, nogil=True)
+def _closest_on_triangle(p, a, b, c):  # type: ignore[no-untyped-def]
+    """Closest point to ``p`` on triangle ``abc`` and its region code (Ericson, RTCD 5.1.5)."""
+    ab = b - a
+    ac = c - a
+    ap = p - a
+    d1 = ab @ ap
+    d2 = ac @ ap
+    if d1 <= 0.0 and d2 <= 0.0:
+        return a, 0
+    bp = p - b
+    d3 = ab @ bp
+    d4 = ac @ bp
+    if d3 >= 0.0 and d4 <= d3:
+        return b, 1
+    vc = d1 * d4 - d3 * d2
+    if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
+        v = d1 / (d1 - d3)
+        return a + v * ab, 3
+    cp = p - c
+    d5 = ab @ cp
+    d6 = ac @ cp
+    if d6 >= 0.0 and d5 <= d6:
+        return c, 2
+    vb = d5 * d2 - d1 * d6
+    if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
+        w = d2 / (d2 - d6)
+        return a + w * ac, 5
+    va = d3 * d6 - d5 * d4
+    if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
+        w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        return b + w * (c - b), 4
+    denom = 1.0 / (va + vb + vc)
+    v = vb * denom
+    w = vc * denom
+    return a + ab * v + ac * w, 6
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def closest_on_candidates(query, tri_a, tri_b, tri_c, cand_ptr, cand_idx):  # type: ignore[no-untyped-def]
+    """Closest point among candidate triangles, per query.
+
+    Parameters
+    ----------
+    query : (q, 3) float64 ndarray
+    tri_a, tri_b, tri_c : (f, 3) float64 ndarray
+        Triangle corners.
+    cand_ptr : (q + 1,) int64 ndarray
+    cand_idx : (c,) int64 ndarray
+        Candidate triangles of query ``i`` are ``cand_idx[cand_ptr[i]:cand_ptr[i + 1]]``.
+
+    Returns
+    -------
+    dist : (q,) float64 ndarray
+        Unsigned distance (``inf`` when a query has no candidate).
+    point : (q, 3) float64 ndarray
+    face : (q,) int64 ndarray
+    region : (q,) int64 ndarray
+        0-2 vertex, 3-5 edge (ab, bc, ca), 6 face.
+    """
+    nq = query.shape[0]
+    dist = np.full(nq, np.inf)
+    point = np.zeros((nq, 3))
+    face = np.full(nq, -1, np.int64)
+    region = np.full(nq, -1, np.int64)
+    for i in prange(nq):
+        p = query[i]
+        best = np.inf
+        for k in range(cand_ptr[i], cand_ptr[i + 1]):
+            f = cand_idx[k]
+            x, r = _closest_on_triangle(p, tri_a[f], tri_b[f], tri_c[f])
+            d = p - x
+            d2 = d @ d
+            if d2 < best:
+                best = d2
+                point[i] = x
+                face[i] = f
+                region[i] = r
+        dist[i] = np.sqrt(best)
+    return dist, point, face, region
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    ab = b - a
+    t = np.einsum("...k,...k->...", p - a, ab) / np.maximum(np.einsum("...k,...k->...", ab, ab), 1e-300)
+    t = np.clip(t, 0.0, 1.0)
+    return np.linalg.norm(p - (a + t[..., None] * ab), axis=-1)
+
+
+def closest_point_reference(query: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Brute-force unsigned distance from each query to a triangle soup.
+
+    Parameters
+    ----------
+    query : (q, 3) float64 ndarray
+    triangles : (f, 3, 3) float64 ndarray
+
+    Returns
+    -------
+    (q,) float64 ndarray
+        Distance to the nearest triangle: the plane distance where the foot
+        falls inside, else the nearest of the three edges.
+    """
+    p = np.asarray(query, np.float64)[:, None, :]
+    a, b, c = (np.asarray(triangles, np.float64)[None, :, k, :] for k in range(3))
+    n = np.cross(b - a, c - a)
+    n = n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-300)
+    h = np.einsum("qfk,qfk->qf", p - a, n)
+    foot = p - h[..., None] * n
+    inside = np.ones(h.shape, bool)
+    for u, v in ((a, b), (b, c), (c, a)):
+        inside &= np.einsum("qfk,qfk->qf", np.cross(v - u, foot - u), n) >= 0
+    edge = np.minimum(np.minimum(_segment_distance(p, a, b), _segment_distance(p, b, c)), _segment_distance(p, c, a))
+    return np.where(inside, np.abs(h), edge).min(axis=1)
+
+
+@njit(cache=True, nogil=True)
+def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, length, protected):  # type: ignore[no-untyped-def]
+    """Topology-preserving collapse of a 2-complex of polygons, shortest contacts first.
+
+    An unprotected facet is removed together with one of its free sides (a
+    side no other present facet uses): an elementary collapse, which keeps
+    the homotopy type. Protected facets are never removed. Candidates are
+    taken by increasing ``length``.
+
+    Parameters
+    ----------
+    facet_ptr : (f + 1,) int64 ndarray
+    facet_sides : (r,) int64 ndarray
+        Side ids of facet ``k``: ``facet_sides[facet_ptr[k]:facet_ptr[k + 1]]``.
+    side_facet_ptr, side_facet_idx : int64 ndarray
+        The transposed incidence (facets of each side).
+    length : (f,) float64 ndarray
+        Removal priority (smallest first).
+    protected : (f,) bool ndarray
+
+    Returns
+    -------
+    facet_alive : (f,) bool ndarray
+    side_alive : (s,) bool ndarray
+        Sides removed by a collapse are dead; the others stay (as 1D edges
+        when no facet uses them any more).
+    """
+    n_facets = facet_ptr.shape[0] - 1
+    n_sides = side_facet_ptr.shape[0] - 1
+    count = np.zeros(n_sides, np.int64)
+    for k in range(facet_sides.shape[0]):
+        count[facet_sides[k]] += 1
+    facet_alive = np.ones(n_facets, np.bool_)
+    side_alive = np.ones(n_sides, np.bool_)
+    heap = [(0.0, np.int64(0))]
+    heap.pop()
+    for f in range(n_facets):
+        if not protected[f]:
+            for k in range(facet_ptr[f], facet_ptr[f + 1]):
+                if count[facet_sides[k]] == 1:
+                    heap.append((length[f], np.int64(f)))
+                    break
+    heapq.heapify(heap)
+    while len(heap) > 0:
+        _, f = heapq.heappop(heap)
+        if not facet_alive[f]:
+            continue
+        free = -1
+        for k in range(facet_ptr[f], facet_ptr[f + 1]):
+            s = facet_sides[k]
+            if side_alive[s] and count[s] == 1:
+                free = s
+                break
+        if free < 0:
+            continue
+        facet_alive[f] = False
+        side_alive[free] = False
+        for k in range(facet_ptr[f], facet_ptr[f + 1]):
+            s = facet_sides[k]
+            count[s] -= 1
+            if side_alive[s] and count[s] == 1:
+                for j in range(side_facet_ptr[s], side_facet_ptr[s + 1]):
+                    g = side_facet_idx[j]
+                    if facet_alive[g] and not protected[g]:
+                        heapq.heappush(heap, (length[g], g))
+    return facet_alive, side_alive
+
+
+@njit(cache=True, nogil=True)
+def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: ignore[no-untyped-def]
+    """Remove dangling 1D sides (no facet) ending at a vertex of degree one, repeatedly.
+
+    Parameters
+    ----------
+    side_alive : (s,) bool ndarray
+    side_used : (s,) bool ndarray
+        True where a remaining facet uses the side (never removed).
+    side_ends : (s, 2) int64 ndarray
+    n_vertices : int
+
+    Returns
+    -------
+    (s,) bool ndarray
+        The sides still present.
+    """
+    alive = side_alive.copy()
+    degree = np.zeros(n_vertices, np.int64)
+    for s in range(alive.shape[0]):
+        if alive[s]:
+            degree[side_ends[s, 0]] += 1
+            degree[side_ends[s, 1]] += 1
+    # vertex -> sides incidence
+    ptr = np.zeros(n_vertices + 1, np.int64)
+    for s in range(alive.shape[0]):
+        ptr[side_ends[s, 0] + 1] += 1
+        ptr[side_ends[s, 1] + 1] += 1
+    for v in range(n_vertices):
+        ptr[v + 1] += ptr[v]
+    fill = ptr[:-1].copy()
+    inc = np.empty(ptr[-1], np.int64)
+    for s in range(alive.shape[0]):
+        for e in range(2):
+            v = side_ends[s, e]
+            inc[fill[v]] = s
+            fill[v] += 1
+    stack = [np.int64(v) for v in range(n_vertices) if degree[v] == 1]
+    while len(stack) > 0:
+        v = stack.pop()
+        if degree[v] != 1:
+            continue
+        for j in range(ptr[v], ptr[v + 1]):
+            s = inc[j]
+            if alive[s]:
+                if side_used[s]:
+                    break
+                alive[s] = False
+                for e in range(2):
+                    w = side_ends[s, e]
+                    degree[w] -= 1
+                    if degree[w] == 1:
+                        stack.append(w)
+                break
+    return alive
+
+
+@njit(cache=True, nogil=True)
+def walk_edge_rings(simplices, neighbors, edge_i, edge_j, first_tet, counts):  # type: ignore[no-untyped-def]
+    """Order the tetrahedra around each Delaunay edge by walking across shared faces.
+
+    Parameters
+    ----------
+    simplices, neighbors : (t, 4) int64 ndarray
+        Delaunay tetrahedra and the tetrahedron opposite each vertex (-1 on the hull).
+    edge_i, edge_j : (e,) int64 ndarray
+        The edges.
+    first_tet : (e,) int64 ndarray
+        One tetrahedron containing each edge.
+    counts : (e,) int64 ndarray
+        Number of tetrahedra around each edge.
+
+    Returns
+    -------
+    ring : (counts.sum(),) int64 ndarray
+        Tetrahedra of edge ``k`` in cyclic order, at ``cumsum(counts)[k] - counts[k]``.
+    valid : (e,) bool ndarray
+        False where the walk met the hull or did not close after ``counts`` steps.
+    """
+    n_edges = edge_i.shape[0]
+    ring = np.full(counts.sum(), -1, np.int64)
+    valid = np.ones(n_edges, np.bool_)
+    pos = 0
+    for e in range(n_edges):
+        i, j = edge_i[e], edge_j[e]
+        t = first_tet[e]
+        came = -1
+        for c in range(4):
+            v = simplices[t, c]
+            if v != i and v != j:
+                came = v
+                break
+        start = t
+        for step in range(counts[e]):
+            ring[pos + step] = t
+            # exit through the face (i, j, other), i.e. opposite `came`
+            nxt = -1
+            other = -1
+            for c in range(4):
+                v = simplices[t, c]
+                if v == came:
+                    nxt = neighbors[t, c]
+                elif v != i and v != j:
+                    other = v
+            if nxt < 0:
+                valid[e] = False
+                break
+            came = other
+            t = nxt
+            if t == start and step != counts[e] - 1:
+                valid[e] = False
+                break
+        if valid[e] and t != start:
+            valid[e] = False
+        pos += counts[e]
+    return ring, valid
