@@ -24,7 +24,9 @@ METHODS: dict[str, dict[str, str]] = {
     "planar": {
         "voronoi": "medialaxis.planar.pipeline:voronoi_medial_axis",
     },
-    "mesh": {},
+    "mesh": {
+        "voronoi": "medialaxis.mesh.voronoi:voronoi_medial_axis",
+    },
     "volume": {},
 }
 

@@ -60,22 +60,25 @@ def _closest_on_triangle(p, a, b, c):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def closest_on_candidates(query, tri_a, tri_b, tri_c, cand_ptr, cand_idx):  # type: ignore[no-untyped-def]
-    """Closest point among candidate triangles, per query.
+def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):  # type: ignore[no-untyped-def]
+    """Closest point among the faces around a few given faces, per query.
 
     Parameters
     ----------
     query : (q, 3) float64 ndarray
     tri_a, tri_b, tri_c : (f, 3) float64 ndarray
         Triangle corners.
-    cand_ptr : (q + 1,) int64 ndarray
-    cand_idx : (c,) int64 ndarray
-        Candidate triangles of query ``i`` are ``cand_idx[cand_ptr[i]:cand_ptr[i + 1]]``.
+    near : (q, k) int64 ndarray
+        Faces near each query; the candidates are their rings.
+    ring_ptr : (f + 1,) int64 ndarray
+    ring_idx : (c,) int64 ndarray
+        Ring of face ``f`` (faces sharing a vertex with it, itself included):
+        ``ring_idx[ring_ptr[f]:ring_ptr[f + 1]]``.
 
     Returns
     -------
     dist : (q,) float64 ndarray
-        Unsigned distance (``inf`` when a query has no candidate).
+        Unsigned distance.
     point : (q, 3) float64 ndarray
     face : (q,) int64 ndarray
     region : (q,) int64 ndarray
@@ -89,16 +92,24 @@ def closest_on_candidates(query, tri_a, tri_b, tri_c, cand_ptr, cand_idx):  # ty
     for i in prange(nq):
         p = query[i]
         best = np.inf
-        for k in range(cand_ptr[i], cand_ptr[i + 1]):
-            f = cand_idx[k]
-            x, r = _closest_on_triangle(p, tri_a[f], tri_b[f], tri_c[f])
-            d = p - x
-            d2 = d @ d
-            if d2 < best:
-                best = d2
-                point[i] = x
-                face[i] = f
-                region[i] = r
+        for a in range(near.shape[1]):
+            g = near[i, a]
+            seen = False
+            for b in range(a):
+                if near[i, b] == g:
+                    seen = True
+            if seen:
+                continue
+            for k in range(ring_ptr[g], ring_ptr[g + 1]):
+                f = ring_idx[k]
+                x, r = _closest_on_triangle(p, tri_a[f], tri_b[f], tri_c[f])
+                d = p - x
+                d2 = d @ d
+                if d2 < best:
+                    best = d2
+                    point[i] = x
+                    face[i] = f
+                    region[i] = r
         dist[i] = np.sqrt(best)
     return dist, point, face, region
 

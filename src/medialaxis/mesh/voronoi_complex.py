@@ -44,6 +44,9 @@ class MedialComplex:
         Triangles over the points (fans of the kept facets).
     face_length : (k,) float64 ndarray
         Delaunay edge length (contact-set width) of each triangle's facet.
+    face_certified : (k,) bool ndarray
+        The facet is at least lambda wide and all its vertices are inside
+        (a facet of Algorithm 5); the others are kept for topology only.
     edges : (m, 2) int64 ndarray
         Curve pieces (no facet), then facet sides on the surface boundary or
         where three or more facets meet.
@@ -54,6 +57,7 @@ class MedialComplex:
     tets: np.ndarray
     faces: np.ndarray
     face_length: np.ndarray
+    face_certified: np.ndarray
     edges: np.ndarray
     n_curve_edges: int
 
@@ -160,10 +164,10 @@ def medial_complex(
         curve = side_ends[side_alive & ~side_used]
         n_curve = len(curve)
         ring_ptr, ring_tets = _select(ring_ptr, ring_tets, facet_alive)
-        length = length[facet_alive]
+        length, certified = length[facet_alive], certified[facet_alive]
     else:
         ring_ptr, ring_tets = _select(ring_ptr, ring_tets, certified)
-        length = length[certified]
+        length, certified = length[certified], certified[certified]
     tris, owner, sides = fan_triangles(ring_ptr, ring_tets)
     sides = np.sort(sides, axis=1)
     keys, side_count = np.unique(sides[:, 0] * n_tets + sides[:, 1], return_counts=True)
@@ -173,4 +177,4 @@ def medial_complex(
     new_index = np.full(n_tets, -1, np.int64)
     new_index[used] = np.arange(len(used))
     edges = new_index[np.concatenate([curve, border]).astype(np.int64)].reshape(-1, 2)
-    return MedialComplex(used, new_index[tris].reshape(-1, 3), length[owner], edges, n_curve)
+    return MedialComplex(used, new_index[tris].reshape(-1, 3), length[owner], certified[owner], edges, n_curve)
