@@ -191,9 +191,15 @@ def test_closest_point_kernel_matches_brute_force():
     q = rng.normal(size=(200, 3)) * 0.8
     tri = np.asarray(mesh.triangles)
     corners = tuple(np.ascontiguousarray(tri[:, k]) for k in range(3))
+    # true rings (faces sharing a vertex), starting from one far face: the walk must find the closest
+    nf = len(tri)
+    f = mesh.faces
+    shares = (f[:, None, :, None] == f[None, :, None, :]).any(axis=(2, 3))
+    ring_ptr = np.r_[0, np.cumsum(shares.sum(axis=1))].astype(np.int64)
+    ring_idx = np.nonzero(shares)[1].astype(np.int64)
     near = np.zeros((len(q), 1), np.int64)
-    ring_ptr = np.array([0, len(tri)], np.int64)
-    dist, point, face, _ = closest_on_candidates(q, *corners, near, ring_ptr, np.arange(len(tri)))
+    dist, point, face, _ = closest_on_candidates(q, *corners, near, ring_ptr, ring_idx)
+    assert nf == 80
     assert np.allclose(dist, closest_point_reference(q, tri), atol=1e-12)
     assert np.allclose(np.linalg.norm(q - point, axis=1), dist)
 
@@ -295,3 +301,12 @@ def test_rejects_empty_and_flat_meshes():
         voronoi_medial_axis(trimesh.Trimesh(np.zeros((0, 3)), np.zeros((0, 3), int)))
     with pytest.raises((EmptyShapeError, InvalidInputError)):
         voronoi_medial_axis(trimesh.Trimesh([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 3, 2]]))
+
+
+def test_html_view_is_self_contained(tmp_path, box):
+    out = tmp_path / "box.html"
+    box.save(out)
+    text = out.read_text()
+    assert len(text) > 1_000_000  # plotly.js is inlined
+    assert '<script src="http' not in text and "<script charset" not in text
+    assert "medial surface" in text and "input surface" in text

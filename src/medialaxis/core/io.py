@@ -3,7 +3,8 @@
 Lossless: ``.json`` and ``.npz`` (read back by :func:`load`, including the
 unpruned axis so :meth:`MedialAxis.prune` still works). Exports: ``.graphml``,
 ``.geojson``, ``.svg`` (axis over the shape), ``.png`` (plot coloured by
-radius), ``.ply`` (vertices with radius, edges, faces) and ``.obj``.
+radius), ``.ply`` (vertices with radius, edges, faces), ``.obj`` and
+``.html`` (interactive 3D view, :mod:`medialaxis.mesh.html`).
 Every file is written to a temporary name in the target folder, then renamed,
 so a failure never leaves a half-written file.
 """
@@ -339,6 +340,12 @@ def _write_obj(ma: MedialAxis, path: Path) -> None:
             np.savetxt(fh, ma.faces + 1, fmt="f %d %d %d")
 
 
+def _write_html(ma: MedialAxis, path: Path) -> None:
+    from medialaxis.mesh.html import write_html  # plotly view, 3D results
+
+    write_html(ma, path)
+
+
 WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
     ".json": _write_json,
     ".npz": _write_npz,
@@ -348,6 +355,7 @@ WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
     ".png": _write_png,
     ".ply": _write_ply,
     ".obj": _write_obj,
+    ".html": _write_html,
 }
 LOSSLESS = (".json", ".npz")
 

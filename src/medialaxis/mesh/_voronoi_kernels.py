@@ -19,44 +19,46 @@ __all__ = ["closest_on_candidates", "closest_point_reference", "collapse_facets"
 
 #: Region codes: 0, 1, 2 = vertex a, b, c; 3, 4, 5 = edge ab, bc, ca; 6 = face.
 REGION_FACE = 6
+#: Most steps of the local descent from the best face found.
+MAX_WALK = 16
 
 
 @njit(cache=True, nogil=True)
-def _closest_on_triangle(p, a, b, c):  # type: ignore[no-untyped-def]
-    """Closest point to ``p`` on triangle ``abc`` and its region code (Ericson, RTCD 5.1.5)."""
-    ab = b - a
-    ac = c - a
-    ap = p - a
-    d1 = ab @ ap
-    d2 = ac @ ap
+def _closest_on_triangle(px, py, pz, a, b, c):  # type: ignore[no-untyped-def]
+    """Barycentric weights (v, w) of the closest point to ``p`` on triangle ``abc`` and its region.
+
+    Ericson, Real-Time Collision Detection, 5.1.5; scalar code (no
+    allocation). The closest point is ``a + v (b - a) + w (c - a)``.
+    """
+    abx, aby, abz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+    acx, acy, acz = c[0] - a[0], c[1] - a[1], c[2] - a[2]
+    apx, apy, apz = px - a[0], py - a[1], pz - a[2]
+    d1 = abx * apx + aby * apy + abz * apz
+    d2 = acx * apx + acy * apy + acz * apz
     if d1 <= 0.0 and d2 <= 0.0:
-        return a, 0
-    bp = p - b
-    d3 = ab @ bp
-    d4 = ac @ bp
+        return 0.0, 0.0, 0
+    bpx, bpy, bpz = px - b[0], py - b[1], pz - b[2]
+    d3 = abx * bpx + aby * bpy + abz * bpz
+    d4 = acx * bpx + acy * bpy + acz * bpz
     if d3 >= 0.0 and d4 <= d3:
-        return b, 1
+        return 1.0, 0.0, 1
     vc = d1 * d4 - d3 * d2
     if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
-        v = d1 / (d1 - d3)
-        return a + v * ab, 3
-    cp = p - c
-    d5 = ab @ cp
-    d6 = ac @ cp
+        return d1 / (d1 - d3), 0.0, 3
+    cpx, cpy, cpz = px - c[0], py - c[1], pz - c[2]
+    d5 = abx * cpx + aby * cpy + abz * cpz
+    d6 = acx * cpx + acy * cpy + acz * cpz
     if d6 >= 0.0 and d5 <= d6:
-        return c, 2
+        return 0.0, 1.0, 2
     vb = d5 * d2 - d1 * d6
     if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
-        w = d2 / (d2 - d6)
-        return a + w * ac, 5
+        return 0.0, d2 / (d2 - d6), 5
     va = d3 * d6 - d5 * d4
     if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
         w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        return b + w * (c - b), 4
+        return 1.0 - w, w, 4
     denom = 1.0 / (va + vb + vc)
-    v = vb * denom
-    w = vc * denom
-    return a + ab * v + ac * w, 6
+    return vb * denom, vc * denom, 6
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -69,7 +71,9 @@ def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):
     tri_a, tri_b, tri_c : (f, 3) float64 ndarray
         Triangle corners.
     near : (q, k) int64 ndarray
-        Faces near each query; the candidates are their rings.
+        Faces near each query; the candidates are their rings, then the
+        rings of the best face found, repeatedly (up to ``MAX_WALK`` steps)
+        until the best face stays the same.
     ring_ptr : (f + 1,) int64 ndarray
     ring_idx : (c,) int64 ndarray
         Ring of face ``f`` (faces sharing a vertex with it, itself included):
@@ -92,22 +96,35 @@ def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):
     for i in prange(nq):
         p = query[i]
         best = np.inf
-        for a in range(near.shape[1]):
-            g = near[i, a]
-            seen = False
-            for b in range(a):
-                if near[i, b] == g:
-                    seen = True
-            if seen:
-                continue
+        # scan the rings of the given faces, then walk: scan the ring of the
+        # best face found until it no longer changes (local descent on the mesh)
+        n_near = near.shape[1]
+        scanned = -1
+        for a in range(n_near + MAX_WALK):
+            if a < n_near:
+                g = near[i, a]
+                seen = False
+                for b in range(a):
+                    if near[i, b] == g:
+                        seen = True
+                if seen:
+                    continue
+            else:
+                g = face[i]
+                if g == scanned:
+                    break
+                scanned = g
             for k in range(ring_ptr[g], ring_ptr[g + 1]):
                 f = ring_idx[k]
-                x, r = _closest_on_triangle(p, tri_a[f], tri_b[f], tri_c[f])
-                d = p - x
-                d2 = d @ d
+                a_, b_, c_ = tri_a[f], tri_b[f], tri_c[f]
+                v, w, r = _closest_on_triangle(p[0], p[1], p[2], a_, b_, c_)
+                x0 = a_[0] + v * (b_[0] - a_[0]) + w * (c_[0] - a_[0])
+                x1 = a_[1] + v * (b_[1] - a_[1]) + w * (c_[1] - a_[1])
+                x2 = a_[2] + v * (b_[2] - a_[2]) + w * (c_[2] - a_[2])
+                d2 = (p[0] - x0) ** 2 + (p[1] - x1) ** 2 + (p[2] - x2) ** 2
                 if d2 < best:
                     best = d2
-                    point[i] = x
+                    point[i, 0], point[i, 1], point[i, 2] = x0, x1, x2
                     face[i] = f
                     region[i] = r
         dist[i] = np.sqrt(best)

@@ -140,7 +140,7 @@ def _positive(value: Any, name: str) -> float:
 
 def _sample_count(samples: Any, n_vertices: int) -> int:
     if samples is None:
-        return int(min(max(MIN_SAMPLES, 1.5 * n_vertices), MAX_SAMPLES))
+        return int(min(max(MIN_SAMPLES, n_vertices), MAX_SAMPLES))
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)):
         raise InvalidInputError(f"samples must be an integer number of surface samples, got {samples!r}")
     if samples < 1000 or samples > MAX_SAMPLES:
@@ -159,7 +159,7 @@ def _lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
     diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
     p = dt.points[dt.simplices]
     volume = np.abs(np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])))
-    medial = (dt.longest >= 3.0 * h[0]) & (dt.radii < diag) & (volume > 1e-6 * h[0] ** 3)
+    medial = (dt.longest >= 2.0 * h[0]) & (dt.radii < diag) & (volume > 1e-6 * h[0] ** 3)
     if medial.sum() < 4:
         medial = dt.radii < diag
     return cKDTree(dt.centres[medial])
@@ -230,7 +230,7 @@ def voronoi_medial_axis(
         of sampling noise have contact sets up to about ``sqrt(epsilon * r)``
         at depth ``r``, so a lambda linear in epsilon keeps noise sheets.
     samples : int, optional
-        Target number of surface samples. Default ``max(20000, 1.5 *
+        Target number of surface samples. Default ``max(20000,
         n_vertices)``; the mesh vertices are always included.
     simplify : int or float, optional
         Reduce the medial mesh by quadric error minimisation on spheres
@@ -329,7 +329,7 @@ def voronoi_medial_axis(
     timings["delaunay"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    eps, eps_lfs = measure_epsilon(work, smp.points, rng, min(2 * len(smp.points), 400_000), lambda x: tree.query(x)[0])
+    eps, eps_lfs = measure_epsilon(work, smp.points, rng, min(2 * len(smp.points), 100_000), lambda x: tree.query(x, workers=-1)[0])
     lam_used = LAM_FACTOR * float(np.sqrt(eps * diag)) if lam_given is None else lam_given
     timings["epsilon"] = time.perf_counter() - t0
 
