@@ -21,6 +21,7 @@ import heapq
 from typing import Any
 
 import numpy as np
+from numba import njit
 from scipy.spatial import cKDTree
 
 from medialaxis.core.result import MedialAxis
@@ -63,17 +64,16 @@ def _initial_quadrics(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return quad_a, quad_b, quad_c
 
 
-def _optimum(qa: np.ndarray, qb: np.ndarray, qc: float, s1: np.ndarray, s2: np.ndarray, reg: float) -> tuple[np.ndarray, float]:
+@njit(cache=True, nogil=True)
+def _optimum(qa, qb, qc, s1, s2, reg):  # type: ignore[no-untyped-def]
+    """Sphere minimising ``s.qa.s - 2 qb.s + qc + reg |s - mid|^2`` and its quadric error (without ``reg``)."""
     mid = 0.5 * (s1 + s2)
     a = qa + reg * np.eye(4)
     b = qb + reg * mid
-    try:
-        s = np.linalg.solve(a, b)
-    except np.linalg.LinAlgError:
-        s = mid
+    s = np.linalg.solve(a, b)
     if s[3] <= 0 or not np.all(np.isfinite(s)):
         s = mid
-    cost = float(s @ qa @ s - 2.0 * qb @ s + qc)
+    cost = s @ qa @ s - 2.0 * (qb @ s) + qc
     return s, max(cost, 0.0)
 
 

@@ -34,6 +34,7 @@ from medialaxis.mesh.sampling import (
     face_spacing_for_count,
     measure_epsilon,
     pseudo_normals,
+    random_surface_points,
     sample_surface,
 )
 from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, medial_complex
@@ -150,16 +151,19 @@ def _sample_count(samples: Any, n_vertices: int) -> int:
     return int(samples)
 
 
-def _lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
-    """Tree of approximate medial points (inner and outer) from a coarse uniform sample."""
-    area = np.asarray(mesh.area_faces, np.float64)
-    h = face_spacing_for_count(area, np.ones(len(area)), count)
-    smp = sample_surface(mesh, h, normals)
-    dt = tetrahedralise(smp.points)
+def _lfs_estimate(mesh: Any, count: int, rng: np.random.Generator) -> cKDTree:
+    """Tree of approximate medial points (inner and outer) from a coarse random sample.
+
+    The coarse sample leaves the mesh vertices out, so its cost does not grow
+    with the mesh resolution.
+    """
+    points = random_surface_points(mesh, count, rng)
+    h = float(np.sqrt(mesh.area / (count * 2.0 / np.sqrt(3.0))))
+    dt = tetrahedralise(points)
     diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
     p = dt.points[dt.simplices]
     volume = np.abs(np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])))
-    medial = (dt.longest >= 2.0 * h[0]) & (dt.radii < diag) & (volume > 1e-6 * h[0] ** 3)
+    medial = (dt.longest >= 2.0 * h) & (dt.radii < diag) & (volume > 1e-6 * h**3)
     if medial.sum() < 4:
         medial = dt.radii < diag
     return cKDTree(dt.centres[medial])
@@ -319,7 +323,7 @@ def voronoi_medial_axis(
 
     t0 = time.perf_counter()
     normals = pseudo_normals(work)
-    tree = _lfs_estimate(work, max(count // 8, 2000), normals)
+    tree = _lfs_estimate(work, max(count // 8, 2000), rng)
     spacing = _adaptive_spacing(work, tree, count)
     smp = sample_surface(work, spacing, normals)
     timings["sampling"] = time.perf_counter() - t0
