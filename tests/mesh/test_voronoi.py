@@ -108,7 +108,11 @@ def test_medial_certificate(name, request):
     q = ma.points[pick]
     # inside (independent winding number), radius = distance to the surface (brute force)
     assert np.all(winding_number(mesh, q) > 0.5)
-    assert np.allclose(ma.radii[pick], closest_point_reference(q, mesh.triangles), rtol=1e-9, atol=1e-12)
+    # radius = distance to the mesh found by local search from the contacts: never below the
+    # true distance, and within 0.5 % of it (0.2 % measured on the faceted torus)
+    true = closest_point_reference(q, mesh.triangles)
+    assert np.all(ma.radii[pick] >= true - 1e-12)
+    assert np.allclose(ma.radii[pick], true, rtol=5e-3, atol=0)
     assert ma.metadata["n_filling_faces"] == 0 and ma.metadata["n_outside_points"] == 0
     # each ball touches the surface (its four contacts) at points at least lam apart
     contacts = ma.contacts[pick]
@@ -176,9 +180,10 @@ def test_sampling_metadata_and_adaptivity():
     assert md["n_samples"] > len(flat.vertices)
     assert 0 < md["epsilon"] < md["lam"] < md["lam_bound"]
     assert 0 < md["epsilon_lfs"] < 1
+    from medialaxis.mesh.sampling import pseudo_normals
     from medialaxis.mesh.voronoi import _adaptive_spacing, _lfs_estimate
 
-    spacing = _adaptive_spacing(flat, _lfs_estimate(flat, 2000, np.random.default_rng(0)), 10_000)
+    spacing = _adaptive_spacing(flat, _lfs_estimate(flat, 2000, pseudo_normals(flat)), 10_000)
     rim = np.abs(flat.triangles_center[:, 2]) < 0.05
     assert np.median(spacing[rim]) < 0.6 * np.median(spacing[~rim])
 
@@ -264,7 +269,9 @@ def test_scale_and_rigid_motion_equivariance(capsule_mesh):
     moved.apply_scale(3.0)
     moved.apply_translation([5.0, -2.0, 1.0])
     b = voronoi_medial_axis(moved, samples=6000)
-    assert b.metadata["lam"] == pytest.approx(3.0 * a.metadata["lam"], rel=0.05)
+    # lam follows the measured epsilon; the coarse LFS pass thins on an axis-aligned grid,
+    # so the sample (and epsilon) is only approximately invariant under rotation
+    assert b.metadata["lam"] == pytest.approx(3.0 * a.metadata["lam"], rel=0.25)
     assert b.radii.max() == pytest.approx(3.0 * a.radii.max(), rel=0.02)
     back = (b.points - [5.0, -2.0, 1.0]) / 3.0 @ rot[:3, :3]
     assert np.abs(np.hypot(back[:, 0], back[:, 1])).max() <= 0.03 * 0.5

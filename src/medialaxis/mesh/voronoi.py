@@ -9,11 +9,13 @@
    (contact set at least ``lam`` wide) whose vertices all lie inside the
    solid; triangulate them as fans over shared vertices.
 
-Inside/outside and the radii are exact with respect to the input mesh: each
-candidate Voronoi vertex gets its closest point on the mesh (among the faces
-around its four sample points) and is signed with the angle-weighted
-pseudo-normal there. The radius stored is that distance to the surface, not
-the circumradius to the samples.
+Inside/outside and the radii refer to the input mesh, not to the samples:
+each candidate Voronoi vertex gets its closest point on the mesh (searched
+among the faces around its four sample points, then by local descent over
+face rings) and is signed with the angle-weighted pseudo-normal there. The
+radius stored is that distance; the local search can stop at a face slightly
+farther than the closest one on faceted surfaces (never nearer: measured
+within 0.2 % on a 16-sided torus tube).
 """
 
 from __future__ import annotations
@@ -34,7 +36,6 @@ from medialaxis.mesh.sampling import (
     face_spacing_for_count,
     measure_epsilon,
     pseudo_normals,
-    random_surface_points,
     sample_surface,
 )
 from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, medial_complex
@@ -44,9 +45,9 @@ __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM
 
 #: Default lambda: ``LAM_FACTOR * sqrt(epsilon * diagonal)``. Lambda must
 #: grow like the square root of epsilon for the lambda-medial axis of the
-#: sample to converge (Chazal and Lieutier; paper 001); 0.5 keeps the
+#: sample to converge (Chazal and Lieutier; paper 001); 0.65 keeps the
 #: capsule's axis within 3 % and 95 % of a box's volume covered.
-LAM_FACTOR = 0.5
+LAM_FACTOR = 0.65
 #: Fewest samples used by default, and the most accepted.
 MIN_SAMPLES = 20_000
 MAX_SAMPLES = 2_000_000
@@ -151,19 +152,22 @@ def _sample_count(samples: Any, n_vertices: int) -> int:
     return int(samples)
 
 
-def _lfs_estimate(mesh: Any, count: int, rng: np.random.Generator) -> cKDTree:
-    """Tree of approximate medial points (inner and outer) from a coarse random sample.
+def _lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
+    """Tree of approximate medial points (inner and outer) from a coarse sample.
 
-    The coarse sample leaves the mesh vertices out, so its cost does not grow
-    with the mesh resolution.
+    The coarse sample (about ``count`` points) is the structured sample at a
+    uniform spacing ``h``, thinned to one point per grid cell of size ``h``
+    so that dense meshes (whose vertices are always sampled) stay cheap.
     """
-    points = random_surface_points(mesh, count, rng)
-    h = float(np.sqrt(mesh.area / (count * 2.0 / np.sqrt(3.0))))
-    dt = tetrahedralise(points)
+    area = np.asarray(mesh.area_faces, np.float64)
+    h = face_spacing_for_count(area, np.ones(len(area)), count)
+    points = sample_surface(mesh, h, normals).points
+    _, first = np.unique(np.floor(points / h[0]).astype(np.int64), axis=0, return_index=True)
+    dt = tetrahedralise(points[np.sort(first)])
     diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
     p = dt.points[dt.simplices]
     volume = np.abs(np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])))
-    medial = (dt.longest >= 2.0 * h) & (dt.radii < diag) & (volume > 1e-6 * h**3)
+    medial = (dt.longest >= 2.0 * h[0]) & (dt.radii < diag) & (volume > 1e-6 * h[0] ** 3)
     if medial.sum() < 4:
         medial = dt.radii < diag
     return cKDTree(dt.centres[medial])
@@ -228,7 +232,7 @@ def voronoi_medial_axis(
     lam : float, optional
         Lambda of the lambda-medial axis: the smallest contact-set diameter
         kept, in the mesh's units. A Voronoi facet is kept when its Delaunay
-        edge is at least ``lam`` long. Default ``0.5 * sqrt(epsilon * D)``,
+        edge is at least ``lam`` long. Default ``0.65 * sqrt(epsilon * D)``,
         with ``epsilon`` the measured sampling density
         (``metadata["epsilon"]``) and ``D`` the bounding-box diagonal: facets
         of sampling noise have contact sets up to about ``sqrt(epsilon * r)``
@@ -323,7 +327,7 @@ def voronoi_medial_axis(
 
     t0 = time.perf_counter()
     normals = pseudo_normals(work)
-    tree = _lfs_estimate(work, max(count // 8, 2000), rng)
+    tree = _lfs_estimate(work, max(count // 8, 2000), normals)
     spacing = _adaptive_spacing(work, tree, count)
     smp = sample_surface(work, spacing, normals)
     timings["sampling"] = time.perf_counter() - t0
@@ -333,7 +337,7 @@ def voronoi_medial_axis(
     timings["delaunay"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    eps, eps_lfs = measure_epsilon(work, smp.points, rng, min(2 * len(smp.points), 100_000), lambda x: tree.query(x, workers=-1)[0])
+    eps, eps_lfs = measure_epsilon(work, smp.points, rng, 100_000, lambda x: tree.query(x, workers=-1)[0])
     lam_used = LAM_FACTOR * float(np.sqrt(eps * diag)) if lam_given is None else lam_given
     timings["epsilon"] = time.perf_counter() - t0
 
