@@ -124,7 +124,7 @@ def test_medial_certificate(name, request):
     assert np.all(ma.face_contact_diameter >= lam)
     # the union of balls covers at least 95 % of the solid
     lo, hi = mesh.bounds
-    x = rng.uniform(lo, hi, size=(4000, 3))
+    x = rng.uniform(lo, hi, size=(2500, 3))
     x = x[winding_number(mesh, x) > 0.5]
     covered = np.zeros(len(x), bool)
     for chunk in np.array_split(np.arange(len(ma.points)), 20):
