@@ -278,8 +278,12 @@ def voronoi_medial_axis(
         topology (``metadata["n_filling_faces"]`` counts those). Metadata:
         ``lam``, ``epsilon`` (measured ``max d(x, P)``), ``epsilon_lfs``
         (the same relative to the estimated local feature size),
-        ``lam_bound`` (the lambda of Algorithm 5, ``10 * (9 D^3 epsilon)^(1/4)``
-        with ``D`` the diameter), ``euler_characteristic``, ``timings``...
+        ``lam_bound`` (the lambda of Algorithm 5 step 3 as we read the
+        paper's formula, ``10 * (9 D^3 epsilon)^(1/4)`` with ``D`` the
+        bounding-box diagonal standing for the diameter: a worst-case bound,
+        usually larger than the shape, hence the practical default ``lam``),
+        ``euler_characteristic``, ``n_filling_faces``, ``timings`` (seconds
+        per step) and ``delaunay_share``.
 
     Raises
     ------
