@@ -26,6 +26,7 @@ METHODS: dict[str, dict[str, str]] = {
     },
     "mesh": {
         "flow": "medialaxis.mesh.flow:flow_skeleton",
+        "voronoi": "medialaxis.mesh.voronoi:voronoi_medial_axis",
     },
     "volume": {
         "midsurface": "medialaxis.volume.pipeline:midsurface_medial_axis",

@@ -3,8 +3,9 @@
 Lossless: ``.json`` and ``.npz`` (read back by :func:`load`, including the
 unpruned axis so :meth:`MedialAxis.prune` still works). Exports: ``.graphml``,
 ``.geojson``, ``.svg`` (axis over the shape), ``.png`` (plot coloured by
-radius), ``.ply`` (vertices with radius, edges, faces), ``.obj`` and ``.vtk``
-(legacy polydata with radius, thickness and per-vertex extras as point data).
+radius), ``.ply`` (vertices with radius, edges, faces), ``.obj``, ``.vtk``
+(legacy polydata with radius, thickness and per-vertex extras as point data)
+and ``.html`` (interactive 3D view, :mod:`medialaxis.core.html`).
 Every file is written to a temporary name in the target folder, then renamed,
 so a failure never leaves a half-written file.
 """
@@ -366,6 +367,12 @@ def _write_vtk(ma: MedialAxis, path: Path) -> None:
             np.savetxt(fh, np.asarray(values, np.float64), fmt="%.10g")
 
 
+def _write_html(ma: MedialAxis, path: Path) -> None:
+    from medialaxis.core.html import write_html  # plotly view, 3D results
+
+    write_html(ma, path)
+
+
 WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
     ".json": _write_json,
     ".npz": _write_npz,
@@ -376,6 +383,7 @@ WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
     ".ply": _write_ply,
     ".obj": _write_obj,
     ".vtk": _write_vtk,
+    ".html": _write_html,
 }
 LOSSLESS = (".json", ".npz")
 

@@ -1,0 +1,103 @@
+"""Benchmark: Voronoi lambda-medial surface of a 100,000-vertex mesh.
+
+Prints our time (with the Delaunay step's share), the peer figure measured
+in the same run (SciPy's Qhull Voronoi diagram of the mesh vertices alone,
+``scipy.spatial.Voronoi``: the bare step every Voronoi medial method starts
+from, with no sampling, inside test or filtering), and the ratio. Also
+prints the Q-MAT simplification error against the number of spheres for two
+meshes.
+
+Run: ``PYTHONPATH=src python benchmarks/bench_mesh_voronoi.py [--vertices N] [--no-qmat]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+
+def bumpy_torus(n_vertices: int, seed: int = 0):
+    """A torus with smooth random bumps, about ``n_vertices`` vertices."""
+    import trimesh
+
+    minor = int(np.sqrt(n_vertices / 2.5))
+    major = int(round(n_vertices / minor))
+    mesh = trimesh.creation.torus(major_radius=1.0, minor_radius=0.35, major_sections=major, minor_sections=minor)
+    rng = np.random.default_rng(seed)
+    v = mesh.vertices.copy()
+    theta = np.arctan2(v[:, 1], v[:, 0])
+    ring = np.c_[np.cos(theta), np.sin(theta), np.zeros(len(v))]
+    tube = v - ring
+    phi = np.arctan2(tube[:, 2], (tube * ring).sum(1))
+    bump = np.zeros(len(v))
+    for _ in range(6):
+        a, b, c = rng.integers(1, 6), rng.integers(1, 4), rng.uniform(0, 2 * np.pi)
+        bump += 0.02 * np.sin(a * theta + b * phi + c)
+    v = ring + tube * (1.0 + bump / 0.35)[:, None]
+    return trimesh.Trimesh(v, mesh.faces, process=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--vertices", type=int, default=100_000)
+    parser.add_argument("--no-qmat", action="store_true", help="skip the Q-MAT error table")
+    parser.add_argument("--qmat-only", action="store_true", help="only the Q-MAT error table")
+    args = parser.parse_args()
+
+    if not args.qmat_only:
+        speed(args.vertices)
+    if not args.no_qmat:
+        qmat_table()
+
+
+def speed(n_vertices: int) -> None:
+    import trimesh
+    from scipy.spatial import Voronoi
+
+    from medialaxis.mesh.voronoi import voronoi_medial_axis
+
+    mesh = bumpy_torus(n_vertices)
+    print(f"mesh: bumpy torus, {len(mesh.vertices)} vertices, {len(mesh.faces)} faces, watertight {mesh.is_watertight}")
+    voronoi_medial_axis(trimesh.creation.capsule(), samples=2000)  # warm the numba cache
+    t0 = time.perf_counter()
+    ma = voronoi_medial_axis(mesh)
+    ours = time.perf_counter() - t0
+    md = ma.metadata
+    timing = ", ".join(f"{k} {v:.2f}" for k, v in md["timings"].items())
+    print(f"ours: {ours:.2f} s ({md['n_samples']} samples, {md['n_tetrahedra']} tetrahedra; {timing})")
+    print(f"  Delaunay share {md['delaunay_share']:.1%}; {len(ma.points)} points, {len(ma.faces)} faces")
+    print(f"  euler characteristic {md['euler_characteristic']} (solid: {md['mesh_euler_characteristic'] // 2}),"
+          f" components {ma.n_components}, epsilon {md['epsilon']:.4g}, lam {md['lam']:.4g}")
+    t0 = time.perf_counter()
+    Voronoi(np.asarray(mesh.vertices))
+    peer = time.perf_counter() - t0
+    print(f"peer: scipy.spatial.Voronoi of the {len(mesh.vertices)} vertices: {peer:.2f} s")
+    print(f"ratio ours / peer: {ours / peer:.2f}")
+    print("(2 shared cores, other jobs running: timings are pessimistic)")
+
+
+def qmat_table() -> None:
+    import trimesh
+
+    from medialaxis.mesh.qmat import simplify_medial_mesh
+    from medialaxis.mesh.voronoi import voronoi_medial_axis
+
+    for name, m in (
+        ("bumpy torus 3k", bumpy_torus(3_000, seed=1)),
+        ("box 2x1x0.5", trimesh.creation.box(extents=(2.0, 1.0, 0.5))),
+    ):
+        full = voronoi_medial_axis(m, samples=3_000)
+        print(f"Q-MAT on {name}: {len(full.points)} spheres before")
+        for n in (2000, 500, 200, 50, 20):
+            t0 = time.perf_counter()
+            s = simplify_medial_mesh(full, n, surface=m)
+            print(
+                f"  {len(s.points):5d} spheres: two-sided Hausdorff {s.metadata['hausdorff']:.4g}"
+                f" ({s.metadata['hausdorff'] / s.metadata['diagonal']:.2%} of the diagonal), {time.perf_counter() - t0:.2f} s"
+            )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,351 @@
+"""Compiled kernels of the Voronoi mesh pipeline: closest points on triangles.
+
+:func:`closest_on_candidates` finds, for each query point, the closest point
+among a per-query list of candidate triangles (a CSR list), with the Voronoi
+region of the triangle it falls in (a vertex, an edge or the face), so the
+caller can sign the distance with the angle-weighted pseudo-normal
+(Baerentzen and Aanaes 2005). :func:`closest_point_reference` is a
+brute-force NumPy version over every triangle, used by the tests.
+"""
+
+from __future__ import annotations
+
+import heapq
+
+import numpy as np
+from numba import njit, prange
+
+__all__ = ["closest_on_candidates", "closest_point_reference", "collapse_facets", "collapse_free_sides", "REGION_FACE"]
+
+#: Region codes: 0, 1, 2 = vertex a, b, c; 3, 4, 5 = edge ab, bc, ca; 6 = face.
+REGION_FACE = 6
+#: Most steps of the local descent from the best face found.
+MAX_WALK = 16
+
+
+@njit(cache=True, nogil=True)
+def _closest_on_triangle(px, py, pz, a, b, c):  # type: ignore[no-untyped-def]
+    """Barycentric weights (v, w) of the closest point to ``p`` on triangle ``abc`` and its region.
+
+    Ericson, Real-Time Collision Detection, 5.1.5; scalar code (no
+    allocation). The closest point is ``a + v (b - a) + w (c - a)``.
+    """
+    abx, aby, abz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+    acx, acy, acz = c[0] - a[0], c[1] - a[1], c[2] - a[2]
+    apx, apy, apz = px - a[0], py - a[1], pz - a[2]
+    d1 = abx * apx + aby * apy + abz * apz
+    d2 = acx * apx + acy * apy + acz * apz
+    if d1 <= 0.0 and d2 <= 0.0:
+        return 0.0, 0.0, 0
+    bpx, bpy, bpz = px - b[0], py - b[1], pz - b[2]
+    d3 = abx * bpx + aby * bpy + abz * bpz
+    d4 = acx * bpx + acy * bpy + acz * bpz
+    if d3 >= 0.0 and d4 <= d3:
+        return 1.0, 0.0, 1
+    vc = d1 * d4 - d3 * d2
+    if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
+        return d1 / (d1 - d3), 0.0, 3
+    cpx, cpy, cpz = px - c[0], py - c[1], pz - c[2]
+    d5 = abx * cpx + aby * cpy + abz * cpz
+    d6 = acx * cpx + acy * cpy + acz * cpz
+    if d6 >= 0.0 and d5 <= d6:
+        return 0.0, 1.0, 2
+    vb = d5 * d2 - d1 * d6
+    if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
+        return 0.0, d2 / (d2 - d6), 5
+    va = d3 * d6 - d5 * d4
+    if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
+        w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        return 1.0 - w, w, 4
+    denom = 1.0 / (va + vb + vc)
+    return vb * denom, vc * denom, 6
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):  # type: ignore[no-untyped-def]
+    """Closest point among the faces around a few given faces, per query.
+
+    Parameters
+    ----------
+    query : (q, 3) float64 ndarray
+    tri_a, tri_b, tri_c : (f, 3) float64 ndarray
+        Triangle corners.
+    near : (q, k) int64 ndarray
+        Faces near each query; the candidates are their rings, then the
+        rings of the best face found, repeatedly (up to ``MAX_WALK`` steps)
+        until the best face stays the same.
+    ring_ptr : (f + 1,) int64 ndarray
+    ring_idx : (c,) int64 ndarray
+        Ring of face ``f`` (faces sharing a vertex with it, itself included):
+        ``ring_idx[ring_ptr[f]:ring_ptr[f + 1]]``.
+
+    Returns
+    -------
+    dist : (q,) float64 ndarray
+        Unsigned distance.
+    point : (q, 3) float64 ndarray
+    face : (q,) int64 ndarray
+    region : (q,) int64 ndarray
+        0-2 vertex, 3-5 edge (ab, bc, ca), 6 face.
+    """
+    nq = query.shape[0]
+    dist = np.full(nq, np.inf)
+    point = np.zeros((nq, 3))
+    face = np.full(nq, -1, np.int64)
+    region = np.full(nq, -1, np.int64)
+    for i in prange(nq):
+        p = query[i]
+        best = np.inf
+        # scan the rings of the given faces, then walk: scan the ring of the
+        # best face found until it no longer changes (local descent on the mesh)
+        n_near = near.shape[1]
+        scanned = -1
+        for a in range(n_near + MAX_WALK):
+            if a < n_near:
+                g = near[i, a]
+                seen = False
+                for b in range(a):
+                    if near[i, b] == g:
+                        seen = True
+                if seen:
+                    continue
+            else:
+                g = face[i]
+                if g == scanned:
+                    break
+                scanned = g
+            for k in range(ring_ptr[g], ring_ptr[g + 1]):
+                f = ring_idx[k]
+                a_, b_, c_ = tri_a[f], tri_b[f], tri_c[f]
+                v, w, r = _closest_on_triangle(p[0], p[1], p[2], a_, b_, c_)
+                x0 = a_[0] + v * (b_[0] - a_[0]) + w * (c_[0] - a_[0])
+                x1 = a_[1] + v * (b_[1] - a_[1]) + w * (c_[1] - a_[1])
+                x2 = a_[2] + v * (b_[2] - a_[2]) + w * (c_[2] - a_[2])
+                d2 = (p[0] - x0) ** 2 + (p[1] - x1) ** 2 + (p[2] - x2) ** 2
+                if d2 < best:
+                    best = d2
+                    point[i, 0], point[i, 1], point[i, 2] = x0, x1, x2
+                    face[i] = f
+                    region[i] = r
+        dist[i] = np.sqrt(best)
+    return dist, point, face, region
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    ab = b - a
+    t = np.einsum("...k,...k->...", p - a, ab) / np.maximum(np.einsum("...k,...k->...", ab, ab), 1e-300)
+    t = np.clip(t, 0.0, 1.0)
+    return np.linalg.norm(p - (a + t[..., None] * ab), axis=-1)
+
+
+def closest_point_reference(query: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Brute-force unsigned distance from each query to a triangle soup.
+
+    Parameters
+    ----------
+    query : (q, 3) float64 ndarray
+    triangles : (f, 3, 3) float64 ndarray
+
+    Returns
+    -------
+    (q,) float64 ndarray
+        Distance to the nearest triangle: the plane distance where the foot
+        falls inside, else the nearest of the three edges.
+    """
+    p = np.asarray(query, np.float64)[:, None, :]
+    a, b, c = (np.asarray(triangles, np.float64)[None, :, k, :] for k in range(3))
+    n = np.cross(b - a, c - a)
+    n = n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-300)
+    h = np.einsum("qfk,qfk->qf", p - a, n)
+    foot = p - h[..., None] * n
+    inside = np.ones(h.shape, bool)
+    for u, v in ((a, b), (b, c), (c, a)):
+        inside &= np.einsum("qfk,qfk->qf", np.cross(v - u, foot - u), n) >= 0
+    edge = np.minimum(np.minimum(_segment_distance(p, a, b), _segment_distance(p, b, c)), _segment_distance(p, c, a))
+    return np.where(inside, np.abs(h), edge).min(axis=1)
+
+
+@njit(cache=True, nogil=True)
+def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, length, protected):  # type: ignore[no-untyped-def]
+    """Topology-preserving collapse of a 2-complex of polygons, shortest contacts first.
+
+    An unprotected facet is removed together with one of its free sides (a
+    side no other present facet uses): an elementary collapse, which keeps
+    the homotopy type. Protected facets are never removed. Candidates are
+    taken by increasing ``length``.
+
+    Parameters
+    ----------
+    facet_ptr : (f + 1,) int64 ndarray
+    facet_sides : (r,) int64 ndarray
+        Side ids of facet ``k``: ``facet_sides[facet_ptr[k]:facet_ptr[k + 1]]``.
+    side_facet_ptr, side_facet_idx : int64 ndarray
+        The transposed incidence (facets of each side).
+    length : (f,) float64 ndarray
+        Removal priority (smallest first).
+    protected : (f,) bool ndarray
+
+    Returns
+    -------
+    facet_alive : (f,) bool ndarray
+    side_alive : (s,) bool ndarray
+        Sides removed by a collapse are dead; the others stay (as 1D edges
+        when no facet uses them any more).
+    """
+    n_facets = facet_ptr.shape[0] - 1
+    n_sides = side_facet_ptr.shape[0] - 1
+    count = np.zeros(n_sides, np.int64)
+    for k in range(facet_sides.shape[0]):
+        count[facet_sides[k]] += 1
+    facet_alive = np.ones(n_facets, np.bool_)
+    side_alive = np.ones(n_sides, np.bool_)
+    heap = [(0.0, np.int64(0))]
+    heap.pop()
+    for f in range(n_facets):
+        if not protected[f]:
+            for k in range(facet_ptr[f], facet_ptr[f + 1]):
+                if count[facet_sides[k]] == 1:
+                    heap.append((length[f], np.int64(f)))
+                    break
+    heapq.heapify(heap)
+    while len(heap) > 0:
+        _, f = heapq.heappop(heap)
+        if not facet_alive[f]:
+            continue
+        free = -1
+        for k in range(facet_ptr[f], facet_ptr[f + 1]):
+            s = facet_sides[k]
+            if side_alive[s] and count[s] == 1:
+                free = s
+                break
+        if free < 0:
+            continue
+        facet_alive[f] = False
+        side_alive[free] = False
+        for k in range(facet_ptr[f], facet_ptr[f + 1]):
+            s = facet_sides[k]
+            count[s] -= 1
+            if side_alive[s] and count[s] == 1:
+                for j in range(side_facet_ptr[s], side_facet_ptr[s + 1]):
+                    g = side_facet_idx[j]
+                    if facet_alive[g] and not protected[g]:
+                        heapq.heappush(heap, (length[g], g))
+    return facet_alive, side_alive
+
+
+@njit(cache=True, nogil=True)
+def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: ignore[no-untyped-def]
+    """Remove dangling 1D sides (no facet) ending at a vertex of degree one, repeatedly.
+
+    Parameters
+    ----------
+    side_alive : (s,) bool ndarray
+    side_used : (s,) bool ndarray
+        True where a remaining facet uses the side (never removed).
+    side_ends : (s, 2) int64 ndarray
+    n_vertices : int
+
+    Returns
+    -------
+    (s,) bool ndarray
+        The sides still present.
+    """
+    alive = side_alive.copy()
+    degree = np.zeros(n_vertices, np.int64)
+    for s in range(alive.shape[0]):
+        if alive[s]:
+            degree[side_ends[s, 0]] += 1
+            degree[side_ends[s, 1]] += 1
+    # vertex -> sides incidence
+    ptr = np.zeros(n_vertices + 1, np.int64)
+    for s in range(alive.shape[0]):
+        ptr[side_ends[s, 0] + 1] += 1
+        ptr[side_ends[s, 1] + 1] += 1
+    for v in range(n_vertices):
+        ptr[v + 1] += ptr[v]
+    fill = ptr[:-1].copy()
+    inc = np.empty(ptr[-1], np.int64)
+    for s in range(alive.shape[0]):
+        for e in range(2):
+            v = side_ends[s, e]
+            inc[fill[v]] = s
+            fill[v] += 1
+    stack = [np.int64(v) for v in range(n_vertices) if degree[v] == 1]
+    while len(stack) > 0:
+        v = stack.pop()
+        if degree[v] != 1:
+            continue
+        for j in range(ptr[v], ptr[v + 1]):
+            s = inc[j]
+            if alive[s]:
+                if side_used[s]:
+                    break
+                alive[s] = False
+                for e in range(2):
+                    w = side_ends[s, e]
+                    degree[w] -= 1
+                    if degree[w] == 1:
+                        stack.append(w)
+                break
+    return alive
+
+
+@njit(cache=True, nogil=True)
+def walk_edge_rings(simplices, neighbors, edge_i, edge_j, first_tet, counts):  # type: ignore[no-untyped-def]
+    """Order the tetrahedra around each Delaunay edge by walking across shared faces.
+
+    Parameters
+    ----------
+    simplices, neighbors : (t, 4) int64 ndarray
+        Delaunay tetrahedra and the tetrahedron opposite each vertex (-1 on the hull).
+    edge_i, edge_j : (e,) int64 ndarray
+        The edges.
+    first_tet : (e,) int64 ndarray
+        One tetrahedron containing each edge.
+    counts : (e,) int64 ndarray
+        Number of tetrahedra around each edge.
+
+    Returns
+    -------
+    ring : (counts.sum(),) int64 ndarray
+        Tetrahedra of edge ``k`` in cyclic order, at ``cumsum(counts)[k] - counts[k]``.
+    valid : (e,) bool ndarray
+        False where the walk met the hull or did not close after ``counts`` steps.
+    """
+    n_edges = edge_i.shape[0]
+    ring = np.full(counts.sum(), -1, np.int64)
+    valid = np.ones(n_edges, np.bool_)
+    pos = 0
+    for e in range(n_edges):
+        i, j = edge_i[e], edge_j[e]
+        t = first_tet[e]
+        came = -1
+        for c in range(4):
+            v = simplices[t, c]
+            if v != i and v != j:
+                came = v
+                break
+        start = t
+        for step in range(counts[e]):
+            ring[pos + step] = t
+            # exit through the face (i, j, other), i.e. opposite `came`
+            nxt = -1
+            other = -1
+            for c in range(4):
+                v = simplices[t, c]
+                if v == came:
+                    nxt = neighbors[t, c]
+                elif v != i and v != j:
+                    other = v
+            if nxt < 0:
+                valid[e] = False
+                break
+            came = other
+            t = nxt
+            if t == start and step != counts[e] - 1:
+                valid[e] = False
+                break
+        if valid[e] and t != start:
+            valid[e] = False
+        pos += counts[e]
+    return ring, valid

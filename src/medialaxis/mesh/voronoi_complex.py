@@ -1,0 +1,180 @@
+"""The medial complex: Voronoi facets inside the solid, lambda-filtered, topology kept.
+
+Step 3 of Algorithm 5 (paper 001) removes the Voronoi facets whose contact
+set is narrower than lambda. Done literally (``topology="lambda"``) the
+result carries the sampling noise as small holes and islands where the
+contact width crosses lambda. ``topology="preserve"`` (the default) starts
+instead from the dual complex ``D`` of the inner Delaunay tetrahedra
+(vertices: tetrahedra whose circumcentre is inside; edges: triangles shared
+by two of them; facets: Delaunay edges all of whose tetrahedra are inside).
+``D`` is homotopy equivalent to the union of the inner tetrahedra, which
+approximates the solid. ``D`` is then collapsed: facets narrower than lambda
+are removed, shortest first, only through a free side (an elementary
+collapse), then dangling curve pieces are removed. Every facet of at least
+lambda stays; the facets narrower than lambda that remain are those needed
+to keep the homotopy type (filling holes of the lambda set) and are counted
+in ``metadata["n_filling_faces"]``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Literal
+
+import numpy as np
+
+from medialaxis.errors import InvalidInputError
+from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides
+from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
+
+__all__ = ["MedialComplex", "medial_complex", "fan_triangles", "TOPOLOGY_MODES"]
+
+TOPOLOGY_MODES = ("preserve", "lambda")
+
+
+@dataclasses.dataclass(frozen=True)
+class MedialComplex:
+    """A medial complex over Delaunay tetrahedra (its points are their circumcentres).
+
+    Attributes
+    ----------
+    tets : (n,) int64 ndarray
+        Tetrahedron of each point.
+    faces : (k, 3) int64 ndarray
+        Triangles over the points (fans of the kept facets).
+    face_length : (k,) float64 ndarray
+        Delaunay edge length (contact-set width) of each triangle's facet.
+    face_certified : (k,) bool ndarray
+        The facet is at least lambda wide and all its vertices are inside
+        (a facet of Algorithm 5); the others are kept for topology only.
+    edges : (m, 2) int64 ndarray
+        Curve pieces (no facet), then facet sides on the surface boundary or
+        where three or more facets meet.
+    n_curve_edges : int
+        How many of ``edges`` are curve pieces (they come first).
+    """
+
+    tets: np.ndarray
+    faces: np.ndarray
+    face_length: np.ndarray
+    face_certified: np.ndarray
+    edges: np.ndarray
+    n_curve_edges: int
+
+
+def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Fan triangulation of each ring polygon from its first vertex.
+
+    Returns
+    -------
+    tris : (k, 3) int64 ndarray
+    owner : (k,) int64 ndarray
+        Ring of each triangle.
+    sides : (r, 2) int64 ndarray
+        Consecutive vertex pairs of every ring (its polygon sides), aligned with ``ring_tets``.
+    """
+    counts = np.diff(ring_ptr)
+    n_tri = np.maximum(counts - 2, 0)
+    owner = np.repeat(np.arange(len(counts)), n_tri)
+    step = np.arange(n_tri.sum()) - np.repeat(np.cumsum(n_tri) - n_tri, n_tri)
+    base = ring_ptr[owner]
+    tris = np.c_[ring_tets[base], ring_tets[base + step + 1], ring_tets[base + step + 2]]
+    nxt = np.arange(len(ring_tets)) + 1
+    nxt[ring_ptr[1:][counts > 0] - 1] = ring_ptr[:-1][counts > 0]
+    return tris, owner, np.c_[ring_tets, ring_tets[nxt]]
+
+
+def _select(ring_ptr: np.ndarray, ring_tets: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    counts = np.diff(ring_ptr)
+    return np.r_[0, np.cumsum(counts[keep])].astype(np.int64), ring_tets[np.repeat(keep, counts)]
+
+
+def _all_in_ring(ring_ptr: np.ndarray, ring_tets: np.ndarray, flag: np.ndarray) -> np.ndarray:
+    """For each ring: are all its tetrahedra flagged."""
+    if len(ring_tets) == 0:
+        return np.zeros(len(ring_ptr) - 1, bool)
+    bad = np.add.reduceat((~flag[ring_tets]).astype(np.int64), ring_ptr[:-1])
+    return (bad == 0) & (np.diff(ring_ptr) > 0)
+
+
+def _csr_transpose(ptr: np.ndarray, idx: np.ndarray, n_cols: int) -> tuple[np.ndarray, np.ndarray]:
+    rows = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))
+    order = np.argsort(idx, kind="stable")
+    tptr = np.r_[0, np.cumsum(np.bincount(idx, minlength=n_cols))].astype(np.int64)
+    return tptr, rows[order].astype(np.int64)
+
+
+def medial_complex(
+    dt: Tetrahedralisation,
+    inner: np.ndarray,
+    centre_inside: np.ndarray,
+    lam: float,
+    topology: Literal["preserve", "lambda"] = "preserve",
+) -> MedialComplex:
+    """Build the medial complex from inner tetrahedra (see the module docstring).
+
+    Parameters
+    ----------
+    dt : Tetrahedralisation
+    inner : (t,) bool ndarray
+        Tetrahedra whose centroid lies strictly inside the solid (their
+        union is the solid, up to the sampling); used by ``"preserve"``.
+    centre_inside : (t,) bool ndarray
+        Tetrahedra whose circumcentre (Voronoi vertex) lies inside the solid.
+    lam : float
+        Smallest contact-set width (Delaunay edge length) of a kept facet.
+    topology : {"preserve", "lambda"}
+
+    Returns
+    -------
+    MedialComplex
+    """
+    if topology not in TOPOLOGY_MODES:
+        raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
+    n_tets = len(dt.simplices)
+    if topology == "lambda":
+        tets = np.flatnonzero(dt.longest >= lam)
+        edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, tets, lam)
+    else:
+        edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
+    member = centre_inside if topology == "lambda" else inner
+    keep = _all_in_ring(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
+    ring_ptr, ring_tets = _select(ring_ptr, ring_tets, keep)
+    length = length[keep]
+    certified = (length >= lam) & _all_in_ring(ring_ptr, ring_tets, centre_inside)
+    n_curve = 0
+    curve = np.empty((0, 2), np.int64)
+    if topology == "preserve":
+        # Sides of D: triangles shared by two inner tetrahedra.
+        t = np.repeat(np.arange(n_tets), 4)
+        nb = dt.neighbors.ravel()
+        both = (nb > t) & inner[t] & inner[np.maximum(nb, 0)]
+        side_ends = np.c_[t[both], nb[both]]
+        side_key = side_ends[:, 0] * n_tets + side_ends[:, 1]
+        order = np.argsort(side_key)
+        side_key, side_ends = side_key[order], side_ends[order]
+        _, _, ring_sides = fan_triangles(ring_ptr, ring_tets)
+        ring_sides.sort(axis=1)
+        facet_sides = np.searchsorted(side_key, ring_sides[:, 0] * n_tets + ring_sides[:, 1]).astype(np.int64)
+        sptr, sidx = _csr_transpose(ring_ptr, facet_sides, len(side_key))
+        facet_alive, side_alive = collapse_facets(ring_ptr, facet_sides, sptr, sidx, length, certified)
+        side_used = np.zeros(len(side_key), bool)
+        side_used[facet_sides[np.repeat(facet_alive, np.diff(ring_ptr))]] = True
+        side_alive = collapse_free_sides(side_alive, side_used, side_ends, n_tets)
+        curve = side_ends[side_alive & ~side_used]
+        n_curve = len(curve)
+        ring_ptr, ring_tets = _select(ring_ptr, ring_tets, facet_alive)
+        length, certified = length[facet_alive], certified[facet_alive]
+    else:
+        ring_ptr, ring_tets = _select(ring_ptr, ring_tets, certified)
+        length, certified = length[certified], certified[certified]
+    tris, owner, sides = fan_triangles(ring_ptr, ring_tets)
+    sides = np.sort(sides, axis=1)
+    keys, side_count = np.unique(sides[:, 0] * n_tets + sides[:, 1], return_counts=True)
+    border = keys[side_count != 2]
+    border = np.c_[border // n_tets, border % n_tets]
+    used = np.unique(np.concatenate([ring_tets, curve.ravel()]))
+    new_index = np.full(n_tets, -1, np.int64)
+    new_index[used] = np.arange(len(used))
+    edges = new_index[np.concatenate([curve, border]).astype(np.int64)].reshape(-1, 2)
+    return MedialComplex(used, new_index[tris].reshape(-1, 3), length[owner], certified[owner], edges, n_curve)

@@ -1,0 +1,174 @@
+"""The 3D Delaunay tetrahedralisation of a surface sample and its Voronoi facets.
+
+Step 2 of Algorithm 5 (paper 001). The Voronoi vertices are the circumcentres
+of the Delaunay tetrahedra; the Voronoi facet dual to a Delaunay edge ``(i, j)``
+is the polygon of the circumcentres of the tetrahedra around that edge, in
+cyclic order around it (found by walking across shared faces). Every point of that facet is equidistant from
+samples ``i`` and ``j`` and closer to them than to any other sample, so its
+contact set contains both: its diameter is at least ``|p_i - p_j|``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from scipy.spatial import Delaunay, QhullError
+
+from medialaxis.errors import ComputationError
+from medialaxis.mesh._voronoi_kernels import walk_edge_rings
+
+__all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings", "TET_EDGES"]
+
+#: Local vertex pairs of the six edges of a tetrahedron, and the two other vertices.
+TET_EDGES = np.array([(0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2), (1, 2, 0, 3), (1, 3, 0, 2), (2, 3, 0, 1)], np.int64)
+
+
+@dataclasses.dataclass(frozen=True)
+class Tetrahedralisation:
+    """Delaunay tetrahedra of a point set with their circumspheres.
+
+    Attributes
+    ----------
+    points : (p, 3) float64 ndarray
+    simplices : (t, 4) int64 ndarray
+    centres : (t, 3) float64 ndarray
+        Circumcentres (Voronoi vertices); see :func:`circumspheres` for flat tetrahedra.
+    radii : (t,) float64 ndarray
+        Circumradii (``inf`` where undefined).
+    longest : (t,) float64 ndarray
+        Longest edge of each tetrahedron.
+    neighbors : (t, 4) int64 ndarray
+        Tetrahedron opposite each vertex (-1 on the hull).
+    hull_edges : (h,) int64 ndarray
+        Sorted keys ``i * p + j`` (``i < j``) of the convex hull's edges, whose
+        Voronoi facets are unbounded.
+    """
+
+    points: np.ndarray
+    simplices: np.ndarray
+    centres: np.ndarray
+    radii: np.ndarray
+    longest: np.ndarray
+    neighbors: np.ndarray
+    hull_edges: np.ndarray
+
+
+def circumspheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Circumcentres ``(t, 3)`` and circumradii ``(t,)`` of tetrahedra.
+
+    Flat tetrahedra (zero volume) get the circumcentre of their first three
+    points (on the line of Voronoi vertices they span); fully degenerate
+    ones get ``nan`` centres and ``inf`` radii.
+    """
+    a = points[simplices[:, 0]]
+    u = points[simplices[:, 1]] - a
+    v = points[simplices[:, 2]] - a
+    w = points[simplices[:, 3]] - a
+    vw, wu, uv = np.cross(v, w), np.cross(w, u), np.cross(u, v)
+    det = 2.0 * np.einsum("ij,ij->i", u, vw)
+    num = (u * u).sum(1)[:, None] * vw + (v * v).sum(1)[:, None] * wu + (w * w).sum(1)[:, None] * uv
+    scale = np.maximum(np.abs(u).max(1), np.abs(w).max(1)) ** 3
+    flat = np.abs(det) <= 1e-12 * np.maximum(scale, 1e-300)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        offset = num / det[:, None]
+    if flat.any():
+        # Co-planar (co-circular) points: the Voronoi vertex lies on the line
+        # through their circle's centre; take that centre.
+        uf, vf = u[flat], v[flat]
+        n = np.cross(uf, vf)
+        nn = np.maximum((n * n).sum(1), 1e-300)[:, None]
+        offset[flat] = (np.cross(n, uf) * (vf * vf).sum(1)[:, None] + np.cross(vf, n) * (uf * uf).sum(1)[:, None]) / (
+            2.0 * nn
+        )
+        degenerate = flat & ~np.all(np.isfinite(offset), axis=1)
+        offset[degenerate] = np.nan
+    radii = np.linalg.norm(offset, axis=1)
+    radii[~np.isfinite(radii)] = np.inf
+    return a + offset, radii
+
+
+def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
+    """Delaunay tetrahedralisation (SciPy's Qhull) with circumspheres and hull edges.
+
+    Qhull runs with joggled input (``QJ``): samples of planes and spheres
+    are highly degenerate (co-planar, co-spherical), which without it cost
+    minutes; the joggle is far below the sample spacing, and the
+    circumspheres are computed from the exact points.
+
+    Raises
+    ------
+    ComputationError
+        If Qhull fails (fewer than 5 points, or all coplanar).
+    """
+    points = np.ascontiguousarray(points, np.float64)
+    try:
+        tri = Delaunay(points, qhull_options="Qbb Qc Q12 QJ")
+    except QhullError as exc:
+        raise ComputationError(f"the 3D Delaunay tetrahedralisation failed: {str(exc).splitlines()[0]}") from exc
+    simplices = np.asarray(tri.simplices, np.int64)
+    centres, radii = circumspheres(points, simplices)
+    p = points[simplices]
+    longest = np.zeros(len(simplices))
+    for i, j, _, _ in TET_EDGES:
+        longest = np.maximum(longest, np.linalg.norm(p[:, i] - p[:, j], axis=1))
+    hull = np.asarray(tri.convex_hull, np.int64)
+    n = len(points)
+    he = np.concatenate([hull[:, [0, 1]], hull[:, [1, 2]], hull[:, [2, 0]]])
+    he.sort(axis=1)
+    hull_edges = np.unique(he[:, 0] * n + he[:, 1])
+    return Tetrahedralisation(points, simplices, centres, radii, longest, np.asarray(tri.neighbors, np.int64), hull_edges)
+
+
+def edge_rings(
+    dt: Tetrahedralisation, tets: np.ndarray, min_length: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Voronoi facets dual to the Delaunay edges of ``tets`` at least ``min_length`` long.
+
+    Parameters
+    ----------
+    dt : Tetrahedralisation
+    tets : (s,) int64 ndarray
+        The tetrahedra to consider. A facet is complete only if every
+        tetrahedron around its edge is in ``tets`` (true when ``tets`` holds
+        all tetrahedra with an edge of at least ``min_length``).
+    min_length : float
+
+    Returns
+    -------
+    edge_ij : (e, 2) int64 ndarray
+        Sample indices of each bounded facet's Delaunay edge (hull edges are dropped).
+    ring_ptr : (e + 1,) int64 ndarray
+    ring_tets : (r,) int64 ndarray
+        Tetrahedra of facet ``k`` in angular order around its edge:
+        ``ring_tets[ring_ptr[k]:ring_ptr[k + 1]]``.
+    length : (e,) float64 ndarray
+        Length of each facet's Delaunay edge (the contact-set lower bound).
+    """
+    n = len(dt.points)
+    s = dt.simplices[tets]
+    inc_tet = np.repeat(tets, 6)
+    loc = np.tile(TET_EDGES, (len(tets), 1))
+    rows = np.repeat(np.arange(len(tets)), 6)
+    i, j = s[rows, loc[:, 0]], s[rows, loc[:, 1]]
+    lo, hi = np.minimum(i, j), np.maximum(i, j)
+    pi, pj = dt.points[lo], dt.points[hi]
+    length = np.linalg.norm(pj - pi, axis=1)
+    keep = length >= min_length
+    lo, hi, inc_tet, length = lo[keep], hi[keep], inc_tet[keep], length[keep]
+    key = lo * n + hi
+    order = np.argsort(key, kind="stable")
+    key, inc_tet, length = key[order], inc_tet[order], length[order]
+    starts = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
+    counts = np.diff(np.r_[starts, len(key)])
+    ukey = key[starts]
+    ring, valid = walk_edge_rings(
+        dt.simplices, dt.neighbors, ukey // n, ukey % n, inc_tet[starts], counts.astype(np.int64)
+    )
+    valid &= ~np.isin(ukey, dt.hull_edges)
+    ring_ptr = np.r_[0, np.cumsum(counts[valid])].astype(np.int64)
+    ring = ring[np.repeat(valid, counts)]
+    ukey = ukey[valid]
+    edge_ij = np.c_[ukey // n, ukey % n]
+    return edge_ij, ring_ptr, ring, length[starts[valid]]
+
