@@ -8,7 +8,14 @@ shock-graph row, the time per pair of each, and the time of
 repeated, so the pairwise step is real; signatures are per-shape work,
 measured separately).
 
-    PYTHONPATH=src python benchmarks/bench_compare.py [--data DIR] [--collection 1400] [--jobs 2]
+    PYTHONPATH=src python benchmarks/bench_compare.py [--data DIR] [--collection 1400] [--jobs 2] [--variants]
+
+``--variants`` also prints the row of each variant evaluated for the
+follow-up of issue 6 (pruning levels, coarser or finer axis pruning through
+``MedialAxis.prune``, more radius samples, each matching weight halved and
+doubled), with the split check used against overfitting: the row's sum over
+the queries of the odd-numbered classes (A) and of the even-numbered ones (B).
+A change is kept only if it raises both halves.
 """
 
 from __future__ import annotations
@@ -24,7 +31,8 @@ from scipy.spatial.distance import cdist
 from skimage import measure
 
 import medialaxis as mx
-from medialaxis.compare import shape_signature
+from medialaxis.compare import shape_signature, signature
+from medialaxis.compare.distance import DEFAULTS
 from medialaxis.compare.retrieval import diffusion_rerank, retrieval_row
 
 #: Shock-graph matching (Sebastian, Klein, Kimia, TPAMI 2004), as quoted in the issue.
@@ -128,6 +136,37 @@ def robustness(masks: list[np.ndarray], sigs: list, labels: np.ndarray, rng: np.
     return out
 
 
+def split_sums(D: np.ndarray, labels: np.ndarray, ranks: int = 10) -> tuple[int, int]:
+    """Retrieval-row sums over the queries of odd-numbered classes and of even-numbered ones."""
+    D = D.copy()
+    np.fill_diagonal(D, np.inf)
+    hits = labels[np.argsort(D, axis=1, kind="stable")[:, :ranks]] == labels[:, None]
+    odd = labels % 2 == 1
+    return int(hits[odd].sum()), int(hits[~odd].sum())
+
+
+def variants(masks: list[np.ndarray], labels: np.ndarray, jobs: int | None) -> None:
+    """Rows of the variants tried in the follow-up (see the module docstring)."""
+    axes = [mx.medial_axis(m) for m in masks]
+
+    def row(name: str, sigs: list, **params: float) -> None:
+        D = mx.distance_matrix(sigs, n_jobs=jobs, **params)
+        a, b = split_sums(D, labels)
+        print(f"  {name:34s}{_fmt(retrieval_row(D, labels))}  A {a} B {b}")
+
+    print("\nvariants (A: queries of classes 1,3,5,7,9; B: classes 2,4,6,8)")
+    row("defaults", [signature(ax) for ax in axes])
+    for prune in (0.02, 0.045, 0.06):
+        row(f"prune={prune}", [signature(ax, prune=prune) for ax in axes])
+    for detour in (0.2, 0.35):
+        row(f"axis re-pruned detour={detour}", [signature(ax.prune(detour=detour)) for ax in axes])
+    row("n_samples=50", [signature(ax, n_samples=50) for ax in axes])
+    sigs = [signature(ax) for ax in axes]
+    for key, value in DEFAULTS.items():
+        for factor in (0.5, 2.0):
+            row(f"{key}={value * factor:.4g}", sigs, **{key: value * factor})
+
+
 def _fmt(row: np.ndarray) -> str:
     return " ".join(f"{v:3d}" for v in row) + f"   (sum {int(row.sum())})"
 
@@ -137,6 +176,7 @@ def main() -> None:
     parser.add_argument("--data", type=Path, default=None, help="Kimia-99 folder (class<C>_<K>.png)")
     parser.add_argument("--collection", type=int, default=1400, help="shapes in the timing collection (0: skip)")
     parser.add_argument("--jobs", type=int, default=None, help="threads for distance_matrix (default: all CPUs)")
+    parser.add_argument("--variants", action="store_true", help="also print the rows of the variants tried")
     args = parser.parse_args()
     data = args.data or _default_data()
     files = sorted(data.glob("class*_*.png"))
@@ -169,6 +209,8 @@ def main() -> None:
     print(f"ratio ours / shock graphs, sum     {ours.sum() / SHOCK_GRAPH.sum():.3f}")
     print(f"ratio ours / shape context, sum    {ours.sum() / sc.sum():.3f}")
     print(f"ratio ours / Hu moments, sum       {ours.sum() / hu.sum():.3f}")
+    if args.variants:
+        variants(masks, labels, args.jobs)
     print("\nperturbed shape closer to its original than to any shape of another class (every 2nd shape):")
     for name, share in robustness(masks, sigs, labels, np.random.default_rng(0)).items():
         print(f"  {name:22s} {share}")

@@ -15,8 +15,10 @@ Per pair (Bai and Latecki, TPAMI 2008):
    and may skip a path at cost ``skip``;
 3. the endpoints matched one-to-one (Hungarian); each unmatched endpoint costs
    ``unmatched``; both boundary orientations of B are tried (mirror
-   invariance) and the smaller total, divided by the larger endpoint count,
-   is the distance.
+   invariance) and the smaller total, divided by the mean endpoint count
+   ``(na + nb) / 2``, is the distance (the larger count, used before, let a
+   shape with many endpoints look close to one with few: -13 on the
+   Kimia-99 row).
 """
 
 from __future__ import annotations
@@ -207,7 +209,7 @@ def _pair(pa, sa, wa, na, pb, sb, wb, nb, n_radius, alpha, beta, gamma, skip, un
         total = _assignment(c)
         if total < best:
             best = total
-    return best / max(na, nb)
+    return best / (0.5 * (na + nb))
 
 
 @njit(cache=True, nogil=True)
@@ -299,4 +301,4 @@ def reference_match(
         if total < best:
             best = total
             pairs = [(int(i), int(k)) for i, k in zip(rows, cols) if i < na and k < nb]
-    return best / max(na, nb), pairs
+    return best / (0.5 * (na + nb)), pairs
