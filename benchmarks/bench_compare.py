@@ -179,6 +179,7 @@ def variants(masks: list[np.ndarray], labels: np.ndarray, jobs: int | None) -> N
     row("n_samples=50", [signature(ax, n_samples=50) for ax in axes])
     sigs = [signature(ax) for ax in axes]
     row("path term alone (context=0)", sigs, context=0.0)
+    row("context=0, unmatched=0.8 (before)", sigs, context=0.0, unmatched=0.8)
     for key, value in DEFAULTS.items():
         for factor in (0.5, 2.0):
             row(f"{key}={value * factor:.4g}", sigs, **{key: value * factor})

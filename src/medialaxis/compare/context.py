@@ -27,7 +27,8 @@ from medialaxis.core import graph as _graph
 __all__ = ["axis_context", "N_CONTEXT", "N_RADIAL", "N_ANGULAR", "RADIAL_CENTRES"]
 
 #: Samples along the axis (about; each branch gets a whole number of them).
-N_CONTEXT = 40
+#: 32 gives the Kimia-99 row of 40 (903 vs 906) at about half the pair time.
+N_CONTEXT = 32
 #: Log-polar bins: distance bins (centres below, in units of the scale) and angle bins over [0, pi).
 RADIAL_CENTRES = np.array([0.05, 0.15, 0.35, 0.7, 1.4])
 N_RADIAL = len(RADIAL_CENTRES)

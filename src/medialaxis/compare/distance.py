@@ -9,7 +9,7 @@ their paths. The second, the *axis context* (:mod:`medialaxis.compare.context`),
 matches samples along the two axes by where the rest of the axis's swept
 area lies around them and by their radius; it separates shapes whose
 endpoint paths look alike (fish and wrenches in Kimia-99) and lifts the
-Kimia-99 row from 851 to 905. The sum is 0 for a shape and itself,
+Kimia-99 row from 851 to 913. The sum is 0 for a shape and itself,
 symmetric, and invariant under similarity transforms because the signature is.
 """
 
@@ -39,8 +39,10 @@ __all__ = ["shape_distance", "distance_matrix", "query_distances", "match_endpoi
 #: the path cost, cost of skipping a path in an alignment and of an unmatched
 #: endpoint (both times the endpoint's weight), chosen on Kimia-99; weight of
 #: the axis-context term, chosen with a class split of Kimia-99 (1.5 times the
-#: ratio of the two terms' medians; 1 to 3 times give the same row, within 5).
-DEFAULTS = {"alpha": 0.1333, "beta": 0.0625, "gamma": 0.175, "skip": 0.2, "unmatched": 0.8, "context": 0.6}
+#: ratio of the two terms' medians; 1 to 3 times give the same row, within 5);
+#: with that term in, ``unmatched`` 0.8 -> 0.4 raised both halves of the split
+#: (``benchmarks/bench_compare.py --variants``).
+DEFAULTS = {"alpha": 0.1333, "beta": 0.0625, "gamma": 0.175, "skip": 0.2, "unmatched": 0.4, "context": 0.6}
 
 #: Planar ``tolerance`` for vector inputs, as a fraction of sqrt(area): a
 #: similarity-invariant choice, so distances do not move under rotation.
