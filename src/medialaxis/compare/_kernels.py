@@ -19,6 +19,12 @@ Per pair (Bai and Latecki, TPAMI 2008):
    ``(na + nb) / 2``, is the distance (the larger count, used before, let a
    shape with many endpoints look close to one with few: -13 on the
    Kimia-99 row).
+
+The axis-context term (:mod:`medialaxis.compare.context`) has its own kernel,
+:func:`context_distances`: the samples of the two axes matched one-to-one
+(Hungarian) with cost ``0.5 * sum chi(h, h') + |r - r'| / (r + r')``, the
+smaller of B and B's mirror image (angle bins reversed), divided by the
+smaller sample count.
 """
 
 from __future__ import annotations
@@ -27,7 +33,10 @@ import numpy as np
 from numba import njit
 from scipy.optimize import linear_sum_assignment
 
-__all__ = ["pack", "pair_distances", "reference_distance", "reference_match", "path_costs_reference", "EPS"]
+__all__ = [
+    "pack", "pair_distances", "reference_distance", "reference_match", "path_costs_reference", "EPS",
+    "pack_context", "context_distances", "context_distance_reference",
+]
 
 EPS = 1e-12
 #: Cost of a forbidden assignment (finite so the potentials stay finite).
