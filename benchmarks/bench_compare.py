@@ -8,7 +8,14 @@ shock-graph row, the time per pair of each, and the time of
 repeated, so the pairwise step is real; signatures are per-shape work,
 measured separately).
 
-    PYTHONPATH=src python benchmarks/bench_compare.py [--data DIR] [--collection 1400] [--jobs 2]
+    PYTHONPATH=src python benchmarks/bench_compare.py [--data DIR] [--collection 1400] [--jobs 2] [--variants]
+
+``--variants`` also prints the row of each variant evaluated for the
+follow-up of issue 6 (pruning levels, coarser or finer axis pruning through
+``MedialAxis.prune``, more radius samples, each matching weight halved and
+doubled), with the split check used against overfitting: the row's sum over
+the queries of the odd-numbered classes (A) and of the even-numbered ones (B).
+A change is kept only if it raises both halves.
 """
 
 from __future__ import annotations
@@ -24,7 +31,8 @@ from scipy.spatial.distance import cdist
 from skimage import measure
 
 import medialaxis as mx
-from medialaxis.compare import shape_signature
+from medialaxis.compare import shape_signature, signature
+from medialaxis.compare.distance import DEFAULTS
 from medialaxis.compare.retrieval import diffusion_rerank, retrieval_row
 
 #: Shock-graph matching (Sebastian, Klein, Kimia, TPAMI 2004), as quoted in the issue.
@@ -58,7 +66,9 @@ def hu_matrix(masks: list[np.ndarray]) -> tuple[np.ndarray, float]:
     return D, (time.perf_counter() - t0) / (len(F) * (len(F) - 1) / 2)
 
 
-def _shape_context(mask: np.ndarray, n_points: int = 100, n_r: int = 5, n_theta: int = 12) -> np.ndarray:
+def _shape_context(
+    mask: np.ndarray, n_points: int = 100, n_r: int = 5, n_theta: int = 12, *, invariant: bool = False
+) -> list[np.ndarray]:
     contour = max(measure.find_contours(np.pad(mask, 1).astype(float), 0.5), key=len)
     seg = np.linalg.norm(np.diff(contour, axis=0), axis=1)
     arc = np.concatenate([[0], np.cumsum(seg)])
@@ -67,28 +77,42 @@ def _shape_context(mask: np.ndarray, n_points: int = 100, n_r: int = 5, n_theta:
     d = cdist(pts, pts)
     d /= d[d > 0].mean()
     theta = np.arctan2(pts[None, :, 0] - pts[:, None, 0], pts[None, :, 1] - pts[:, None, 1])
+    if invariant:
+        tangent = np.roll(pts, -2, axis=0) - np.roll(pts, 2, axis=0)
+        theta = np.mod(theta - np.arctan2(tangent[:, 0], tangent[:, 1])[:, None] + np.pi, 2 * np.pi) - np.pi
     r_edges = np.logspace(np.log10(0.125), np.log10(2.0), n_r + 1)
     r_bin = np.searchsorted(r_edges, d) - 1
     t_bin = ((theta + np.pi) / (2 * np.pi) * n_theta).astype(int) % n_theta
-    hist = np.zeros((n_points, n_r * n_theta))
     ok = (r_bin >= 0) & (r_bin < n_r) & ~np.eye(n_points, dtype=bool)
     rows = np.nonzero(ok)[0]
-    np.add.at(hist, (rows, (r_bin * n_theta + t_bin)[ok]), 1)
-    return hist / np.maximum(hist.sum(axis=1, keepdims=True), 1)
+    out = []
+    for bins in ([t_bin, n_theta - 1 - t_bin] if invariant else [t_bin]):
+        hist = np.zeros((n_points, n_r * n_theta))
+        np.add.at(hist, (rows, (r_bin * n_theta + bins)[ok]), 1)
+        out.append(hist / np.maximum(hist.sum(axis=1, keepdims=True), 1))
+    return out
 
 
-def shape_context_matrix(masks: list[np.ndarray]) -> tuple[np.ndarray, float]:
-    """Shape contexts (Belongie, Malik, Puzicha), chi-squared costs, Hungarian matching (no TPS)."""
-    H = [_shape_context(m) for m in masks]
+def shape_context_matrix(masks: list[np.ndarray], *, invariant: bool = False) -> tuple[np.ndarray, float]:
+    """Shape contexts (Belongie, Malik, Puzicha), chi-squared costs, Hungarian matching (no TPS).
+
+    ``invariant``: angles from the contour tangent and the mirrored histograms
+    tried too (rotation and mirror invariant, as our distance is); otherwise
+    image-axis angles (the plain version, which Kimia-99's upright shapes favour less).
+    """
+    H = [_shape_context(m, invariant=invariant) for m in masks]
     n = len(H)
     D = np.zeros((n, n))
     t0 = time.perf_counter()
     for i in range(n):
         for j in range(i + 1, n):
-            a, b = H[i][:, None, :], H[j][None, :, :]
-            cost = 0.5 * ((a - b) ** 2 / (a + b + 1e-12)).sum(axis=2)
-            r, c = linear_sum_assignment(cost)
-            D[i, j] = D[j, i] = cost[r, c].mean()
+            best = np.inf
+            for hb in H[j]:
+                a, b = H[i][0][:, None, :], hb[None, :, :]
+                cost = 0.5 * ((a - b) ** 2 / (a + b + 1e-12)).sum(axis=2)
+                r, c = linear_sum_assignment(cost)
+                best = min(best, cost[r, c].mean())
+            D[i, j] = D[j, i] = best
     return D, (time.perf_counter() - t0) / (n * (n - 1) / 2)
 
 
@@ -128,6 +152,39 @@ def robustness(masks: list[np.ndarray], sigs: list, labels: np.ndarray, rng: np.
     return out
 
 
+def split_sums(D: np.ndarray, labels: np.ndarray, ranks: int = 10) -> tuple[int, int]:
+    """Retrieval-row sums over the queries of odd-numbered classes and of even-numbered ones."""
+    D = D.copy()
+    np.fill_diagonal(D, np.inf)
+    hits = labels[np.argsort(D, axis=1, kind="stable")[:, :ranks]] == labels[:, None]
+    odd = labels % 2 == 1
+    return int(hits[odd].sum()), int(hits[~odd].sum())
+
+
+def variants(masks: list[np.ndarray], labels: np.ndarray, jobs: int | None) -> None:
+    """Rows of the variants tried in the follow-up (see the module docstring)."""
+    axes = [mx.medial_axis(m) for m in masks]
+
+    def row(name: str, sigs: list, **params: float) -> None:
+        D = mx.distance_matrix(sigs, n_jobs=jobs, **params)
+        a, b = split_sums(D, labels)
+        print(f"  {name:34s}{_fmt(retrieval_row(D, labels))}  A {a} B {b}")
+
+    print("\nvariants (A: queries of classes 1,3,5,7,9; B: classes 2,4,6,8)")
+    row("defaults", [signature(ax) for ax in axes])
+    for prune in (0.02, 0.045, 0.06):
+        row(f"prune={prune}", [signature(ax, prune=prune) for ax in axes])
+    for detour in (0.2, 0.35):
+        row(f"axis re-pruned detour={detour}", [signature(ax.prune(detour=detour)) for ax in axes])
+    row("n_samples=50", [signature(ax, n_samples=50) for ax in axes])
+    sigs = [signature(ax) for ax in axes]
+    row("path term alone (context=0)", sigs, context=0.0)
+    row("context=0, unmatched=0.8 (before)", sigs, context=0.0, unmatched=0.8)
+    for key, value in DEFAULTS.items():
+        for factor in (0.5, 2.0):
+            row(f"{key}={value * factor:.4g}", sigs, **{key: value * factor})
+
+
 def _fmt(row: np.ndarray) -> str:
     return " ".join(f"{v:3d}" for v in row) + f"   (sum {int(row.sum())})"
 
@@ -137,6 +194,7 @@ def main() -> None:
     parser.add_argument("--data", type=Path, default=None, help="Kimia-99 folder (class<C>_<K>.png)")
     parser.add_argument("--collection", type=int, default=1400, help="shapes in the timing collection (0: skip)")
     parser.add_argument("--jobs", type=int, default=None, help="threads for distance_matrix (default: all CPUs)")
+    parser.add_argument("--variants", action="store_true", help="also print the rows of the variants tried")
     args = parser.parse_args()
     data = args.data or _default_data()
     files = sorted(data.glob("class*_*.png"))
@@ -158,23 +216,29 @@ def main() -> None:
     hu = retrieval_row(D_hu, labels)
     D_sc, t_sc = shape_context_matrix(masks)
     sc = retrieval_row(D_sc, labels)
+    D_sci, t_sci = shape_context_matrix(masks, invariant=True)
+    sci = retrieval_row(D_sci, labels)
 
     print("\nrank                                 1   2   3   4   5   6   7   8   9  10")
-    print(f"ours (skeleton paths + Hungarian) {_fmt(ours)}")
+    print(f"ours (paths + axis context)       {_fmt(ours)}")
     print(f"ours + diffusion re-ranking       {_fmt(reranked)}")
     print(f"baseline Hu moments               {_fmt(hu)}")
     print(f"baseline shape context + Hungarian{_fmt(sc)}")
+    print(f"  same, rotation/mirror invariant {_fmt(sci)}")
     print(f"target: shock graphs (literature) {_fmt(SHOCK_GRAPH)}")
     print(f"Bai & Latecki 2008 (literature)   {_fmt(BAI_LATECKI)}")
     print(f"ratio ours / shock graphs, sum     {ours.sum() / SHOCK_GRAPH.sum():.3f}")
-    print(f"ratio ours / shape context, sum    {ours.sum() / sc.sum():.3f}")
+    print(f"ratio ours / shape context, sum    {ours.sum() / sc.sum():.3f} (invariant one: {ours.sum() / sci.sum():.3f})")
     print(f"ratio ours / Hu moments, sum       {ours.sum() / hu.sum():.3f}")
+    if args.variants:
+        variants(masks, labels, args.jobs)
     print("\nperturbed shape closer to its original than to any shape of another class (every 2nd shape):")
     for name, share in robustness(masks, sigs, labels, np.random.default_rng(0)).items():
         print(f"  {name:22s} {share}")
     print("\ntimes (single thread; the machine is shared, so pessimistic)")
     print(f"  ours: signature (axis + paths) {t_sig * 1e3:.1f} ms per shape, pair {t_pair * 1e6:.1f} us")
     print(f"  shape context pair {t_sc * 1e6:.1f} us  -> ratio ours/shape context {t_pair / t_sc:.3f}")
+    print(f"  invariant shape context pair {t_sci * 1e6:.1f} us (scipy Hungarian, both mirror images)")
     print(f"  Hu moments pair {t_hu * 1e6:.3f} us")
 
     if args.collection:

@@ -49,3 +49,28 @@ def test_path_costs_reference_is_zero_on_itself():
         for j in range(4):
             assert pc[i, j, i, j] == 0.0
     assert (pc >= 0).all()
+
+
+def _random_context(rng, k, n_radial=5, n_angular=6):
+    h = rng.uniform(0, 1, (k, n_radial * n_angular)) * (rng.uniform(size=(k, n_radial * n_angular)) < 0.6)
+    h[:, 0] += 1e-3
+    return h / h.sum(axis=1, keepdims=True), rng.uniform(0.02, 0.3, k)
+
+
+@given(seed=st.integers(0, 2**32 - 1), ka=st.integers(1, 9), kb=st.integers(1, 9))
+def test_compiled_context_matches_reference_and_is_symmetric(seed, ka, kb):
+    rng = np.random.default_rng(seed)
+    (ha, ra), (hb, rb) = _random_context(rng, ka), _random_context(rng, kb)
+    packed = _kernels.pack_context([ha, hb], [ra, rb], 6)
+    got = _kernels.context_distances(*packed, np.array([0, 1]), np.array([1, 0]))
+    assert got[0] == got[1]  # exactly symmetric
+    want = min(_kernels.context_distance_reference(ha, ra, hb, rb, 6), _kernels.context_distance_reference(hb, rb, ha, ra, 6))
+    assert np.isclose(got[0], want, rtol=1e-9, atol=1e-12)
+
+
+def test_context_is_zero_on_itself_and_mirror_reverses_angle_bins():
+    ha, ra = _random_context(np.random.default_rng(3), 6)
+    mirrored = ha.reshape(6, 5, 6)[:, :, ::-1].reshape(6, 30)
+    packed = _kernels.pack_context([ha, mirrored[::-1]], [ra, ra[::-1]], 6)
+    got = _kernels.context_distances(*packed, np.array([0, 0]), np.array([0, 1]))
+    assert got[0] == 0.0 and abs(got[1]) < 1e-12

@@ -15,7 +15,8 @@ def test_retrieval_row_protocol_on_a_toy_matrix():
 def test_kimia99_retrieval(kimia_matrix, kimia_labels):
     row = retrieval_row(kimia_matrix, kimia_labels)
     assert row.shape == (10,)
-    # Regression floor well under the measured row (see the benchmark); chance is about 10 per rank.
-    assert row[0] >= 94 and row[:5].sum() >= 420 and row.sum() >= 720
+    # Regression floor under the measured row (913, see the benchmark); chance is about 10 per rank.
+    # The path term alone stays near 850 or below (bench --variants): the floor checks the axis-context term is in.
+    assert row[0] >= 95 and row[:5].sum() >= 460 and row.sum() >= 880
     reranked = retrieval_row(diffusion_rerank(kimia_matrix), kimia_labels)
     assert reranked.sum() >= row.sum() - 20  # collection-level re-ranking must not wreck the row

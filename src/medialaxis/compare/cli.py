@@ -27,11 +27,12 @@ def _add_matching_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--alpha", type=float, default=DEFAULTS["alpha"], help="weight of the path-length term")
     p.add_argument("--skip", type=float, default=DEFAULTS["skip"], help="cost of an unaligned path (times endpoint weight)")
     p.add_argument("--unmatched", type=float, default=DEFAULTS["unmatched"], help="cost of an unmatched endpoint (times weight)")
+    p.add_argument("--context", type=float, default=DEFAULTS["context"], help="weight of the axis-context term (0: paths alone)")
     p.add_argument("--prune", type=float, default=DEFAULT_PRUNE, help="drop terminal branches protruding less than this fraction of the shape scale")
 
 
 def _matching(args: argparse.Namespace) -> dict[str, Any]:
-    return {"alpha": args.alpha, "skip": args.skip, "unmatched": args.unmatched, "prune": args.prune}
+    return {"alpha": args.alpha, "skip": args.skip, "unmatched": args.unmatched, "context": args.context, "prune": args.prune}
 
 
 # ------------------------------------------------------------ compare

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 from scipy.sparse import csgraph
 
+from medialaxis.compare.context import axis_context
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import EmptyShapeError, InvalidInputError
@@ -33,8 +34,10 @@ DEFAULT_SAMPLES = 24
 #: Interior samples of each path's bend profile.
 N_BEND = 7
 #: Terminal branches protruding less than this fraction of the shape scale
-#: beyond the disc of their junction are dropped before matching.
-DEFAULT_PRUNE = 0.045
+#: beyond the disc of their junction are dropped before matching. Chosen with
+#: a class split of Kimia-99 (``benchmarks/bench_compare.py --variants``):
+#: 0.03 raises the row on both halves over 0.045; 0.06 lowers half B.
+DEFAULT_PRUNE = 0.03
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -68,6 +71,11 @@ class Signature:
     points, radii_at_points, edges : ndarray
         The axis actually used (largest component, spurious branches removed),
         kept for pictures.
+    context : (k, h) float64 ndarray
+        Axis-context histograms of ``k`` samples along that axis (see
+        :func:`medialaxis.compare.context.axis_context`).
+    context_radii : (k,) float64 ndarray
+        Radius at each context sample divided by ``scale``.
     """
 
     radii: np.ndarray
@@ -80,6 +88,8 @@ class Signature:
     points: np.ndarray
     radii_at_points: np.ndarray
     edges: np.ndarray
+    context: np.ndarray
+    context_radii: np.ndarray
 
     def __post_init__(self) -> None:
         for f in dataclasses.fields(self):
@@ -417,6 +427,8 @@ def signature(
     weights = _endpoint_weights(points, radii, edges, order, path_l)
     ends_xy = points[order]
     chords = np.linalg.norm(ends_xy[:, None, :] - ends_xy[None, :, :], axis=2)
+    context, context_radii = axis_context(points, radii, edges, scale)
     return Signature(
-        path_r / scale, path_l / scale, chords / scale, bends / scale, weights / scale, ends_xy, scale, points, radii, edges
+        path_r / scale, path_l / scale, chords / scale, bends / scale, weights / scale, ends_xy, scale, points, radii,
+        edges, context, context_radii,
     )
