@@ -28,6 +28,7 @@ import numpy as np
 
 from medialaxis._progress import progress
 from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import check_number
 from medialaxis.compare import _kernels
 from medialaxis.compare.context import N_ANGULAR
 from medialaxis.compare.signature import DEFAULT_PRUNE, DEFAULT_SAMPLES, Signature, signature
@@ -52,16 +53,6 @@ _AXIS_CACHE: weakref.WeakKeyDictionary[MedialAxis, dict[tuple[Any, ...], Signatu
 _FILE_CACHE: OrderedDict[tuple[Any, ...], Signature] = OrderedDict()
 _FILE_CACHE_SIZE = 4096
 _LOCK = threading.Lock()
-
-
-def _check_number(value: Any, name: str) -> float:
-    try:
-        out = float(value)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(out) or out < 0:
-        raise InvalidInputError(f"{name} must be finite and >= 0, got {value!r}")
-    return out
 
 
 def shape_signature(
@@ -156,7 +147,7 @@ def _describe(shape: Any) -> str:
 
 def _params(alpha: Any, beta: Any, gamma: Any, skip: Any, unmatched: Any, context: Any = None) -> tuple[float, ...]:
     given = {"alpha": alpha, "beta": beta, "gamma": gamma, "skip": skip, "unmatched": unmatched, "context": context}
-    return tuple(_check_number(DEFAULTS[k] if v is None else v, k) for k, v in given.items())
+    return tuple(check_number(DEFAULTS[k] if v is None else v, k) for k, v in given.items())
 
 
 def _features(sig: Signature) -> tuple[np.ndarray, ...]:

@@ -56,6 +56,7 @@ from scipy.spatial import cKDTree
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
 from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.contract_graph import skeleton_graph
@@ -216,18 +217,6 @@ def _check_box(region: Any) -> np.ndarray:
     return box
 
 
-def _positive(name: str, value: Any, *, allow_none: bool = True) -> float | None:
-    if value is None and allow_none:
-        return None
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be a positive number, got {value!r}") from None
-    if not (np.isfinite(v) and v > 0):
-        raise InvalidInputError(f"{name} must be a positive number, got {value!r}")
-    return v
-
-
 def flow_skeleton(
     mesh: Any,
     *,
@@ -326,7 +315,7 @@ def flow_skeleton(
     (2, 0)
     """
     t_start = time.perf_counter()
-    dt_rel = _positive("dt", dt) or 1.0
+    dt_rel = 1.0 if dt is None else check_number(dt, "dt", positive=True)
     threshold = None if curvature_threshold is None else float(curvature_threshold)
     if threshold is not None and not np.isfinite(threshold):
         raise InvalidInputError(f"curvature_threshold must be finite, got {curvature_threshold!r}")
@@ -335,14 +324,14 @@ def flow_skeleton(
     if int(max_steps) != max_steps or max_steps < 1:
         raise InvalidInputError(f"max_steps must be a positive integer, got {max_steps!r}")
     max_steps = int(max_steps)
-    attraction = float(_positive("attraction", attraction, allow_none=False) or 0.0)
-    collapse = float(_positive("collapse", collapse, allow_none=False) or 0.0)
+    attraction = check_number(attraction, "attraction", positive=True)
+    collapse = check_number(collapse, "collapse", positive=True)
     final_collapse = float(final_collapse)
     if not (np.isfinite(final_collapse) and final_collapse >= 0):
         raise InvalidInputError(f"final_collapse must be a non-negative number, got {final_collapse!r}")
     if collapse >= 1:
         raise InvalidInputError(f"collapse must be in (0, 1), got {collapse!r}")
-    spacing = _positive("node_spacing", node_spacing)
+    spacing = None if node_spacing is None else check_number(node_spacing, "node_spacing", positive=True)
     if callback is not None and not callable(callback):
         raise InvalidInputError(f"callback must be callable, got {type(callback).__name__}")
 

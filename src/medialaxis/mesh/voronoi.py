@@ -28,6 +28,7 @@ from scipy import sparse
 from scipy.spatial import cKDTree
 
 from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError, ResourceLimitError
 from medialaxis.mesh._voronoi_kernels import REGION_FACE, closest_on_candidates
 from medialaxis.mesh.inputs import load_mesh
@@ -128,16 +129,6 @@ def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | N
         e.append(np.sort(np.asarray(edges, np.int64).reshape(-1, 2), 1))
     all_e = np.unique(np.concatenate(e), axis=0)
     return int(n_points - len(all_e) + len(f))
-
-
-def _positive(value: Any, name: str) -> float:
-    try:
-        out = float(value)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be a positive number, got {value!r}") from None
-    if not np.isfinite(out) or out <= 0:
-        raise InvalidInputError(f"{name} must be finite and > 0, got {value!r}")
-    return out
 
 
 def _sample_count(samples: Any, n_vertices: int) -> int:
@@ -319,7 +310,7 @@ def voronoi_medial_axis(
     work = src.mesh
     rng = np.random.default_rng(rng)
     count = _sample_count(samples, len(work.vertices))
-    lam_given = None if lam is None else _positive(lam, "lam")
+    lam_given = None if lam is None else check_number(lam, "lam", positive=True)
     if topology not in TOPOLOGY_MODES:
         raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
     if simplify is not None:

@@ -19,6 +19,7 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
+from medialaxis.core.validate import check_spacing
 from medialaxis.errors import (
     EmptyShapeError,
     InputFileError,
@@ -78,17 +79,6 @@ def max_pixels() -> int:
     except (ValueError, OSError, AttributeError):  # pragma: no cover - non-POSIX
         total = 8 << 30
     return int(total // 2 // BYTES_PER_PIXEL)
-
-
-def _spacing(spacing: Any) -> np.ndarray:
-    if spacing is None:
-        return np.ones(2)
-    sp = np.asarray(spacing, dtype=np.float64).reshape(-1)
-    if sp.size == 1:
-        sp = np.repeat(sp, 2)
-    if sp.size != 2 or not np.all(np.isfinite(sp)) or np.any(sp <= 0):
-        raise InvalidInputError(f"spacing must be one or two positive finite numbers, got {spacing!r}")
-    return sp
 
 
 # ----------------------------------------------------------------- rasters
@@ -433,7 +423,7 @@ def load_planar(shape: Any, *, threshold: float | None = None, spacing: Any = No
             raise InputFileError(f"no such file: {str(path)!r}")
         ext = path.suffix.lower()
         if ext in IMAGE_EXTENSIONS:
-            return _from_array(_read_image(path), threshold, _spacing(spacing))
+            return _from_array(_read_image(path), threshold, check_spacing(spacing, 2))
         if ext in (".svg", ".wkt", ".geojson", ".json"):
             geom, repaired = _validate_polygonal(_read_vector(path), str(path))
             return PlanarInput(geom, np.ones(2), repaired=repaired)
@@ -455,4 +445,4 @@ def load_planar(shape: Any, *, threshold: float | None = None, spacing: Any = No
     if arr.ndim == 2 and arr.shape[1] == 2 and arr.dtype != bool and arr.dtype.kind in "iuf":
         geom, repaired = _validate_polygonal(_from_loop(arr.astype(np.float64)), "boundary loop")
         return PlanarInput(geom, np.ones(2), repaired=repaired)
-    return _from_array(arr, threshold, _spacing(spacing))
+    return _from_array(arr, threshold, check_spacing(spacing, 2))

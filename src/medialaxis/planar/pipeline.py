@@ -17,6 +17,7 @@ import shapely
 
 from medialaxis._progress import progress
 from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError
 from medialaxis.planar.axis import RawAxis, boundary_distance, inner_triangles, raw_axis
 from medialaxis.planar.delaunay import Triangulation, edge_keys, triangulate
@@ -74,16 +75,6 @@ class Stages:
     inside: np.ndarray
     raw: MedialAxis
     result: MedialAxis
-
-
-def _positive(value: Any, name: str) -> float:
-    try:
-        out = float(value)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(out) or out < 0:
-        raise InvalidInputError(f"{name} must be finite and >= 0, got {value!r}")
-    return out
 
 
 def _piece_state(tri: Triangulation, inside: np.ndarray, smp: BoundarySample) -> tuple[np.ndarray, np.ndarray]:
@@ -163,13 +154,13 @@ def planar_stages(
     size = shape_size(region)
     if tolerance is None:
         tolerance = 0.25 * float(src.spacing.min()) if src.is_raster else 1e-4 * size
-    tolerance = _positive(tolerance, "tolerance")
+    tolerance = check_number(tolerance, "tolerance")
     if tolerance == 0:
         tolerance = 1e-9 * size
-    lam = LAM_PER_TOLERANCE * tolerance if lam is None else _positive(lam, "lam")
+    lam = LAM_PER_TOLERANCE * tolerance if lam is None else check_number(lam, "lam")
     if detour is None:
         detour = DEFAULT_DETOUR if src.is_raster else DEFAULT_VECTOR_DETOUR
-    detour = _positive(detour, "detour")
+    detour = check_number(detour, "detour")
     if boundary == "canny":
         if not src.is_raster:
             raise InvalidInputError("boundary='canny' needs an image input")
@@ -306,6 +297,6 @@ def voronoi_medial_axis(
 def reprune(ma: MedialAxis, *, lam: float | None = None, detour: float | None = None) -> MedialAxis:
     """Re-prune a planar result from its unpruned axis (``ma.raw``)."""
     raw = ma.raw if ma.raw is not None else ma
-    lam = float(ma.metadata["lam"]) if lam is None else _positive(lam, "lam")
-    detour = float(ma.metadata["detour"]) if detour is None else _positive(detour, "detour")
+    lam = float(ma.metadata["lam"]) if lam is None else check_number(lam, "lam")
+    detour = float(ma.metadata["detour"]) if detour is None else check_number(detour, "detour")
     return _pruned(raw, lam, detour)

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.validate import check_spacing as _check_spacing
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 
 __all__ = ["VolumeInput", "load_volume", "check_spacing", "iso50"]
@@ -63,15 +64,7 @@ class VolumeInput:
 
 def check_spacing(spacing: Any, default: Any = None) -> np.ndarray:
     """Spacing as a (3,) positive float array (a scalar applies to every axis)."""
-    if spacing is None:
-        spacing = default if default is not None else 1.0
-    try:
-        out = np.broadcast_to(np.asarray(spacing, dtype=np.float64), (3,)).copy()
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"spacing must be a positive number or 3 numbers, got {spacing!r}") from None
-    if not np.all(np.isfinite(out)) or np.any(out <= 0):
-        raise InvalidInputError(f"spacing must be finite and > 0, got {spacing!r}")
-    return out
+    return _check_spacing(default if spacing is None else spacing, 3)
 
 
 def load_volume(
