@@ -104,7 +104,7 @@ def branches(n: int, edges: np.ndarray) -> list[np.ndarray]:
     return chains
 
 
-def peel_leaves(n: int, edges: np.ndarray, removable: np.ndarray, order: np.ndarray | None = None) -> np.ndarray:
+def peel_leaves(n: int, edges: np.ndarray, removable: np.ndarray) -> np.ndarray:
     """Topology-preserving pruning: repeatedly delete removable leaf edges.
 
     An edge is deleted only while one of its nodes has degree 1 (it hangs off
@@ -118,17 +118,14 @@ def peel_leaves(n: int, edges: np.ndarray, removable: np.ndarray, order: np.ndar
         Number of nodes.
     edges : (m, 2) int ndarray
     removable : (m,) bool ndarray
-        Edges that may go when they become leaves.
-    order : (m,) float ndarray, optional
-        Unused by the result's edge set (leaf peeling is confluent), kept for
-        API symmetry with weighted variants.
+        Edges that may go when they become leaves. The result does not
+        depend on the order of removal (leaf peeling is confluent).
 
     Returns
     -------
     (m,) bool ndarray
         Mask of the edges kept.
     """
-    del order
     edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     keep = np.ones(len(edges), bool)
     if len(edges) == 0:

@@ -35,10 +35,6 @@ class Rings:
     vertices: list[np.ndarray]
     region: Any
 
-    @property
-    def edge_lengths(self) -> np.ndarray:
-        return np.concatenate([np.linalg.norm(np.roll(v, -1, 0) - v, axis=1) for v in self.vertices])
-
 
 @dataclasses.dataclass(frozen=True)
 class BoundarySample:
