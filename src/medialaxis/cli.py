@@ -34,15 +34,21 @@ def _parse_option(text: str) -> tuple[str, Any]:
         return key.replace("-", "_"), value
 
 
-def _check_outputs(inputs: Sequence[Path], outputs: Sequence[Path]) -> None:
+def _check_outputs(
+    inputs: Sequence[Path], outputs: Sequence[Path], formats: Sequence[str] | None = None, option: str = "--output"
+) -> None:
+    """Refuse outputs that are an input file, or whose extension is not in ``formats``."""
     from medialaxis.core.io import WRITERS
 
-    resolved = {p.resolve() for p in inputs if p.exists()}
+    formats = tuple(WRITERS) if formats is None else tuple(formats)
+    existing = [p for p in inputs if p.exists()]
     for out in outputs:
-        if out.resolve() in resolved or (out.exists() and any(out.samefile(p) for p in inputs if p.exists())):
+        if out.exists() and any(out.samefile(p) for p in existing):
             raise UsageError(f"refusing to overwrite the input file {str(out)!r}")
-        if out.suffix.lower() not in WRITERS:
-            raise UsageError(f"unsupported output format {out.suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(WRITERS)}")
+        if out.suffix.lower() not in formats:
+            raise UsageError(
+                f"{option}: unsupported output format {out.suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(formats)}"
+            )
 
 
 def _summary(ma: Any) -> str:
@@ -98,21 +104,23 @@ def _run_compute(args: argparse.Namespace) -> int:
 
     outputs = list(args.output) + ([args.steps] if args.steps else [])
     _check_outputs([args.input], list(args.output))
-    volume_steps = args.steps is not None and mx._dispatch.classify(str(args.input), args.method) == "volume"
-    if args.steps is not None and not volume_steps:
-        _check_outputs([args.input], [args.steps.with_suffix(".png")])
-        if args.steps.suffix.lower() not in (".png", ".svg", ".pdf"):
-            raise UsageError(f"--steps needs a .png, .svg or .pdf file, got {str(args.steps)!r}")
+    domain = mx._dispatch.classify(str(args.input), args.method)
+    if args.steps is not None:
+        if domain == "mesh":
+            raise UsageError("--steps is available for planar and volume inputs")
+        if domain == "planar":
+            _check_outputs([args.input], [args.steps], formats=(".png", ".svg", ".pdf"), option="--steps")
+        else:
+            _check_outputs([args.input], [args.steps], option="--steps")
     options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
     for name in ("tolerance", "detour", "boundary"):
         value = getattr(args, name)
         if value is not None:
             options[name] = value
     spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
-    if volume_steps:
+    if args.steps is not None and domain == "volume":
         from medialaxis.volume.steps import save_steps, stages_for_method
 
-        _check_outputs([args.input], [args.steps])
         stages = stages_for_method(str(args.input), args.method, lam=args.lam, threshold=args.threshold,
                                    spacing=spacing, **options)
         ma = stages.result
@@ -121,8 +129,6 @@ def _run_compute(args: argparse.Namespace) -> int:
         from medialaxis.planar.pipeline import planar_stages
         from medialaxis.planar.plotting import save_stages_figure
 
-        if mx._dispatch.classify(str(args.input), args.method) != "planar":
-            raise UsageError("--steps is available for planar and volume inputs")
         stages = planar_stages(str(args.input), lam=args.lam, threshold=args.threshold, spacing=spacing, **options)
         ma = stages.result
         save_stages_figure(stages, args.steps)
@@ -131,7 +137,7 @@ def _run_compute(args: argparse.Namespace) -> int:
         if args.frames is not None:
             from medialaxis.mesh.flow_frames import FrameWriter
 
-            if mx._dispatch.classify(str(args.input), args.method) != "mesh" or args.method != "flow":
+            if domain != "mesh" or args.method != "flow":
                 raise UsageError("--frames is available for meshes with --method flow")
             writer = options["callback"] = FrameWriter(args.frames)
         ma = mx.medial_axis(str(args.input), method=args.method, lam=args.lam, threshold=args.threshold,
