@@ -186,18 +186,28 @@ def _smooth_ring(ring: np.ndarray, sigma: float) -> np.ndarray:
 def contour_region(image: np.ndarray, level: float, spacing: np.ndarray, smoothing: float = 0.0) -> Any:
     """Sub-pixel iso-contour of ``image`` at ``level`` as polygons in index order * spacing.
 
-    ``smoothing`` > 0 smooths each contour ring with a Gaussian of that many
-    pixels of arc length (for binary masks, whose contour is a staircase).
+    Only the bounding box of the foreground (``image > level``) plus one
+    pixel is contoured. A bool image is contoured at 0.5 without a float
+    copy. ``smoothing`` > 0 smooths each contour ring with a Gaussian of that
+    many pixels of arc length (for binary masks, whose contour is a staircase).
     """
     from skimage.measure import find_contours
 
-    img = np.asarray(image, dtype=np.float64)
-    low = min(float(img.min()), level) - 1.0
-    padded = np.pad(img, 1, mode="constant", constant_values=low)
+    foreground = image if image.dtype == bool else image > level
+    rows = np.flatnonzero(foreground.any(axis=1))
+    cols = np.flatnonzero(foreground.any(axis=0))
+    r0, c0 = max(int(rows[0]) - 1, 0), max(int(cols[0]) - 1, 0)
+    crop = image[r0 : int(rows[-1]) + 2, c0 : int(cols[-1]) + 2]
+    if crop.dtype == bool:
+        padded = np.pad(crop.view(np.uint8), 1)  # 0 is below the 0.5 level
+    else:
+        crop = crop.astype(np.float64)
+        padded = np.pad(crop, 1, constant_values=min(float(crop.min()), level) - 1.0)
     rings = find_contours(padded, level, positive_orientation="high")
     if smoothing > 0:
         rings = [_smooth_ring(r, smoothing) for r in rings]
-    rings = [(r - 1.0) * spacing for r in rings]
+    origin = np.array([r0 - 1.0, c0 - 1.0])
+    rings = [(r + origin) * spacing for r in rings]
     return _rings_to_region(rings)
 
 
@@ -227,7 +237,7 @@ def _from_array(arr: np.ndarray, threshold: float | None, spacing: np.ndarray) -
         # Its 0.5 contour is smoothed along its length by a Gaussian of one
         # pixel, which costs O(perimeter) rather than a blur of every pixel
         # (corners round off by about one pixel).
-        region = contour_region(arr.view(np.uint8), 0.5, spacing, smoothing=BINARY_SMOOTHING)
+        region = contour_region(arr, 0.5, spacing, smoothing=BINARY_SMOOTHING)
     else:
         region = contour_region(arr, level, spacing)
     return PlanarInput(region, spacing, image=arr, foreground=foreground, threshold=level)

@@ -117,7 +117,7 @@ def _sample_and_triangulate(
         if arcs is None:
             break
         # Only a handful of pieces near tips were split: triangulate once more and stop.
-        settled = conforming.all() and sum(map(len, arcs)) - len(smp.points) < 0.005 * len(smp.points)
+        settled = conforming.all() and sum(map(len, arcs)) - len(smp.points) < 0.05 * len(smp.points)
     return smp, tri, inside
 
 
