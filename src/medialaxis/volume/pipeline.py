@@ -21,6 +21,7 @@ import numpy as np
 
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
 from medialaxis.volume.dents import bent_vertices
 from medialaxis.volume.dents import remove_dents as _remove_dents
@@ -79,16 +80,6 @@ class VolumeStages:
     steps: dict[str, MedialAxis] = dataclasses.field(default_factory=dict)
 
 
-def _number(value: Any, name: str, *, positive: bool = True) -> float:
-    try:
-        out = float(value)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(out) or (positive and out <= 0):
-        raise InvalidInputError(f"{name} must be finite{' and > 0' if positive else ''}, got {value!r}")
-    return out
-
-
 def _iso(iso: Any, threshold: Any) -> Any:
     if iso is not None and threshold is not None and float(iso) != float(threshold):
         raise InvalidInputError(f"iso={iso!r} and threshold={threshold!r} disagree; give one")
@@ -100,7 +91,7 @@ def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[fl
     if thickness is None:
         thickness_value = estimate_thickness(features)
     else:
-        thickness_value = _number(thickness, "thickness")
+        thickness_value = check_number(thickness, "thickness", positive=True)
         if thickness_value > 2.0 * deepest:
             raise InvalidInputError(
                 f"thickness={thickness_value:g} does not fit: the thickest part of the volume is about {deepest:.3g}"
@@ -110,7 +101,7 @@ def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[fl
                 f"thickness={thickness_value:g} is under 2 voxels ({2 * float(features.spacing.max()):g}); "
                 "plates that thin cannot be resolved"
             )
-    lam_value = DEFAULT_LAM_RATIO * thickness_value if lam is None else _number(lam, "lam")
+    lam_value = DEFAULT_LAM_RATIO * thickness_value if lam is None else check_number(lam, "lam", positive=True)
     return thickness_value, lam_value
 
 
@@ -140,7 +131,7 @@ def volume_stages(
     VolumeStages
     """
     timings: dict[str, float] = {}
-    density = _number(density, "density")
+    density = check_number(density, "density", positive=True)
     stages = ["binarize", "distance", "medial voxels", "polygonize", "dents", "extension"]
     state: dict[str, Any] = {}
     for stage in progress(stages, desc="mid-surface", show=show_progress):
