@@ -23,6 +23,7 @@ import numpy as np
 from scipy.sparse import csgraph
 
 from medialaxis.compare.context import axis_context
+from medialaxis.compare.dce import convex_dce_vertices, dce_prune
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import EmptyShapeError, InvalidInputError
@@ -132,6 +133,16 @@ def _largest_component(points: np.ndarray, radii: np.ndarray, edges: np.ndarray)
 def _scale(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> float:
     sweep = float((_edge_lengths(points, edges) * (radii[edges[:, 0]] + radii[edges[:, 1]])).sum()) if len(edges) else 0.0
     return float(np.sqrt(sweep + np.pi * float(radii.max()) ** 2))
+
+
+def _outline(shape: Any) -> np.ndarray | None:
+    """Exterior vertices (first not repeated) of the largest polygon of ``shape``, or None."""
+    geoms = getattr(shape, "geoms", [shape])
+    polys = [g for g in geoms if getattr(g, "geom_type", None) == "Polygon" and not g.is_empty]
+    if not polys:
+        return None
+    coords = np.asarray(max(polys, key=lambda g: g.area).exterior.coords, dtype=np.float64)[:-1]
+    return coords if len(coords) >= 3 else None
 
 
 def _terminal_protrusions(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> list[tuple[np.ndarray, float]]:
@@ -342,6 +353,8 @@ def signature(
     n_samples: int = DEFAULT_SAMPLES,
     prune: float = DEFAULT_PRUNE,
     max_endpoints: int = 24,
+    dce: float = 0.0,
+    dce_vertices: int = 3,
 ) -> Signature:
     """Skeleton-path signature of a planar medial axis.
 
@@ -411,6 +424,10 @@ def signature(
     if radii.max() <= 0:
         raise EmptyShapeError("the medial axis has no positive radius: the shape has no interior")
     scale = _scale(points, radii, edges)
+    if dce > 0:
+        outline = _outline(ma.shape)
+        if outline is not None:
+            edges = dce_prune(points, radii, edges, convex_dce_vertices(outline, dce, min_vertices=int(dce_vertices)))
     edges = _prune_spurious(points, radii, edges, prune * scale, int(max_endpoints))
     lone = np.zeros(len(points), bool)
     if not len(edges):
