@@ -355,6 +355,7 @@ def signature(
     max_endpoints: int = 24,
     dce: float = 0.0,
     dce_vertices: int = 3,
+    unpruned: bool = False,
 ) -> Signature:
     """Skeleton-path signature of a planar medial axis.
 
@@ -372,6 +373,22 @@ def signature(
     max_endpoints : int
         If the axis still has more endpoints, the least protruding terminal
         branches are dropped until it has this many (bounds the pairwise cost).
+    dce : float
+        If > 0, first prune the axis by Discrete Curve Evolution of the
+        shape's outline (``ma.shape``; skipped if it has none): evolve the
+        largest polygon's exterior until every vertex has relevance at least
+        ``dce`` (or ``dce_vertices`` remain), then keep only terminal
+        branches whose tip reaches a convex surviving vertex (Bai, Latecki
+        and Liu; see :mod:`medialaxis.compare.dce`). ``0`` (default): off,
+        as it did not raise the Kimia-99 row (``benchmarks/bench_compare.py
+        --variants``).
+    dce_vertices : int
+        Least number of vertices the evolution keeps (>= 3); with a large
+        ``dce`` (e.g. 1) it is the fixed vertex count.
+    unpruned : bool
+        Compare the axis before the method's own pruning (``ma.raw``) when
+        the result carries it; the spurious branches are then removed only
+        by ``prune`` (and ``dce``).
 
     Returns
     -------
@@ -413,6 +430,16 @@ def signature(
         raise InvalidInputError(f"prune must be finite and >= 0, got {prune!r}")
     if not isinstance(max_endpoints, (int, np.integer)) or max_endpoints < 2:
         raise InvalidInputError(f"max_endpoints must be an integer >= 2, got {max_endpoints!r}")
+    try:
+        dce = float(dce)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"dce must be a number, got {dce!r}") from None
+    if not np.isfinite(dce) or dce < 0:
+        raise InvalidInputError(f"dce must be finite and >= 0, got {dce!r}")
+    if not isinstance(dce_vertices, (int, np.integer)) or dce_vertices < 3:
+        raise InvalidInputError(f"dce_vertices must be an integer >= 3, got {dce_vertices!r}")
+    if unpruned and ma.raw is not None and len(ma.raw.points):
+        ma = ma.raw
     if len(ma.points) == 0:
         raise EmptyShapeError("the medial axis is empty (no axis left after pruning): nothing to compare")
     if not (np.isfinite(ma.points).all() and np.isfinite(ma.radii).all()):
