@@ -126,7 +126,6 @@ def dce(vertices: Any, threshold: float, *, min_vertices: int = 3) -> np.ndarray
     nxt = list(range(1, n)) + [0]
     prv = [n - 1] + list(range(n - 1))
     count = n
-
     xy = v.tolist()
 
     def update(i: int) -> None:
@@ -153,20 +152,6 @@ def dce(vertices: Any, threshold: float, *, min_vertices: int = 3) -> np.ndarray
                 if np.isfinite(rel[j]):
                     update(j)
     return np.flatnonzero(np.isfinite(rel))
-    rel = relevance(v, perimeter)
-    while len(alive) > min_vertices:
-        low = float(rel.min())
-        if low >= threshold:
-            break
-        drop = rel <= low * (1 + _TIE) + 1e-15
-        if len(alive) - int(drop.sum()) < min_vertices:
-            drop = np.zeros(len(alive), bool)
-            drop[int(np.argmin(rel))] = True
-        keep = ~drop
-        alive = alive[keep]
-        # only the neighbours of removed vertices change; recomputing all is O(k) numpy and simpler
-        rel = relevance(v[alive], perimeter)
-    return alive
 
 
 def convex_dce_vertices(vertices: Any, threshold: float, *, min_vertices: int = 3) -> np.ndarray:

@@ -319,32 +319,6 @@ def _paths(
             else:
                 out_r[i, j] = radii[path[0]]
     return out_r, out_l, out_b
-    n = len(points)
-    weights = _edge_lengths(points, edges)
-    dist, pred = csgraph.dijkstra(_weighted(n, edges, weights), directed=False, indices=ends, return_predecessors=True)
-    t = np.linspace(0.0, 1.0, n_samples)
-    for i in range(e):
-        for j in range(e):
-            if i == j:
-                out_r[i, j] = radii[ends[i]]
-                continue
-            if j < i:
-                out_r[i, j] = out_r[j, i][::-1]
-                out_l[i, j] = out_l[j, i]
-                continue
-            path = [int(ends[j])]
-            while path[-1] != ends[i]:
-                path.append(int(pred[i, path[-1]]))
-            path.reverse()
-            p = points[path]
-            arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
-            total = arc[-1]
-            out_l[i, j] = total
-            if total > 0:
-                out_r[i, j] = np.interp(t * total, arc, radii[path])
-            else:
-                out_r[i, j] = radii[path[0]]
-    return out_r, out_l
 
 
 def signature(
