@@ -12,6 +12,9 @@ References
 ----------
 X. Bai and L. J. Latecki, "Path similarity skeleton graph matching",
 IEEE TPAMI 30(7), 2008. Paper 000 (medial axis "for comparing two shapes").
+X. Bai, L. J. Latecki and W.-Y. Liu, "Skeleton pruning by contour partitioning
+with discrete curve evolution", IEEE TPAMI 29(3), 2007 (the optional ``dce``
+pruning, :mod:`medialaxis.compare.dce`).
 """
 
 from __future__ import annotations
