@@ -13,7 +13,8 @@ measured separately).
 ``--variants`` also prints the row of each variant evaluated for the
 follow-up of issue 6 (pruning levels, coarser or finer axis pruning through
 ``MedialAxis.prune``, more radius samples, each matching weight halved and
-doubled), with the split check used against overfitting: the row's sum over
+doubled) and in the second one (Discrete Curve Evolution skeleton pruning,
+the unpruned axis), with the split check used against overfitting: the row's sum over
 the queries of the odd-numbered classes (A) and of the even-numbered ones (B).
 A change is kept only if it raises both halves.
 """
@@ -116,8 +117,14 @@ def shape_context_matrix(masks: list[np.ndarray], *, invariant: bool = False) ->
     return D, (time.perf_counter() - t0) / (n * (n - 1) / 2)
 
 
-def robustness(masks: list[np.ndarray], sigs: list, labels: np.ndarray, rng: np.random.Generator) -> dict[str, str]:
-    """Share of perturbed shapes closer to their original than to any shape of another class."""
+def robustness(
+    masks: list[np.ndarray], sigs: list, labels: np.ndarray, rng: np.random.Generator, make_signature=None
+) -> dict[str, str]:
+    """Share of perturbed shapes closer to their original than to any shape of another class.
+
+    ``make_signature(mask)`` builds the perturbed shape's signature (default
+    :func:`shape_signature`); ``sigs`` must be built the same way.
+    """
     from scipy import ndimage
     from skimage import transform
 
@@ -143,7 +150,7 @@ def robustness(masks: list[np.ndarray], sigs: list, labels: np.ndarray, rng: np.
     for name, make in kinds.items():
         ok = total = 0
         for q in range(0, len(masks), 2):
-            moved = shape_signature(make(masks[q]))
+            moved = (make_signature or shape_signature)(make(masks[q]))
             others = [s for s, lab in zip(sigs, labels) if lab != labels[q]]
             d_self = mx.shape_distance(moved, sigs[q])
             ok += int(d_self < query_distances(moved, others, n_jobs=1).min())
@@ -177,6 +184,17 @@ def variants(masks: list[np.ndarray], labels: np.ndarray, jobs: int | None) -> N
     for detour in (0.2, 0.35):
         row(f"axis re-pruned detour={detour}", [signature(ax.prune(detour=detour)) for ax in axes])
     row("n_samples=50", [signature(ax, n_samples=50) for ax in axes])
+    # Second follow-up: DCE skeleton pruning (Bai, Latecki, Liu), on the
+    # default axis and on the unpruned one (``ma.raw``), and the unpruned
+    # axis alone, which is where the gain comes from.
+    for dce in (0.01, 0.02):
+        row(f"dce={dce}", [signature(ax, dce=dce) for ax in axes])
+    row("unpruned axis", [signature(ax, unpruned=True) for ax in axes])
+    for dce in (0.005, 0.01, 0.02):
+        row(f"unpruned, dce={dce}", [signature(ax, unpruned=True, dce=dce) for ax in axes])
+    for k in (12, 16, 24):
+        row(f"unpruned, DCE to {k} vertices", [signature(ax, unpruned=True, dce=1.0, dce_vertices=k) for ax in axes])
+    row("unpruned, DCE 16, prune=0 (pure DCE)", [signature(ax, unpruned=True, dce=1.0, dce_vertices=16, prune=0) for ax in axes])
     sigs = [signature(ax) for ax in axes]
     row("path term alone (context=0)", sigs, context=0.0)
     row("context=0, unmatched=0.8 (before)", sigs, context=0.0, unmatched=0.8)

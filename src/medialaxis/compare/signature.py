@@ -12,6 +12,9 @@ References
 ----------
 X. Bai and L. J. Latecki, "Path similarity skeleton graph matching",
 IEEE TPAMI 30(7), 2008. Paper 000 (medial axis "for comparing two shapes").
+X. Bai, L. J. Latecki and W.-Y. Liu, "Skeleton pruning by contour partitioning
+with discrete curve evolution", IEEE TPAMI 29(3), 2007 (the optional ``dce``
+pruning, :mod:`medialaxis.compare.dce`).
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ import numpy as np
 from scipy.sparse import csgraph
 
 from medialaxis.compare.context import axis_context
+from medialaxis.compare.dce import convex_dce_vertices, dce_prune
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import EmptyShapeError, InvalidInputError
@@ -132,6 +136,16 @@ def _largest_component(points: np.ndarray, radii: np.ndarray, edges: np.ndarray)
 def _scale(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> float:
     sweep = float((_edge_lengths(points, edges) * (radii[edges[:, 0]] + radii[edges[:, 1]])).sum()) if len(edges) else 0.0
     return float(np.sqrt(sweep + np.pi * float(radii.max()) ** 2))
+
+
+def _outline(shape: Any) -> np.ndarray | None:
+    """Exterior vertices (first not repeated) of the largest polygon of ``shape``, or None."""
+    geoms = getattr(shape, "geoms", [shape])
+    polys = [g for g in geoms if getattr(g, "geom_type", None) == "Polygon" and not g.is_empty]
+    if not polys:
+        return None
+    coords = np.asarray(max(polys, key=lambda g: g.area).exterior.coords, dtype=np.float64)[:-1]
+    return coords if len(coords) >= 3 else None
 
 
 def _terminal_protrusions(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> list[tuple[np.ndarray, float]]:
@@ -308,32 +322,6 @@ def _paths(
             else:
                 out_r[i, j] = radii[path[0]]
     return out_r, out_l, out_b
-    n = len(points)
-    weights = _edge_lengths(points, edges)
-    dist, pred = csgraph.dijkstra(_weighted(n, edges, weights), directed=False, indices=ends, return_predecessors=True)
-    t = np.linspace(0.0, 1.0, n_samples)
-    for i in range(e):
-        for j in range(e):
-            if i == j:
-                out_r[i, j] = radii[ends[i]]
-                continue
-            if j < i:
-                out_r[i, j] = out_r[j, i][::-1]
-                out_l[i, j] = out_l[j, i]
-                continue
-            path = [int(ends[j])]
-            while path[-1] != ends[i]:
-                path.append(int(pred[i, path[-1]]))
-            path.reverse()
-            p = points[path]
-            arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
-            total = arc[-1]
-            out_l[i, j] = total
-            if total > 0:
-                out_r[i, j] = np.interp(t * total, arc, radii[path])
-            else:
-                out_r[i, j] = radii[path[0]]
-    return out_r, out_l
 
 
 def signature(
@@ -342,6 +330,9 @@ def signature(
     n_samples: int = DEFAULT_SAMPLES,
     prune: float = DEFAULT_PRUNE,
     max_endpoints: int = 24,
+    dce: float = 0.0,
+    dce_vertices: int = 3,
+    unpruned: bool = False,
 ) -> Signature:
     """Skeleton-path signature of a planar medial axis.
 
@@ -359,6 +350,22 @@ def signature(
     max_endpoints : int
         If the axis still has more endpoints, the least protruding terminal
         branches are dropped until it has this many (bounds the pairwise cost).
+    dce : float
+        If > 0, first prune the axis by Discrete Curve Evolution of the
+        shape's outline (``ma.shape``; skipped if it has none): evolve the
+        largest polygon's exterior until every vertex has relevance at least
+        ``dce`` (or ``dce_vertices`` remain), then keep only terminal
+        branches whose tip reaches a convex surviving vertex (Bai, Latecki
+        and Liu; see :mod:`medialaxis.compare.dce`). ``0`` (default): off,
+        as it did not raise the Kimia-99 row (``benchmarks/bench_compare.py
+        --variants``).
+    dce_vertices : int
+        Least number of vertices the evolution keeps (>= 3); with a large
+        ``dce`` (e.g. 1) it is the fixed vertex count.
+    unpruned : bool
+        Compare the axis before the method's own pruning (``ma.raw``) when
+        the result carries it; the spurious branches are then removed only
+        by ``prune`` (and ``dce``).
 
     Returns
     -------
@@ -400,6 +407,16 @@ def signature(
         raise InvalidInputError(f"prune must be finite and >= 0, got {prune!r}")
     if not isinstance(max_endpoints, (int, np.integer)) or max_endpoints < 2:
         raise InvalidInputError(f"max_endpoints must be an integer >= 2, got {max_endpoints!r}")
+    try:
+        dce = float(dce)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"dce must be a number, got {dce!r}") from None
+    if not np.isfinite(dce) or dce < 0:
+        raise InvalidInputError(f"dce must be finite and >= 0, got {dce!r}")
+    if not isinstance(dce_vertices, (int, np.integer)) or dce_vertices < 3:
+        raise InvalidInputError(f"dce_vertices must be an integer >= 3, got {dce_vertices!r}")
+    if unpruned and ma.raw is not None and len(ma.raw.points):
+        ma = ma.raw
     if len(ma.points) == 0:
         raise EmptyShapeError("the medial axis is empty (no axis left after pruning): nothing to compare")
     if not (np.isfinite(ma.points).all() and np.isfinite(ma.radii).all()):
@@ -411,6 +428,10 @@ def signature(
     if radii.max() <= 0:
         raise EmptyShapeError("the medial axis has no positive radius: the shape has no interior")
     scale = _scale(points, radii, edges)
+    if dce > 0:
+        outline = _outline(ma.shape)
+        if outline is not None:
+            edges = dce_prune(points, radii, edges, convex_dce_vertices(outline, dce, min_vertices=int(dce_vertices)))
     edges = _prune_spurious(points, radii, edges, prune * scale, int(max_endpoints))
     lone = np.zeros(len(points), bool)
     if not len(edges):
