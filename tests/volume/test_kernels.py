@@ -52,15 +52,17 @@ def test_greedy_subsample_matches_reference(seed, r):
 
 
 @given(st.integers(0, 10_000), st.integers(1, 6))
-def test_geodesic_labels_match_reference(seed, nseeds):
+def test_single_sheet_labels_are_plain_geodesic_voronoi(seed, nseeds):
     occ = _random_sheet(seed, p=0.6)
     vox = np.argwhere(occ)
     index = np.full(occ.shape, -1, np.int32)
     index[tuple(vox.T)] = np.arange(len(vox))
     seeds = np.random.default_rng(seed).choice(len(vox), size=min(nseeds, len(vox)), replace=False)
     spacing = np.array([1.0, 1.0, 2.0])
-    fast = K.geodesic_labels(index, vox, seeds, K.OFFSETS_26, spacing)
-    assert np.array_equal(fast, K.geodesic_labels_reference(vox, seeds, spacing))
+    labels = np.arange(len(seeds), dtype=np.int64)
+    sheet = np.zeros(len(vox), np.int64)
+    fast = K.sheet_labels(index, vox, seeds, labels, sheet, K.OFFSETS_26, spacing)
+    assert np.array_equal(fast, K.sheet_labels_reference(vox, seeds, labels, sheet, spacing))
     assert np.array_equal(fast[seeds], np.arange(len(seeds)))
 
 

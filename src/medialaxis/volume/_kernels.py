@@ -5,9 +5,8 @@
   voxel (0 isolated, 1 boundary, 2 surface, 3 or more junction).
 * :func:`greedy_subsample`: pick voxels in a priority order, removing the
   not-yet-picked ones within each pick's radius (Michikawa and Suzuki).
-* :func:`geodesic_labels`: multi-source breadth-first search on the
-  26-connected voxels: the discrete Voronoi regions of the picks.
-* :func:`sheet_labels`: the same, with regions kept inside sheets: growth
+* :func:`sheet_labels`: multi-source search on the 26-connected voxels,
+  the discrete Voronoi regions of the picks, kept inside sheets: growth
   never crosses from one sheet to another, and the junction voxels between
   sheets are seeds with fixed labels shared by every sheet.
 
@@ -26,8 +25,6 @@ __all__ = [
     "topology_class_reference",
     "greedy_subsample",
     "greedy_subsample_reference",
-    "geodesic_labels",
-    "geodesic_labels_reference",
     "sheet_labels",
     "sheet_labels_reference",
 ]
@@ -161,82 +158,16 @@ def greedy_subsample_reference(voxels: np.ndarray, order: np.ndarray, radius: np
 
 
 @njit(cache=True, nogil=True)
-def geodesic_labels(index: np.ndarray, voxels: np.ndarray, seeds: np.ndarray, offs: np.ndarray,
-                    spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
-    """Discrete geodesic Voronoi regions of ``seeds`` over 26-adjacent voxels.
-
-    Regions grow in order of the Euclidean distance from a voxel to the seed
-    of the neighbour it is reached from (vector propagation with a heap), so
-    region borders are near the Euclidean bisectors; ties go to the lower
-    seed. Voxels not reachable from any seed get -1. ``index`` maps grid
-    positions to rows (-1 elsewhere).
-    """
-    n = voxels.shape[0]
-    label = np.full(n, -1, np.int64)
-    best = np.full(n, np.inf)
-    heap = [(0.0, np.int64(0), np.int64(0))]
-    heap.pop()
-    for s in range(seeds.shape[0]):
-        best[seeds[s]] = 0.0
-        label[seeds[s]] = s
-        heapq.heappush(heap, (0.0, np.int64(s), np.int64(seeds[s])))
-    done = np.zeros(n, np.bool_)
-    Z, Y, X = index.shape
-    while len(heap) > 0:
-        d, s, i = heapq.heappop(heap)
-        if done[i] or label[i] != s:
-            continue
-        done[i] = True
-        src = seeds[s]
-        for t in range(offs.shape[0]):
-            a, b, c = voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1], voxels[i, 2] + offs[t, 2]
-            if 0 <= a < Z and 0 <= b < Y and 0 <= c < X:
-                j = index[a, b, c]
-                if j >= 0 and not done[j]:
-                    dz = (a - voxels[src, 0]) * spacing[0]
-                    dy = (b - voxels[src, 1]) * spacing[1]
-                    dx = (c - voxels[src, 2]) * spacing[2]
-                    dj = np.sqrt(dz * dz + dy * dy + dx * dx)
-                    if dj < best[j] or (dj == best[j] and s < label[j]):
-                        best[j] = dj
-                        label[j] = s
-                        heapq.heappush(heap, (dj, np.int64(s), np.int64(j)))
-    return label
-
-
-def geodesic_labels_reference(voxels: np.ndarray, seeds: np.ndarray, spacing: np.ndarray) -> np.ndarray:
-    """Pure-Python reference of :func:`geodesic_labels`."""
-    where = {tuple(v): i for i, v in enumerate(voxels.tolist())}
-    label = np.full(len(voxels), -1, np.int64)
-    best = np.full(len(voxels), np.inf)
-    done = np.zeros(len(voxels), bool)
-    heap: list[tuple[float, int, int]] = []
-    for s, i in enumerate(seeds):
-        best[i], label[i] = 0.0, s
-        heapq.heappush(heap, (0.0, s, int(i)))
-    while heap:
-        _, s, i = heapq.heappop(heap)
-        if done[i] or label[i] != s:
-            continue
-        done[i] = True
-        for off in OFFSETS_26:
-            j = where.get(tuple((voxels[i] + off).tolist()))
-            if j is None or done[j]:
-                continue
-            dj = float(np.linalg.norm((voxels[j] - voxels[seeds[s]]) * spacing))
-            if dj < best[j] or (dj == best[j] and s < label[j]):
-                best[j], label[j] = dj, s
-                heapq.heappush(heap, (dj, s, j))
-    return label
-
-
-@njit(cache=True, nogil=True)
 def sheet_labels(index: np.ndarray, voxels: np.ndarray, seeds: np.ndarray, seed_label: np.ndarray,
                  sheet: np.ndarray, offs: np.ndarray, spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Discrete geodesic Voronoi regions of ``seeds`` that stay inside sheets.
 
-    As :func:`geodesic_labels`, but seed ``s`` gives its region the label
-    ``seed_label[s]`` (several seeds may share one), and a region grows from
+    Regions grow in order of the Euclidean distance from a voxel to the seed
+    of the neighbour it is reached from (vector propagation with a heap), so
+    region borders are near the Euclidean bisectors; ties go to the lower
+    seed. ``index`` maps grid positions to rows (-1 elsewhere). Seed ``s``
+    gives its region the label ``seed_label[s]`` (several seeds may share
+    one), and a region grows from
     voxel ``i`` to voxel ``j`` only when ``sheet[j] >= 0`` and ``sheet[i]``
     is ``sheet[j]`` or negative (junction voxels, ``sheet == -1``, are seeds
     and reach into every sheet). Voxels not reached get -1.
