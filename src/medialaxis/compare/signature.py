@@ -27,6 +27,7 @@ from scipy.sparse import csgraph
 
 from medialaxis.compare.context import axis_context
 from medialaxis.compare.dce import convex_dce_vertices, dce_prune
+from medialaxis.compare.tour import rotation_system, tour_context
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import EmptyShapeError, InvalidInputError
@@ -80,6 +81,16 @@ class Signature:
         :func:`medialaxis.compare.context.axis_context`).
     context_radii : (k,) float64 ndarray
         Radius at each context sample divided by ``scale``.
+    tour : (2, t, h) float64 ndarray
+        Tour-context histograms of ``t`` samples along the walk around the
+        axis (see :func:`medialaxis.compare.tour.tour_context`) in two
+        versions: the shape and its mirror image (the walk the other way).
+        Each walk starts at an endpoint of largest weight (the node of
+        largest radius if the axis has no endpoint), chosen by the walk itself.
+    tour_radii : (2, t) float64 ndarray
+        Radius at each tour sample divided by ``scale``.
+    tour_points : (2, t, 2) float64 ndarray
+        Positions of the samples of each version on the axis (input units), for pictures.
     """
 
     radii: np.ndarray
@@ -94,6 +105,9 @@ class Signature:
     edges: np.ndarray
     context: np.ndarray
     context_radii: np.ndarray
+    tour: np.ndarray
+    tour_radii: np.ndarray
+    tour_points: np.ndarray
 
     def __post_init__(self) -> None:
         for f in dataclasses.fields(self):
@@ -219,18 +233,7 @@ def _boundary_order(points: np.ndarray, edges: np.ndarray, ends: np.ndarray) -> 
     from ``a``, leave by the neighbour that follows ``a`` in angular order
     around ``b``. For a tree this is the walk around the boundary.
     """
-    n = len(points)
-    nbrs: list[list[int]] = [[] for _ in range(n)]
-    for a, b in edges:
-        if a != b:
-            nbrs[int(a)].append(int(b))
-            nbrs[int(b)].append(int(a))
-    rank: list[dict[int, int]] = []
-    for v in range(n):
-        d = points[nbrs[v]] - points[v] if nbrs[v] else np.empty((0, 2))
-        order = np.argsort(np.arctan2(d[:, 1], d[:, 0]), kind="stable") if len(d) else np.empty(0, np.int64)
-        nbrs[v] = [nbrs[v][k] for k in order]
-        rank.append({u: k for k, u in enumerate(nbrs[v])})
+    nbrs, rank = rotation_system(points, edges)
     is_end = set(int(e) for e in ends)
     seen: set[int] = set()
     out: list[int] = []
@@ -249,8 +252,7 @@ def _boundary_order(points: np.ndarray, edges: np.ndarray, ends: np.ndarray) -> 
             if b in is_end and b not in seen:
                 seen.add(b)
                 out.append(b)
-            around = nbrs[b]
-            dart = (b, around[(rank[b][a] + 1) % len(around)])
+            dart = (b, nbrs[b][(rank[b][a] + 1) % len(nbrs[b])])
             if dart == first:
                 break
     return np.asarray(out, np.int64)
@@ -323,6 +325,23 @@ def _paths(
                 out_r[i, j] = radii[path[0]]
     return out_r, out_l, out_b
 
+
+def _tour_starts(
+    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, ends: np.ndarray, weights: np.ndarray, lengths: np.ndarray
+) -> np.ndarray:
+    """Nodes the tour may start from, found the same way whatever the pose or numbering of the shape.
+
+    The endpoints whose branch protrudes most (within 1e-6: symmetric
+    limbs, the corner branches of a limb's end) and, among those, the ones
+    farthest along the axis from the others (largest sum of path lengths);
+    the node of largest radius when the axis has no endpoint.
+    :func:`medialaxis.compare.tour.outer_face` picks one by the walk.
+    """
+    if len(ends) < 2 or _graph.degree(len(points), edges)[ends[0]] != 1:
+        return np.array([int(np.argmax(radii))])
+    tied = np.flatnonzero(weights >= weights.max() * (1 - 1e-6) - 1e-12)
+    reach = lengths[tied].sum(axis=1)
+    return ends[tied[reach >= reach.max() * (1 - 1e-6) - 1e-12]]
 
 def signature(
     ma: MedialAxis,
@@ -449,7 +468,13 @@ def signature(
     ends_xy = points[order]
     chords = np.linalg.norm(ends_xy[:, None, :] - ends_xy[None, :, :], axis=2)
     context, context_radii = axis_context(points, radii, edges, scale)
+    starts = _tour_starts(points, radii, edges, order, weights, path_l)
+    flips = (np.array([1.0, 1.0]), np.array([1.0, -1.0]))  # the shape, then its mirror image
+    versions = [tour_context(points * flip, radii, edges, scale, starts) for flip in flips]
+    tour = np.stack([v[0] for v in versions])
+    tour_radii = np.stack([v[1] for v in versions])
+    tour_points = np.stack([v[2] * flip for v, flip in zip(versions, flips)])
     return Signature(
         path_r / scale, path_l / scale, chords / scale, bends / scale, weights / scale, ends_xy, scale, points, radii,
-        edges, context, context_radii,
+        edges, context, context_radii, tour, tour_radii, tour_points,
     )
