@@ -6,11 +6,11 @@ from hypothesis import given
 from hypothesis import strategies as st
 from PIL import Image
 from shapely import affinity
-from shapely.geometry import Polygon, box
+from shapely.geometry import MultiPoint, Polygon, box
 from skimage import transform
 
 import medialaxis as mx
-from medialaxis.compare import match_endpoints, query_distances, shape_signature
+from medialaxis.compare import match_endpoints, match_tour, query_distances, shape_signature
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 
 T_SHAPE = Polygon([(0, 0), (10, 0), (10, 2), (6, 2), (6, 8), (4, 8), (4, 2), (0, 2)])
@@ -128,6 +128,29 @@ def test_match_endpoints_of_itself_is_identity():
     assert d == 0.0 and pairs == [(i, i) for i in range(n)]
 
 
+def test_terms_add_up_with_their_weights():
+    tour = mx.shape_distance(T_SHAPE, CROSS)
+    paths = mx.shape_distance(T_SHAPE, CROSS, tour=0, paths=1)
+    context = mx.shape_distance(T_SHAPE, CROSS, tour=0, context=1)
+    assert tour > 0 and paths > 0 and context > 0
+    both = mx.shape_distance(T_SHAPE, CROSS, tour=2, paths=0.5, context=0.25)
+    assert both == pytest.approx(2 * tour + 0.5 * paths + 0.25 * context, rel=1e-12)
+    assert paths == pytest.approx(match_endpoints(T_SHAPE, CROSS)[0], rel=1e-9)
+    assert tour == pytest.approx(match_tour(T_SHAPE, CROSS)[0], rel=1e-9) or tour == pytest.approx(
+        match_tour(CROSS, T_SHAPE)[0], rel=1e-9
+    )
+
+
+def test_match_tour_pairs_samples_along_both_walks():
+    d, pa, pb = match_tour(T_SHAPE, T_SHAPE)
+    assert d == 0.0 and np.array_equal(pa, pb) and len(pa) == shape_signature(T_SHAPE).tour.shape[1]
+    d, pa, pb = match_tour(T_SHAPE, _similarity(T_SHAPE, 30, 2, 5, 5, True))
+    assert d < 1e-9 and pa.shape == pb.shape == (len(pa), 2) and len(pa) > 0
+    # Each matched sample of the moved shape is the image of its partner under the similarity.
+    moved = np.array([g.coords[0] for g in _similarity(MultiPoint(pa), 30, 2, 5, 5, True).geoms])
+    assert np.allclose(moved, pb, atol=1e-6 * 20)
+
+
 def test_bad_inputs():
     with pytest.raises(EmptyShapeError):
         mx.shape_distance(np.zeros((30, 30), bool), T_SHAPE)
@@ -137,6 +160,10 @@ def test_bad_inputs():
         mx.distance_matrix([T_SHAPE, np.ones((5, 6, 7), bool)])
     with pytest.raises(InvalidInputError, match="alpha"):
         mx.shape_distance(T_SHAPE, CROSS, alpha=-1)
+    with pytest.raises(InvalidInputError, match="gap"):
+        mx.shape_distance(T_SHAPE, CROSS, gap=float("nan"))
+    with pytest.raises(InvalidInputError, match="all 0"):
+        mx.distance_matrix([T_SHAPE, CROSS], tour=0)
     with pytest.raises(InvalidInputError, match="n_jobs"):
         mx.distance_matrix([T_SHAPE, CROSS], n_jobs=0)
     with pytest.raises(InvalidInputError, match="at least one"):

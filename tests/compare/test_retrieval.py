@@ -15,8 +15,9 @@ def test_retrieval_row_protocol_on_a_toy_matrix():
 def test_kimia99_retrieval(kimia_matrix, kimia_labels):
     row = retrieval_row(kimia_matrix, kimia_labels)
     assert row.shape == (10,)
-    # Regression floor under the measured row (913, see the benchmark); chance is about 10 per rank.
-    # The path term alone stays near 850 or below (bench --variants): the floor checks the axis-context term is in.
-    assert row[0] >= 95 and row[:5].sum() >= 460 and row.sum() >= 880
+    # Regression floor under the measured row (955, see the benchmark); chance is about 10 per rank.
+    # The path and unordered-context terms stay at 912 or below (bench --variants): the floor checks
+    # that the ordered tour term is in.
+    assert row[0] >= 97 and row[:5].sum() >= 485 and row.sum() >= 940
     reranked = retrieval_row(diffusion_rerank(kimia_matrix), kimia_labels)
-    assert reranked.sum() >= row.sum() - 20  # collection-level re-ranking must not wreck the row
+    assert reranked.sum() >= row.sum()  # collection-level re-ranking lifts the late ranks (980 measured)

@@ -24,15 +24,15 @@ def _add_matching_options(p: argparse.ArgumentParser) -> None:
     from medialaxis.compare.distance import DEFAULTS
     from medialaxis.compare.signature import DEFAULT_PRUNE
 
-    p.add_argument("--alpha", type=float, default=DEFAULTS["alpha"], help="weight of the path-length term")
-    p.add_argument("--skip", type=float, default=DEFAULTS["skip"], help="cost of an unaligned path (times endpoint weight)")
-    p.add_argument("--unmatched", type=float, default=DEFAULTS["unmatched"], help="cost of an unmatched endpoint (times weight)")
-    p.add_argument("--context", type=float, default=DEFAULTS["context"], help="weight of the axis-context term (0: paths alone)")
+    p.add_argument("--gap", type=float, default=DEFAULTS["gap"], help="cost of a tour sample left unaligned")
+    p.add_argument("--tour", type=float, default=DEFAULTS["tour"], help="weight of the axis-tour term")
+    p.add_argument("--paths", type=float, default=DEFAULTS["paths"], help="weight of the skeleton-path term (Bai and Latecki)")
+    p.add_argument("--context", type=float, default=DEFAULTS["context"], help="weight of the unordered axis-context term")
     p.add_argument("--prune", type=float, default=DEFAULT_PRUNE, help="drop terminal branches protruding less than this fraction of the shape scale")
 
 
 def _matching(args: argparse.Namespace) -> dict[str, Any]:
-    return {"alpha": args.alpha, "skip": args.skip, "unmatched": args.unmatched, "context": args.context, "prune": args.prune}
+    return {"gap": args.gap, "tour": args.tour, "paths": args.paths, "context": args.context, "prune": args.prune}
 
 
 # ------------------------------------------------------------ compare
@@ -41,13 +41,13 @@ def add_compare(sub: Any) -> None:
     p = sub.add_parser(
         "compare",
         help="distance between two shapes through their medial axes",
-        description="Print the skeleton-path distance between two planar shapes (0: same shape) "
-        "and optionally draw the matched parts side by side.",
+        description="Print the medial-axis distance between two planar shapes (0: same shape) "
+        "and optionally draw the matched parts of their axes side by side.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter,
     )
     p.add_argument("first", type=Path, help="image, SVG, GeoJSON or WKT file, or a saved axis (.json/.npz)")
     p.add_argument("second", type=Path, help="the other shape")
-    p.add_argument("-o", "--output", type=Path, default=None, help="picture of the matched endpoints (.png, .svg or .pdf)")
+    p.add_argument("-o", "--output", type=Path, default=None, help="picture of the matched axis parts (.png, .svg or .pdf)")
     _add_matching_options(p)
     p.set_defaults(run=_run_compare)
 
@@ -71,7 +71,7 @@ def _is_saved_axis(path: Path) -> bool:
 
 def _run_compare(args: argparse.Namespace) -> int:
     from medialaxis.cli import UsageError
-    from medialaxis.compare.distance import match_endpoints, shape_distance
+    from medialaxis.compare.distance import match_tour, shape_distance
 
     if args.output is not None:
         if args.output.suffix.lower() not in (".png", ".svg", ".pdf"):
@@ -83,16 +83,29 @@ def _run_compare(args: argparse.Namespace) -> int:
     distance = shape_distance(a, b, **options)
     print(f"{distance:.6g}")
     if args.output is not None:
-        _, pairs = match_endpoints(a, b, **options)
-        save_match_picture(a, b, pairs, args.output, prune=args.prune, titles=(args.first.name, args.second.name), distance=distance)
+        _, points_a, points_b = match_tour(a, b, **options)
+        save_match_picture(a, b, points_a, points_b, args.output, prune=args.prune,
+                           titles=(args.first.name, args.second.name), distance=distance)
         print(f"wrote {args.output}", file=sys.stderr)
     return 0
 
 
 def save_match_picture(
-    a: Any, b: Any, pairs: list[tuple[int, int]], path: Path, *, prune: float, titles: tuple[str, str], distance: float
+    a: Any,
+    b: Any,
+    points_a: np.ndarray,
+    points_b: np.ndarray,
+    path: Path,
+    *,
+    prune: float,
+    titles: tuple[str, str],
+    distance: float,
 ) -> None:
-    """Draw two axes side by side, matched endpoints in the same colour."""
+    """Draw two axes side by side; aligned tour samples (``points_a[i]``, ``points_b[i]``) share a colour.
+
+    The colour runs along the walk around the first axis, so matched parts
+    of the two shapes show in the same hues.
+    """
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -103,8 +116,8 @@ def save_match_picture(
     from medialaxis.core.plot import draw_region
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 5))
-    colours = plt.get_cmap("tab10")
-    for side, (ma, ax, title) in enumerate(zip((a, b), axes, titles)):
+    hue = np.linspace(0.0, 1.0, max(len(points_a), 1))
+    for ma, ax, title, matched in zip((a, b), axes, titles, (points_a, points_b)):
         sig = shape_signature(ma, prune=prune)
         raster = "image_shape" in ma.metadata
 
@@ -116,18 +129,15 @@ def save_match_picture(
         for i, j in sig.edges:
             seg = xy(sig.points[[i, j]])
             ax.plot(seg[:, 0], seg[:, 1], color="#555", lw=1.2)
-        ends = xy(sig.endpoints)
-        ax.scatter(ends[:, 0], ends[:, 1], s=25, color="#999", zorder=3)
-        for n, pair in enumerate(pairs):
-            x, y = ends[pair[side]]
-            ax.scatter([x], [y], s=90, color=colours(n % 10), zorder=4)
-            ax.annotate(str(n + 1), (x, y), xytext=(5, 5), textcoords="offset points", fontsize=10)
+        if len(matched):
+            pts = xy(np.asarray(matched, np.float64).reshape(-1, 2))
+            ax.scatter(pts[:, 0], pts[:, 1], s=28, c=hue[: len(pts)], cmap="turbo", zorder=4, edgecolors="none")
         ax.set_aspect("equal")
         if raster:
             ax.invert_yaxis()
         ax.set_title(title)
         ax.set_axis_off()
-    fig.suptitle(f"distance {distance:.4g}; matched endpoints share a colour")
+    fig.suptitle(f"distance {distance:.4g}; aligned samples of the walks around the axes share a colour")
     fmt = path.suffix.lower().lstrip(".")
     with atomic_write(path, "wb") as fh:
         fig.savefig(fh, format=fmt, dpi=100, bbox_inches="tight")
@@ -140,7 +150,7 @@ def add_search(sub: Any) -> None:
     p = sub.add_parser(
         "search",
         help="rank the shapes of a folder by distance to a query",
-        description="Rank the planar shape files of a folder by their skeleton-path distance to a query shape.",
+        description="Rank the planar shape files of a folder by their medial-axis distance to a query shape.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter,
     )
     p.add_argument("query", type=Path, help="query shape file")

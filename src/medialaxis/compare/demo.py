@@ -18,7 +18,7 @@ def _compare_case(outdir: Path) -> str:
 
     import medialaxis as mx
     from medialaxis.compare.cli import save_match_picture
-    from medialaxis.compare.distance import match_endpoints, shape_signature
+    from medialaxis.compare.distance import match_tour, shape_signature
     from medialaxis.compare.signature import DEFAULT_PRUNE
     from medialaxis.demo import data_path
 
@@ -27,8 +27,8 @@ def _compare_case(outdir: Path) -> str:
     turned = np.rot90(masks[0])  # the first shape, turned by 90 degrees
     axes = [mx.medial_axis(m) for m in [*masks, turned]]
     D = mx.distance_matrix([shape_signature(a) for a in axes], n_jobs=1)
-    distance, pairs = match_endpoints(axes[0], axes[-1])
-    save_match_picture(axes[0], axes[-1], pairs, outdir / "compare_match.png", prune=DEFAULT_PRUNE,
+    distance, points_a, points_b = match_tour(axes[0], axes[-1])
+    save_match_picture(axes[0], axes[-1], points_a, points_b, outdir / "compare_match.png", prune=DEFAULT_PRUNE,
                        titles=(SAMPLES[0], SAMPLES[0] + " turned"), distance=distance)
     elapsed = time.perf_counter() - t0
     nearest = int(np.argsort(D[-1])[1])
