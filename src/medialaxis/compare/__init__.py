@@ -32,6 +32,7 @@ from medialaxis.compare.distance import (
     shape_distance,
     shape_signature,
 )
+from medialaxis.compare.retrieval import diffusion_rerank, retrieval_row
 from medialaxis.compare.signature import Signature, signature
 
 __all__ = [
@@ -44,4 +45,6 @@ __all__ = [
     "signature",
     "Signature",
     "DEFAULTS",
+    "retrieval_row",
+    "diffusion_rerank",
 ]

@@ -1,9 +1,18 @@
-"""Compiled pairwise step of the skeleton-path distance, with NumPy references.
+"""Compiled pairwise steps of the shape distance, with NumPy references.
 
-Signatures are packed into flat arrays (see :func:`pack`) so that a whole
-block of pairs is scored in one ``nogil`` call: threads then run in parallel.
+Signatures are packed into flat arrays (:func:`pack_tour`, :func:`pack`,
+:func:`pack_context`) so that a whole block of pairs is scored in one
+``nogil`` call: threads then run in parallel.
 
-Per pair (Bai and Latecki, TPAMI 2008):
+The axis-tour term (:func:`tour_distances`, the default distance): the cost
+of matching tour sample ``i`` of A with sample ``k`` of B is half the squared
+Hellinger distance of their histograms plus ``|r - r'| / (r + r')``; B's
+cyclic sequence is aligned to A's, keeping the order, each skipped sample of
+either costing ``gap``, from ``TOUR_SHIFTS`` starting offsets and within
+``TOUR_BAND`` samples of the diagonal; the least total over the pairs of
+versions (tour, mirror image), divided by the mean sample count.
+
+The skeleton-path term, per pair (Bai and Latecki, TPAMI 2008):
 
 1. path cost between path ``(i, j)`` of shape A and path ``(k, l)`` of B, with
    ``chi(x, y) = (x - y)**2 / (x + y)``:

@@ -1,12 +1,17 @@
-"""Skeleton-path signature of a planar medial axis (Bai and Latecki).
+"""Signature of a planar medial axis: what the shape distance compares, computed once per shape.
 
-A shape is described by the *skeleton paths* between every pair of axis
-endpoints: the radius function sampled at ``n_samples`` points equally spaced
-along the geodesic path, and the path's length. Endpoints are listed in the
-order a walk around the shape's boundary meets them, which the matching uses
-to keep the order of parts. Everything is divided by one scale, the square
-root of the area swept by the axis, so the signature is invariant under
-similarity transforms (rotation, translation, uniform scaling, mirroring).
+Three descriptions of the axis (after removing spurious branches), one per
+term of :func:`medialaxis.shape_distance`: the *axis tour* (samples along
+the walk around the axis with their mass histograms and radii, see
+:mod:`medialaxis.compare.tour`); the *skeleton paths* between every pair of
+axis endpoints (Bai and Latecki: the radius function sampled at
+``n_samples`` points equally spaced along the geodesic path, the path's
+length, chord and bend; endpoints listed in the order a walk around the
+shape's boundary meets them); and the unordered *axis context*
+(:mod:`medialaxis.compare.context`). Everything is divided by one scale, the
+square root of the area swept by the axis, so the signature is invariant
+under similarity transforms (rotation, translation, uniform scaling,
+mirroring).
 
 References
 ----------
@@ -353,7 +358,7 @@ def signature(
     dce_vertices: int = 3,
     unpruned: bool = False,
 ) -> Signature:
-    """Skeleton-path signature of a planar medial axis.
+    """Signature of a planar medial axis (tour, skeleton paths, axis context).
 
     Parameters
     ----------
