@@ -207,8 +207,8 @@ def variants(masks: list[np.ndarray], labels: np.ndarray, jobs: int | None) -> N
         row(f"paths+context, dce={dce}", [signature(ax, dce=dce) for ax in axes], tour=0, paths=1, context=0.6)
     row("paths+context, unpruned", [signature(ax, unpruned=True) for ax in axes], tour=0, paths=1, context=0.6)
     for k in (12, 16):
-        row(f"paths+context, unpruned, DCE to {k}", [signature(ax, unpruned=True, dce=1.0, dce_vertices=k) for ax in axes],
-            tour=0, paths=1, context=0.6)
+        dce_sigs = [signature(ax, unpruned=True, dce=1.0, dce_vertices=k) for ax in axes]
+        row(f"paths+context, unpruned, DCE to {k}", dce_sigs, tour=0, paths=1, context=0.6)
     for key in ("alpha", "beta", "gamma", "skip", "unmatched"):
         for factor in (0.5, 2.0):
             row(f"paths+context, {key}={DEFAULTS[key] * factor:.4g}", sigs, tour=0, paths=1, context=0.6,

@@ -65,7 +65,8 @@ def test_invariant_under_similarity_and_renumbering(angle, scale, mirror, seed):
     edges = inv[Y_EDGES][rng.permutation(len(Y_EDGES))]
     starts = inv[[1, 2]]  # two candidates: the walk picks the same one
     base = tour_context(Y_POINTS, Y_RADII, Y_EDGES, 2.0, np.array([1, 2]))
-    got = tour_context(moved * np.array([1.0, -1.0]) if mirror else moved, Y_RADII[perm] * scale, edges, 2.0 * scale, starts)
+    pose = moved * np.array([1.0, -1.0]) if mirror else moved
+    got = tour_context(pose, Y_RADII[perm] * scale, edges, 2.0 * scale, starts)
     want = tour_context(Y_POINTS * np.array([1.0, -1.0]), Y_RADII, Y_EDGES, 2.0, np.array([1, 2])) if mirror else base
     assert np.allclose(got[0], want[0], atol=1e-9) and np.allclose(got[1], want[1] * 1.0, atol=1e-9)
 
@@ -87,7 +88,8 @@ def test_compiled_alignment_matches_reference_and_is_symmetric(seed, na, nb):
     assert forward == backward  # exactly symmetric
     ref_ab = _kernels.tour_match_reference(ha, ra, hb, rb, 0.3)[0]
     ref_ba = _kernels.tour_match_reference(hb, rb, ha, ra, 0.3)[0]
-    assert forward == pytest.approx(min(ref_ab, ref_ba), rel=1e-9) or forward == pytest.approx(max(ref_ab, ref_ba), rel=1e-9)
+    # The kernel aligns the pair in an order fixed by content: it equals the reference in one of the two orders.
+    assert any(forward == pytest.approx(ref, rel=1e-9) for ref in (ref_ab, ref_ba))
     assert forward > 0
 
 

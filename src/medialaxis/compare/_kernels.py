@@ -571,7 +571,9 @@ def tour_match_reference(
                 if lo == 1:
                     table[i, 0] = i * gap
                 for k in range(lo, hi + 1):
-                    table[i, k] = min(table[i - 1, k - 1] + c[i - 1, k - 1], table[i - 1, k] + gap, table[i, k - 1] + gap)
+                    table[i, k] = min(
+                        table[i - 1, k - 1] + c[i - 1, k - 1], table[i - 1, k] + gap, table[i, k - 1] + gap
+                    )
             if table[na, nb] < best[0]:
                 pairs, i, k = [], na, nb
                 while i > 0 and k > 0:

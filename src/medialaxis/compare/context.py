@@ -24,7 +24,9 @@ import numpy as np
 
 from medialaxis.core import graph as _graph
 
-__all__ = ["axis_context", "mass_histograms", "pieces", "soft_bins", "N_CONTEXT", "N_RADIAL", "N_ANGULAR", "RADIAL_CENTRES"]
+__all__ = [
+    "axis_context", "mass_histograms", "pieces", "soft_bins", "N_CONTEXT", "N_RADIAL", "N_ANGULAR", "RADIAL_CENTRES",
+]
 
 #: Samples along the axis (about; each branch gets a whole number of them).
 #: 32 gives the Kimia-99 row of 40 (903 vs 906) at about half the pair time.

@@ -45,7 +45,8 @@ from medialaxis.compare.signature import DEFAULT_PRUNE, DEFAULT_SAMPLES, Signatu
 from medialaxis.errors import InvalidInputError
 
 __all__ = [
-    "shape_distance", "distance_matrix", "query_distances", "match_tour", "match_endpoints", "shape_signature", "DEFAULTS",
+    "shape_distance", "distance_matrix", "query_distances", "match_tour", "match_endpoints", "shape_signature",
+    "DEFAULTS",
 ]
 
 #: Matching parameters. ``tour``, ``paths``, ``context``: weights of the three

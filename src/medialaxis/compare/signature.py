@@ -348,6 +348,7 @@ def _tour_starts(
     reach = lengths[tied].sum(axis=1)
     return ends[tied[reach >= reach.max() * (1 - 1e-6) - 1e-12]]
 
+
 def signature(
     ma: MedialAxis,
     *,

@@ -9,8 +9,8 @@ axis with cycles (a shape with holes) the walk of the outer face is used.
 
 ``n`` samples are placed at equal steps along the tour, starting from a
 canonical place (the tip of the branch that protrudes most, see
-:func:`outer_face` and :func:`medialaxis.compare.signature`). Each sample is an axis point with a
-direction (that of the walk, so the two sides of a branch differ) and its
+:func:`outer_face` and :func:`medialaxis.compare.signature`). Each sample
+is an axis point with a direction (that of the walk, so the two sides of a branch differ) and its
 radius; its descriptor is the log-polar histogram of the swept mass of the
 whole axis (length times radius of each axis piece) around it, with angles
 measured from the walk direction over the full circle. Two shapes are compared
@@ -23,7 +23,7 @@ directly; only the *order* of the samples is the boundary's. It is the
 medial counterpart of matching shape contexts with an order-keeping dynamic
 program (Belongie, Malik and Puzicha, TPAMI 2002; Ling and Jacobs, TPAMI
 2007), and it lifts the Kimia-99 row from 912 (path matching plus the
-unordered axis context) to 960 (``benchmarks/bench_compare.py``).
+unordered axis context) to 955 (``benchmarks/bench_compare.py``).
 Similarity invariant: distances are divided by the signature's scale and
 angles are measured from the walk; a mirror image walks the tour the other
 way (:func:`tour_context` of the reflected axis gives it).
@@ -37,9 +37,12 @@ from medialaxis.compare.context import RADIAL_CENTRES, mass_histograms, pieces
 
 __all__ = ["tour_context", "rotation_system", "outer_face", "N_TOUR", "N_TOUR_ANGULAR"]
 
-#: Samples along the tour (32 gives 925 on the Kimia-99 row, 48 951, 64 960, 96 960).
+#: Samples along the tour. On the Kimia-99 row: 48 gives 954, 64 955, 80 957,
+#: 96 953 (equal within the few units of noise of that measure; the pair time
+#: grows as the square); 32 gave 925 in the prototype.
 N_TOUR = 64
-#: Angle bins over the full circle (8: 952, 12: 960, 16: 961 on Kimia-99, at 20% more time).
+#: Angle bins over the full circle (8: 952, 12: 955-960, 16: 958-961 on
+#: Kimia-99 in the prototype and here, at 20% more time for 16).
 N_TOUR_ANGULAR = 12
 
 
@@ -86,8 +89,8 @@ def outer_face(points: np.ndarray, edges: np.ndarray, starts: np.ndarray) -> np.
     nodes, or a junction the walk passes several times), it takes the one
     followed by the longest stretch of walk before the next of them: a rule
     that depends only on the walk, so the same start is found whatever the
-    pose or the numbering, and a mirror image (which walks the other way)
-    finds the mirror of it.
+    pose or the numbering (a mirror image walks the other way, and its walk
+    is the one the mirrored version of the signature takes).
     """
     nbrs, rank = rotation_system(points, edges)
     seen: set[tuple[int, int]] = set()
