@@ -10,7 +10,8 @@ Hellinger distance of their histograms plus ``|r - r'| / (r + r')``; B's
 cyclic sequence is aligned to A's, keeping the order, each skipped sample of
 either costing ``gap``, from ``TOUR_SHIFTS`` starting offsets and within
 ``TOUR_BAND`` samples of the diagonal; the least total over the pairs of
-versions (tour, mirror image), divided by the mean sample count.
+versions (tour, mirror image; the axis as pruned, the axis before the
+method's own pruning), divided by the mean sample count.
 
 The skeleton-path term, per pair (Bai and Latecki, TPAMI 2008):
 
@@ -427,9 +428,9 @@ TOUR_BAND = 16
 def pack_tour(tours: list[np.ndarray], radii: list[np.ndarray]) -> tuple[np.ndarray, ...]:
     """Pack per-shape tours for :func:`tour_distances`.
 
-    ``tours[s]``: shape ``s``'s histograms ``(v, t, h)`` in ``v`` versions
-    (see :class:`~medialaxis.compare.Signature`: the tour and its mirror
-    image); ``radii[s]``: ``(v, t)``.
+    ``tours[s]``: shape ``s``'s histograms ``(v, t, h)`` in ``v`` versions,
+    an even number: (tour, mirror image) for each axis pruning (see
+    :class:`~medialaxis.compare.Signature`); ``radii[s]``: ``(v, t)``.
     Returns ``(sqrt_histograms (v, sum t, h), radii (v, sum t),
     squared_norms (v, sum t), offsets (n+1,))``: square roots, so that half
     the squared Hellinger distance is ``0.5 (|a|^2 + |b|^2) - a.b``.
@@ -492,16 +493,18 @@ def _cyclic_align(cost, nb, gap, stride, band, table):  # pragma: no cover - com
 
 @njit(cache=True, nogil=True)
 def _tour_pair(roots, radii, norms, oa, ea, ob, eb, gap):  # pragma: no cover - compiled
-    """Tour distance of shapes A (rows ``oa:ea``) and B: least over the pairs of versions."""
+    """Tour distance of shapes A (rows ``oa:ea``) and B: least over the pairs of versions of one pruning."""
     na, nb = ea - oa, eb - ob
     stride = max(1, nb // TOUR_SHIFTS)
     table = np.empty((na + 1, nb + 1))
     best = np.inf
-    # Every version of A (the tour, its mirror image) against every version of B: a set that
-    # mirroring either shape leaves unchanged, so the value is exactly mirror invariant.
-    n_versions = roots.shape[0]
-    for version in range(n_versions * n_versions):
-        va, vb = version // n_versions, version % n_versions
+    # Versions come in pairs (a tour, its mirror image), one pair per axis pruning. Within each
+    # pruning, every version of A against every version of B: a set that mirroring either shape
+    # leaves unchanged, so the value is exactly mirror invariant.
+    for version in range(2 * roots.shape[0]):
+        group, va, vb = version // 4, (version // 2) % 2, version % 2
+        va += 2 * group
+        vb += 2 * group
         cost = _tour_costs(roots[va, oa:ea], radii[va, oa:ea], norms[va, oa:ea],
                            roots[vb, ob:eb], radii[vb, ob:eb], norms[vb, ob:eb])
         value = _cyclic_align(cost, nb, gap, stride, TOUR_BAND, table)
@@ -521,8 +524,8 @@ def tour_distances(roots, radii, norms, offsets, rows, cols, gap):  # pragma: no
     """Tour distances of the pairs ``(rows[p], cols[p])`` of packed tours (see :func:`pack_tour`).
 
     Per pair: B's tour is aligned cyclically to A's (:func:`_cyclic_align`)
-    for every pair of versions (the tours and their mirror images), the
-    least total divided by the mean sample count. Each pair is
+    for every pair of versions of the same axis pruning (the tours and their
+    mirror images), the least total divided by the mean sample count. Each pair is
     computed in an order fixed by the contents of the two tours, so the value
     is exactly symmetric; equal tours give exactly 0.
     """
@@ -552,13 +555,14 @@ def tour_match_reference(
     pairs ``(i of A, k of B)`` in those versions.
     """
     n_versions = min(len(tour_a), len(tour_b))
+    pairs_of_versions = [(g + i, g + k) for g in range(0, n_versions, 2) for i in (0, 1) for k in (0, 1)]
     na, nb = tour_a.shape[1], tour_b.shape[1]
     if na == nb and np.array_equal(tour_a[0], tour_b[0]) and np.array_equal(radii_a[0], radii_b[0]):
         return 0.0, 0, 0, [(i, i) for i in range(na)]
     stride = max(1, nb // TOUR_SHIFTS)
     best: tuple[float, int, int, list[tuple[int, int]]] = (np.inf, 0, 0, [])
     centre = (np.arange(na + 1) * nb) // na
-    for va, vb in ((va, vb) for va in range(n_versions) for vb in range(n_versions)):
+    for va, vb in pairs_of_versions:
         ha, ra, hb, rb = tour_a[va], radii_a[va], tour_b[vb], radii_b[vb]
         hell = 0.5 * ((np.sqrt(ha)[:, None, :] - np.sqrt(hb)[None, :, :]) ** 2).sum(axis=2)
         cost = hell + np.abs(ra[:, None] - rb[None, :]) / (ra[:, None] + rb[None, :] + EPS)

@@ -86,15 +86,18 @@ class Signature:
         :func:`medialaxis.compare.context.axis_context`).
     context_radii : (k,) float64 ndarray
         Radius at each context sample divided by ``scale``.
-    tour : (2, t, h) float64 ndarray
+    tour : (4, t, h) float64 ndarray
         Tour-context histograms of ``t`` samples along the walk around the
-        axis (see :func:`medialaxis.compare.tour.tour_context`) in two
-        versions: the shape and its mirror image (the walk the other way).
-        Each walk starts at an endpoint of largest weight (the node of
-        largest radius if the axis has no endpoint), chosen by the walk itself.
-    tour_radii : (2, t) float64 ndarray
-        Radius at each tour sample divided by ``scale``.
-    tour_points : (2, t, 2) float64 ndarray
+        axis (see :func:`medialaxis.compare.tour.tour_context`) in four
+        versions: the shape and its mirror image (the walk the other way),
+        then both again for the axis before the method's own pruning
+        (``ma.raw``, with spurious branches removed by ``prune`` alone; a
+        copy of the first two when the axis carries no raw graph). Each
+        walk starts at an endpoint of largest weight (the node of largest
+        radius if the axis has no endpoint), chosen by the walk itself.
+    tour_radii : (4, t) float64 ndarray
+        Radius at each tour sample divided by the scale of its axis.
+    tour_points : (4, t, 2) float64 ndarray
         Positions of the samples of each version on the axis (input units), for pictures.
     """
 
@@ -349,6 +352,64 @@ def _tour_starts(
     return ends[tied[reach >= reach.max() * (1 - 1e-6) - 1e-12]]
 
 
+def _compared_axis(
+    ma: MedialAxis, prune: float, max_endpoints: int, dce: float, dce_vertices: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """``(points, radii, edges, scale)`` of the axis compared: largest component, spurious branches removed."""
+    if len(ma.points) == 0:
+        raise EmptyShapeError("the medial axis is empty (no axis left after pruning): nothing to compare")
+    if not (np.isfinite(ma.points).all() and np.isfinite(ma.radii).all()):
+        raise InvalidInputError("the medial axis has NaN or infinite coordinates or radii")
+    edges = np.asarray(ma.edges)
+    edges = edges[edges[:, 0] != edges[:, 1]] if len(edges) else edges.reshape(0, 2)
+    keep, edges = _largest_component(ma.points, ma.radii, edges)
+    points, radii = np.array(ma.points[keep]), np.array(ma.radii[keep])
+    if radii.max() <= 0:
+        raise EmptyShapeError("the medial axis has no positive radius: the shape has no interior")
+    scale = _scale(points, radii, edges)
+    if dce > 0:
+        outline = _outline(ma.shape)
+        if outline is not None:
+            edges = dce_prune(points, radii, edges, convex_dce_vertices(outline, dce, min_vertices=dce_vertices))
+    edges = _prune_spurious(points, radii, edges, prune * scale, max_endpoints)
+    lone = np.zeros(len(points), bool)
+    if not len(edges):
+        lone[int(np.argmax(radii))] = True  # a disc: its axis is one point
+    keep2, edges = _graph.compact(len(points), edges, lone)
+    return points[keep2], radii[keep2], edges, scale
+
+
+def _endpoint_order(points: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """Endpoints in boundary order, or two far-apart nodes if the axis has fewer than two endpoints."""
+    ends = np.flatnonzero(_graph.degree(len(points), edges) == 1)
+    if len(ends) < 2:
+        return _diameter_ends(points, edges, _edge_lengths(points, edges) if len(edges) else np.empty(0))
+    return _boundary_order(points, edges, ends)
+
+
+def _path_lengths(points: np.ndarray, edges: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """Geodesic axis distances ``(e, e)`` between the nodes ``ends``."""
+    if not len(edges):
+        return np.zeros((len(ends), len(ends)))
+    graph = _weighted(len(points), edges, _edge_lengths(points, edges))
+    return csgraph.dijkstra(graph, directed=False, indices=ends)[:, ends]
+
+
+def _tour_versions(
+    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, scale: float, order: np.ndarray, weights: np.ndarray,
+    lengths: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Tour histograms ``(2, t, h)``, radii ``(2, t)`` and positions ``(2, t, 2)`` of the shape and its mirror image."""
+    starts = _tour_starts(points, radii, edges, order, weights, lengths)
+    flips = (np.array([1.0, 1.0]), np.array([1.0, -1.0]))  # the shape, then its mirror image
+    versions = [tour_context(points * flip, radii, edges, scale, starts) for flip in flips]
+    return (
+        np.stack([v[0] for v in versions]),
+        np.stack([v[1] for v in versions]),
+        np.stack([v[2] * flip for v, flip in zip(versions, flips)]),
+    )
+
+
 def signature(
     ma: MedialAxis,
     *,
@@ -440,46 +501,28 @@ def signature(
         raise InvalidInputError(f"dce must be finite and >= 0, got {dce!r}")
     if not isinstance(dce_vertices, (int, np.integer)) or dce_vertices < 3:
         raise InvalidInputError(f"dce_vertices must be an integer >= 3, got {dce_vertices!r}")
-    if unpruned and ma.raw is not None and len(ma.raw.points):
-        ma = ma.raw
-    if len(ma.points) == 0:
-        raise EmptyShapeError("the medial axis is empty (no axis left after pruning): nothing to compare")
-    if not (np.isfinite(ma.points).all() and np.isfinite(ma.radii).all()):
-        raise InvalidInputError("the medial axis has NaN or infinite coordinates or radii")
-    edges = np.asarray(ma.edges)
-    edges = edges[edges[:, 0] != edges[:, 1]] if len(edges) else edges.reshape(0, 2)
-    keep, edges = _largest_component(ma.points, ma.radii, edges)
-    points, radii = np.array(ma.points[keep]), np.array(ma.radii[keep])
-    if radii.max() <= 0:
-        raise EmptyShapeError("the medial axis has no positive radius: the shape has no interior")
-    scale = _scale(points, radii, edges)
-    if dce > 0:
-        outline = _outline(ma.shape)
-        if outline is not None:
-            edges = dce_prune(points, radii, edges, convex_dce_vertices(outline, dce, min_vertices=int(dce_vertices)))
-    edges = _prune_spurious(points, radii, edges, prune * scale, int(max_endpoints))
-    lone = np.zeros(len(points), bool)
-    if not len(edges):
-        lone[int(np.argmax(radii))] = True  # a disc: its axis is one point
-    keep2, edges = _graph.compact(len(points), edges, lone)
-    points, radii = points[keep2], radii[keep2]
-    ends = np.flatnonzero(_graph.degree(len(points), edges) == 1)
-    if len(ends) < 2:
-        ends = _diameter_ends(points, edges, _edge_lengths(points, edges) if len(edges) else np.empty(0))
-        order = ends
-    else:
-        order = _boundary_order(points, edges, ends)
+    raw = ma.raw if ma.raw is not None and len(ma.raw.points) else None
+    if unpruned and raw is not None:
+        ma, raw = raw, None
+    points, radii, edges, scale = _compared_axis(ma, prune, int(max_endpoints), dce, int(dce_vertices))
+    order = _endpoint_order(points, edges)
     path_r, path_l, bends = _paths(points, radii, edges, order, int(n_samples), N_BEND)
     weights = _endpoint_weights(points, radii, edges, order, path_l)
     ends_xy = points[order]
     chords = np.linalg.norm(ends_xy[:, None, :] - ends_xy[None, :, :], axis=2)
     context, context_radii = axis_context(points, radii, edges, scale)
-    starts = _tour_starts(points, radii, edges, order, weights, path_l)
-    flips = (np.array([1.0, 1.0]), np.array([1.0, -1.0]))  # the shape, then its mirror image
-    versions = [tour_context(points * flip, radii, edges, scale, starts) for flip in flips]
-    tour = np.stack([v[0] for v in versions])
-    tour_radii = np.stack([v[1] for v in versions])
-    tour_points = np.stack([v[2] * flip for v, flip in zip(versions, flips)])
+    tours = [_tour_versions(points, radii, edges, scale, order, weights, path_l)]
+    if raw is not None:
+        # The tour of the axis without the method's own pruning (spurious branches removed by
+        # ``prune`` alone): the distance keeps the better of the two comparisons.
+        r_points, r_radii, r_edges, r_scale = _compared_axis(raw, prune, int(max_endpoints), dce, int(dce_vertices))
+        r_order = _endpoint_order(r_points, r_edges)
+        r_lengths = _path_lengths(r_points, r_edges, r_order)
+        r_weights = _endpoint_weights(r_points, r_radii, r_edges, r_order, r_lengths)
+        tours.append(_tour_versions(r_points, r_radii, r_edges, r_scale, r_order, r_weights, r_lengths))
+    else:
+        tours.append(tours[0])
+    tour, tour_radii, tour_points = (np.concatenate(parts) for parts in zip(*tours))
     return Signature(
         path_r / scale, path_l / scale, chords / scale, bends / scale, weights / scale, ends_xy, scale, points, radii,
         edges, context, context_radii, tour, tour_radii, tour_points,
