@@ -1,20 +1,30 @@
-"""Comparing shapes through their medial axes (skeleton path matching).
+"""Comparing shapes through their medial axes.
 
 Paper 000 builds the medial axis "for comparing two shapes"; this layer does
-it with Bai and Latecki's path similarity (TPAMI 2008): a shape is the set of
-axis paths between its endpoints, each described by the radius function
-along it (plus its length, chord and bend profile); endpoints are matched
-one-to-one by the Hungarian algorithm, with costs from order-keeping
-alignments of the paths leaving them.
+it by walking around the axis. The walk (the axis's Euler tour) meets the
+axis's parts in the order the boundary does; samples along it are medial
+points, each described by its radius and by a log-polar histogram of where
+the axis's swept area lies around it, seen from the walk direction
+(:mod:`medialaxis.compare.tour`). Two shapes are compared by aligning their
+walks cyclically, keeping the order and paying for skipped samples (dynamic
+programming), for the shape and its mirror image, and for the axis as
+pruned and before the method's own pruning, keeping the best.
 
-Why this and not shock-graph edit distance: it needs only the axis and its
-radius function (what :class:`~medialaxis.MedialAxis` holds), tolerates
-missing or spurious branches through skip and unmatched costs weighted by
-how much of the shape a branch carries, is exactly invariant under
-similarities (everything is divided by one axis-derived scale and both
-boundary orientations are tried), and its pairwise step is a small compiled
-kernel (tens of microseconds a pair), so collections of thousands of shapes
-are practical. Measured figures: ``benchmarks/bench_compare.py``.
+Why this: it was measured against the alternatives on Kimia-99
+(``benchmarks/bench_compare.py``). Bai and Latecki's path similarity with
+Hungarian endpoint matching (TPAMI 2008), implemented here as the ``paths``
+term, reaches 853 (their paper: 939 with hand-tuned DCE pruning); adding an
+unordered axis context, 912; the ordered tour, 960 (shock graphs: 956), at
+or above the shock-graph row at ranks 3 to 8 and 10, one query short at
+ranks 1, 2 and 9. It needs only the axis and its radius function (what
+:class:`~medialaxis.MedialAxis` holds), tolerates missing or spurious
+branches (their samples are skipped at a cost proportional to their
+length), is exactly invariant under similarities (one axis-derived scale,
+angles from the walk, both orientations tried), and its pairwise step is a
+compiled kernel (about 0.4 ms a pair on one core), so collections of
+thousands of shapes are practical. Shock-graph edit distance was not built:
+its matching is a search over edits of the graph structure, far slower per
+pair, and the tour already matches its figures.
 
 >>> import medialaxis as mx
 >>> d = mx.shape_distance("a.png", "b.png")        # doctest: +SKIP

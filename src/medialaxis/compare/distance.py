@@ -6,7 +6,9 @@ by ``tour``, ``paths`` and ``context``:
 - the *axis tour* (:mod:`medialaxis.compare.tour`, default weight 1): samples
   along the walk around the axis, each described by where the axis's swept
   area lies around it and by its radius, aligned cyclically in order with a
-  cost ``gap`` per skipped sample. Kimia-99 row 960 alone.
+  cost ``gap`` per skipped sample, for the axis as pruned and for the axis
+  before the method's own pruning, keeping the better. Kimia-99 row 960
+  (955 with the pruned axis alone).
 - Bai and Latecki's skeleton path matching (default weight 0): the radius
   function along the axis path between every two endpoints; endpoints
   matched one-to-one (Hungarian) with costs from order-keeping alignments of

@@ -23,7 +23,8 @@ directly; only the *order* of the samples is the boundary's. It is the
 medial counterpart of matching shape contexts with an order-keeping dynamic
 program (Belongie, Malik and Puzicha, TPAMI 2002; Ling and Jacobs, TPAMI
 2007), and it lifts the Kimia-99 row from 912 (path matching plus the
-unordered axis context) to 955 (``benchmarks/bench_compare.py``).
+unordered axis context) to 955, and to 960 when the distance keeps the better
+of two axis prunings (``benchmarks/bench_compare.py``).
 Similarity invariant: distances are divided by the signature's scale and
 angles are measured from the walk; a mirror image walks the tour the other
 way (:func:`tour_context` of the reflected axis gives it).
@@ -37,9 +38,9 @@ from medialaxis.compare.context import RADIAL_CENTRES, mass_histograms, pieces
 
 __all__ = ["tour_context", "rotation_system", "outer_face", "N_TOUR", "N_TOUR_ANGULAR"]
 
-#: Samples along the tour. On the Kimia-99 row: 48 gives 954, 64 955, 80 957,
-#: 96 953 (equal within the few units of noise of that measure; the pair time
-#: grows as the square); 32 gave 925 in the prototype.
+#: Samples along the tour. On the Kimia-99 row (one axis pruning): 48 gives
+#: 954, 64 955, 80 957, 96 953, equal within the few units of noise of that
+#: measure, while the pair time grows as the square; 32 gave 925 in the prototype.
 N_TOUR = 64
 #: Angle bins over the full circle (8: 952, 12: 955-960, 16: 958-961 on
 #: Kimia-99 in the prototype and here, at 20% more time for 16).
