@@ -1,4 +1,6 @@
-"""Skeleton-path signatures on shapes with known axes."""
+"""Signatures (skeleton paths, tours) on shapes with known axes."""
+
+import dataclasses
 
 import numpy as np
 import pytest
@@ -58,6 +60,23 @@ def test_keeps_largest_component():
     mask[5:8, 80:83] = True  # a speck
     sig = shape_signature(mask)
     assert sig.endpoints[:, 1].max() < 75
+
+
+def test_tour_versions_of_both_prunings():
+    ma = mx.medial_axis(np.pad(np.ones((30, 80), bool), 10))  # a raster rectangle: its raw axis has pixel spurs
+    sig = signature(ma)
+    assert sig.tour.shape == (4, 64, 60) and sig.tour_radii.shape == (4, 64) and sig.tour_points.shape == (4, 64, 2)
+    assert np.allclose(sig.tour.sum(axis=2), 1.0)
+    assert not np.allclose(sig.tour[:2], sig.tour[2:])  # the raw axis is walked differently
+    # Mirror versions: the same sample positions met in the other direction.
+    for g in (0, 2):
+        assert np.allclose(np.sort(sig.tour_radii[g]), np.sort(sig.tour_radii[g + 1]))
+    # Without a raw graph (e.g. a saved and reloaded axis), the second pruning repeats the first.
+    bare = signature(dataclasses.replace(ma, raw=None))
+    assert np.array_equal(bare.tour[:2], bare.tour[2:]) and np.array_equal(bare.tour[:2], sig.tour[:2])
+    # unpruned=True compares the raw axis throughout: both pairs of versions are its tour.
+    raw = signature(ma, unpruned=True)
+    assert np.array_equal(raw.tour[:2], raw.tour[2:]) and np.array_equal(raw.tour[:2], sig.tour[2:])
 
 
 def test_input_axis_not_modified():
