@@ -170,9 +170,6 @@ def _describe(shape: Any) -> str:
 
 def _params(options: dict[str, Any]) -> dict[str, float]:
     """Matching parameters from keyword options (``None``: the default); checked to be numbers >= 0."""
-    unknown = sorted(set(options) - set(DEFAULTS))
-    if unknown:
-        raise InvalidInputError(f"unknown matching parameter(s) {unknown}; expected some of {sorted(DEFAULTS)}")
     out = {k: check_number(DEFAULTS[k] if options.get(k) is None else options[k], k) for k in DEFAULTS}
     if out["tour"] == out["paths"] == out["context"] == 0:
         raise InvalidInputError("the weights tour, paths and context are all 0: nothing would be compared")
@@ -215,8 +212,9 @@ def shape_distance(
     The main term walks around each axis (the order in which the boundary
     meets its parts) and aligns the two walks cyclically, keeping the order:
     each sample is an axis point with its radius and a log-polar histogram of
-    where the axis's swept area lies around it (:mod:`medialaxis.compare.tour`).
-    Two more terms, off by default, add Bai and Latecki's skeleton path
+    where the axis's swept area lies around it (:mod:`medialaxis.compare.tour`);
+    it is computed for the axis as pruned and for the axis before the
+    method's own pruning, and the better of the two is kept. Two more terms, off by default, add Bai and Latecki's skeleton path
     matching (``paths``) and the unordered axis context (``context``).
     Both orientations (mirror images) are tried.
 
