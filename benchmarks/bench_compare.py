@@ -2,8 +2,9 @@
 
 Prints, from one run: our retrieval row (ranks 1..10, standard protocol: each
 of the 99 shapes queries the other 98) with the default distance (the axis
-tour) on the shapes read as boolean masks and given as PNG paths, with the previous default (skeleton paths plus the unordered axis
-context) and with collection-level re-ranking; the same row for two
+tour) on the shapes read as boolean masks and given as PNG paths, with the
+previous default (skeleton paths plus the unordered axis context) and with
+collection-level re-ranking; the same row for two
 baselines (Hu moments; shape contexts with Hungarian matching), the
 literature's shock-graph row, the time per pair of each, and the time of
 ``distance_matrix`` on a 1,400-shape collection (Kimia-99 signatures
@@ -14,8 +15,8 @@ measured separately).
 
 ``--variants`` also prints the row of each variant evaluated for issue 6:
 for the tour term, the gap cost and the pruning (signature pruning levels,
-each of the two axis prunings alone) and the other terms added to it; for the path term (the
-main term before the tour), pruning levels, coarser or finer axis pruning
+each of the two axis prunings alone) and the other terms added to it; for
+the path term (the main term before the tour), pruning levels, coarser or finer axis pruning
 through ``MedialAxis.prune``, more radius samples, Discrete Curve Evolution
 skeleton pruning, and each matching weight halved and doubled. Each row has
 the split check used against overfitting: its sum over the queries of the
