@@ -214,9 +214,10 @@ def shape_distance(
     each sample is an axis point with its radius and a log-polar histogram of
     where the axis's swept area lies around it (:mod:`medialaxis.compare.tour`);
     it is computed for the axis as pruned and for the axis before the
-    method's own pruning, and the better of the two is kept. Two more terms, off by default, add Bai and Latecki's skeleton path
-    matching (``paths``) and the unordered axis context (``context``).
-    Both orientations (mirror images) are tried.
+    method's own pruning, and the better of the two is kept. Two more terms,
+    off by default, add Bai and Latecki's skeleton path matching (``paths``)
+    and the unordered axis context (``context``). Both orientations (mirror
+    images) are tried.
 
     Parameters
     ----------
