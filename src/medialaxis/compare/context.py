@@ -25,7 +25,7 @@ import numpy as np
 from medialaxis.core import graph as _graph
 
 __all__ = [
-    "axis_context", "mass_histograms", "pieces", "soft_bins", "N_CONTEXT", "N_RADIAL", "N_ANGULAR", "RADIAL_CENTRES",
+    "axis_context", "along", "mass_histograms", "pieces", "soft_bins", "N_CONTEXT", "N_RADIAL", "N_ANGULAR", "RADIAL_CENTRES",
 ]
 
 #: Samples along the axis (about; each branch gets a whole number of them).
@@ -53,24 +53,32 @@ def pieces(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> tuple[np
     return mid, mass / mass.sum()
 
 
+def along(
+    points: np.ndarray, radii: np.ndarray, nodes: np.ndarray, fractions: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Positions ``(k, 2)``, headings ``(k,)`` and radii ``(k,)`` at ``fractions`` of the length of a node path.
+
+    ``nodes`` lists the path's nodes in order (at least two); the heading is
+    the direction of the path's segment holding each point.
+    """
+    p = points[nodes]
+    step = np.diff(p, axis=0)
+    seg = np.linalg.norm(step, axis=1)
+    arc = np.concatenate([[0.0], np.cumsum(seg)])
+    at = fractions * arc[-1]
+    s = np.clip(np.searchsorted(arc, at, side="right") - 1, 0, len(seg) - 1)
+    pos = np.column_stack([np.interp(at, arc, p[:, 0]), np.interp(at, arc, p[:, 1])])
+    return pos, np.arctan2(step[s, 1], step[s, 0]), np.interp(at, arc, radii[nodes])
+
+
 def _samples(points: np.ndarray, radii: np.ndarray, edges: np.ndarray, n_samples: int) -> tuple[np.ndarray, ...]:
     """Positions ``(m, 2)``, tangent angles ``(m,)`` and radii ``(m,)`` of samples along each branch."""
     chains = _graph.branches(len(points), edges)
     lengths = [float(np.linalg.norm(np.diff(points[c], axis=0), axis=1).sum()) for c in chains]
     step = sum(lengths) / n_samples
-    pos, ang, rad = [], [], []
-    for chain, total in zip(chains, lengths):
-        p = points[chain]
-        seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
-        arc = np.concatenate([[0.0], np.cumsum(seg)])
-        k = max(1, int(np.rint(total / step)))
-        at = (np.arange(k) + 0.5) / k * total
-        pos.append(np.column_stack([np.interp(at, arc, p[:, 0]), np.interp(at, arc, p[:, 1])]))
-        rad.append(np.interp(at, arc, radii[chain]))
-        s = np.clip(np.searchsorted(arc, at, side="right") - 1, 0, len(seg) - 1)
-        d = p[s + 1] - p[s]
-        ang.append(np.arctan2(d[:, 1], d[:, 0]))
-    return np.concatenate(pos), np.concatenate(ang), np.concatenate(rad)
+    parts = [along(points, radii, chain, (np.arange(k) + 0.5) / k)
+             for chain, k in ((c, max(1, int(np.rint(total / step)))) for c, total in zip(chains, lengths))]
+    return tuple(np.concatenate(column) for column in zip(*parts))
 
 
 def soft_bins(x: np.ndarray, centres: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

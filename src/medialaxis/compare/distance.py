@@ -176,10 +176,21 @@ def _params(options: dict[str, Any]) -> dict[str, float]:
     return out
 
 
-def _split(kwargs: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
-    """Split keyword arguments into matching parameters and options for :func:`medialaxis.medial_axis`."""
-    matching = {k: kwargs.pop(k) for k in list(kwargs) if k in DEFAULTS}
-    return matching, kwargs
+def _options(options: dict[str, Any], **fixed: float) -> tuple[dict[str, float], dict[str, Any]]:
+    """Checked matching parameters (``fixed`` overriding) and the options left for :func:`medialaxis.medial_axis`."""
+    axis_options = dict(options)
+    matching = {k: axis_options.pop(k) for k in list(axis_options) if k in DEFAULTS}
+    return _params({**matching, **fixed}), axis_options
+
+
+def _signature_pair(
+    a: Any, b: Any, n_samples: int, prune: float, options: dict[str, Any], **fixed: float
+) -> tuple[Signature, Signature, dict[str, float]]:
+    """Signatures of ``a`` and ``b`` and the matching parameters, from a public function's keywords."""
+    params, axis_options = _options(options, **fixed)
+    sa = shape_signature(a, n_samples=n_samples, prune=prune, **axis_options)
+    sb = shape_signature(b, n_samples=n_samples, prune=prune, **axis_options)
+    return sa, sb, params
 
 
 def _features(sig: Signature) -> tuple[np.ndarray, ...]:
@@ -263,10 +274,7 @@ def shape_distance(
     >>> mx.shape_distance(bar, bar.T) < 0.05          # transposed: equal up to pixel noise
     True
     """
-    matching, axis_options = _split(options)
-    params = _params(matching)
-    sa = shape_signature(a, n_samples=n_samples, prune=prune, **axis_options)
-    sb = shape_signature(b, n_samples=n_samples, prune=prune, **axis_options)
+    sa, sb, params = _signature_pair(a, b, n_samples, prune, options)
     if sa is sb:
         return 0.0
     _check_samples([sa, sb])
@@ -298,10 +306,7 @@ def match_tour(
     >>> d, len(pa), bool(np.array_equal(pa, pb))
     (0.0, 64, True)
     """
-    matching, axis_options = _split(options)
-    params = _params(matching)
-    sa = shape_signature(a, n_samples=n_samples, prune=prune, **axis_options)
-    sb = shape_signature(b, n_samples=n_samples, prune=prune, **axis_options)
+    sa, sb, params = _signature_pair(a, b, n_samples, prune, options)
     value, va, vb, pairs = _kernels.tour_match_reference(sa.tour, sa.tour_radii, sb.tour, sb.tour_radii, params["gap"])
     index = np.asarray(pairs, np.int64).reshape(-1, 2)
     return value, sa.tour_points[va][index[:, 0]], sb.tour_points[vb][index[:, 1]]
@@ -331,10 +336,7 @@ def match_endpoints(
     >>> match_endpoints(bar, bar)[1]
     [(0, 0), (1, 1), (2, 2), (3, 3)]
     """
-    matching, axis_options = _split(options)
-    params = _params({**matching, "paths": 1.0})
-    sa = shape_signature(a, n_samples=n_samples, prune=prune, **axis_options)
-    sb = shape_signature(b, n_samples=n_samples, prune=prune, **axis_options)
+    sa, sb, params = _signature_pair(a, b, n_samples, prune, options, paths=1.0)
     _check_samples([sa, sb])
     return _kernels.reference_match(_features(sa), _features(sb), *(params[k] for k in _PATH_KEYS))
 
@@ -401,8 +403,7 @@ def query_distances(
     >>> (query_distances(bar, [bar, bar.T], n_jobs=1) < 0.05).tolist()   # itself, rotated by 90 degrees
     [True, True]
     """
-    matching, axis_options = _split(options)
-    params = _params(matching)
+    params, axis_options = _options(options)
     _check_jobs(n_jobs)
     _check_scheduler(scheduler)
     shapes = list(shapes)
@@ -521,8 +522,7 @@ def distance_matrix(
     >>> D.shape, bool(D[0, 2] < D[0, 1])
     ((3, 3), True)
     """
-    matching, axis_options = _split(options)
-    params = _params(matching)
+    params, axis_options = _options(options)
     if isinstance(shapes, (str, os.PathLike)) or not isinstance(shapes, Sequence):
         shapes = list(shapes) if not isinstance(shapes, (str, os.PathLike)) else [shapes]
     n = len(shapes)

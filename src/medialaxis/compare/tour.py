@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from medialaxis.compare.context import RADIAL_CENTRES, mass_histograms, pieces
+from medialaxis.compare.context import RADIAL_CENTRES, along, mass_histograms, pieces
 
 __all__ = ["tour_context", "rotation_system", "outer_face", "N_TOUR", "N_TOUR_ANGULAR"]
 
@@ -174,16 +174,8 @@ def tour_context(
         node = int(starts[0])
         return hist, np.array([radii[node] / scale]), points[[node]].astype(np.float64)
     darts = outer_face(points, edges, np.asarray(starts, np.int64))
-    a, b = darts[:, 0], darts[:, 1]
-    step = points[b] - points[a]
-    length = np.linalg.norm(step, axis=1)
-    arc = np.concatenate([[0.0], np.cumsum(length)])
-    at = (np.arange(n_samples) + 0.5) / n_samples * arc[-1]
-    k = np.clip(np.searchsorted(arc, at, side="right") - 1, 0, len(length) - 1)
-    frac = np.clip((at - arc[k]) / np.maximum(length[k], 1e-300), 0.0, 1.0)
-    pos = points[a[k]] + frac[:, None] * step[k]
-    rad = radii[a[k]] + frac * (radii[b[k]] - radii[a[k]])
-    heading = np.arctan2(step[k, 1], step[k, 0])
+    walk = np.append(darts[:, 0], darts[-1, 1])
+    pos, heading, rad = along(points, radii, walk, (np.arange(n_samples) + 0.5) / n_samples)
     mid, mass = pieces(points, radii, edges)
     hist = mass_histograms(pos, heading, mid, mass, scale, n_angular, 2 * np.pi)
     return hist, rad / scale, pos
