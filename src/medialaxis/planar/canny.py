@@ -28,8 +28,13 @@ def edge_pixels(src: PlanarInput, sigma: float = 1.0) -> np.ndarray:
     """(N, 2) Canny edge pixel coordinates (index order times spacing)."""
     from skimage.feature import canny
 
-    image = src.foreground.astype(np.float64) if src.image.dtype == bool else src.image.astype(np.float64)
-    padded = np.pad(image, 2, mode="constant", constant_values=float(image.min()))
+    if src.image.dtype == bool:
+        image, background = src.foreground.astype(np.float64), 0.0
+    else:
+        image = src.image.astype(np.float64)
+        # The frame is padded with background, so the border makes no edge.
+        background = float(image.max() if src.side == "dark" else image.min())
+    padded = np.pad(image, 2, mode="constant", constant_values=background)
     edges = canny(padded, sigma=sigma)[2:-2, 2:-2]
     pts = np.argwhere(edges).astype(np.float64) * src.spacing
     if len(pts) < 3:

@@ -28,7 +28,7 @@ from medialaxis.errors import (
     UnsupportedFormatError,
 )
 
-__all__ = ["PlanarInput", "load_planar", "max_pixels"]
+__all__ = ["PlanarInput", "load_planar", "max_pixels", "FOREGROUNDS"]
 
 #: Bytes of working memory per pixel of a raster input (float64 copy, padded
 #: copy, contour bookkeeping), used to refuse images too large before reading.
@@ -38,6 +38,9 @@ BYTES_PER_PIXEL = 48
 BINARY_SMOOTHING = 1.0
 
 IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff")
+
+#: Accepted values of ``foreground``: which side of the threshold is the shape.
+FOREGROUNDS = ("auto", "bright", "dark")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -53,9 +56,12 @@ class PlanarInput:
     image : (rows, cols) ndarray or None
         The grey or bool image for raster inputs.
     foreground : (rows, cols) bool ndarray or None
-        The thresholded mask for raster inputs.
+        The shape's pixels for raster inputs (the side of the threshold
+        that was taken as the shape).
     threshold : float or None
         Grey level used for raster inputs.
+    side : {"bright", "dark"} or None
+        Which side of the threshold is the shape, for raster inputs.
     repaired : str or None
         How an invalid polygon was repaired, if it was.
     """
@@ -65,6 +71,7 @@ class PlanarInput:
     image: np.ndarray | None = None
     foreground: np.ndarray | None = None
     threshold: float | None = None
+    side: str | None = None
     repaired: str | None = None
 
     @property
@@ -114,6 +121,7 @@ def _read_image(path: Path) -> np.ndarray:
 
 
 def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, float]:
+    """The bright side (``image > level``) and the level; bool images are their own bright side."""
     if threshold is not None:
         try:
             threshold = float(threshold)
@@ -135,8 +143,40 @@ def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, 
     return image > threshold, threshold
 
 
+def check_foreground(foreground: Any) -> str:
+    """Validate ``foreground`` (one of :data:`FOREGROUNDS`)."""
+    if not isinstance(foreground, str) or foreground not in FOREGROUNDS:
+        raise InvalidInputError(f"foreground must be one of {', '.join(map(repr, FOREGROUNDS))}, got {foreground!r}")
+    return foreground
+
+
+def shape_side(bright: np.ndarray, foreground: str = "auto") -> str:
+    """Which side of the threshold is the shape: ``"bright"`` or ``"dark"``.
+
+    ``"auto"`` takes the side that does not own most of the image border
+    (the outermost rows and columns): a shape lies on its background, so
+    the background is what the frame mostly sees. Ties (exactly half of
+    the border pixels on each side) go to the side with fewer pixels in
+    the whole image, and if that ties too, to the bright side.
+    """
+    if foreground != "auto":
+        return foreground
+    border = np.concatenate([bright[0], bright[-1], bright[1:-1, 0], bright[1:-1, -1]])
+    n_bright = int(np.count_nonzero(border))
+    n_dark = border.size - n_bright
+    if n_bright != n_dark:
+        return "dark" if n_bright > n_dark else "bright"
+    total = int(np.count_nonzero(bright))
+    return "dark" if total > bright.size - total else "bright"
+
+
 def _rings_to_region(rings: list[np.ndarray]) -> Any:
-    """Assemble closed rings (shells counter-clockwise, holes clockwise) into polygons."""
+    """Assemble closed rings (shells counter-clockwise, holes clockwise) into polygons.
+
+    A hole belongs to the smallest shell that contains one of its
+    vertices: a point on a hole's ring lies inside its own shell, and
+    outside the islands the hole may contain (they lie within the hole).
+    """
     shells, holes = [], []
     for ring in rings:
         if len(ring) < 4:
@@ -152,12 +192,17 @@ def _rings_to_region(rings: list[np.ndarray]) -> Any:
     shell_tree = shapely.STRtree(shells)
     shell_holes: list[list[np.ndarray]] = [[] for _ in shells]
     areas = np.array([s.area for s in shells])
-    for ring in holes:
-        probe = shapely.Point(ring[0])
-        cand = shell_tree.query(probe, predicate="covers")
-        if len(cand) == 0:  # a hole outside every shell cannot come from one contour set
-            continue
-        shell_holes[int(cand[np.argmin(areas[cand])])].append(ring)
+    if holes:
+        probes = shapely.points([ring[0] for ring in holes])
+        hole_index, shell_index = shell_tree.query(probes, predicate="covered_by")
+        best = np.full(len(holes), -1)
+        best_area = np.full(len(holes), np.inf)
+        for h, s in zip(hole_index, shell_index):
+            if areas[s] < best_area[h]:
+                best[h], best_area[h] = s, areas[s]
+        for h, s in enumerate(best):
+            if s >= 0:  # a hole outside every shell cannot come from one contour set
+                shell_holes[s].append(holes[h])
     polys = [Polygon(s.exterior.coords, h) for s, h in zip(shells, shell_holes)]
     region = polys[0] if len(polys) == 1 else MultiPolygon(polys)
     if not region.is_valid:
@@ -183,25 +228,35 @@ def _smooth_ring(ring: np.ndarray, sigma: float) -> np.ndarray:
     return np.vstack([smooth, smooth[:1]])
 
 
-def contour_region(image: np.ndarray, level: float, spacing: np.ndarray, smoothing: float = 0.0) -> Any:
+def contour_region(
+    image: np.ndarray, level: float, spacing: np.ndarray, smoothing: float = 0.0, *, dark: bool = False
+) -> Any:
     """Sub-pixel iso-contour of ``image`` at ``level`` as polygons in index order * spacing.
 
-    Only the bounding box of the foreground (``image > level``) plus one
-    pixel is contoured. A bool image is contoured at 0.5 without a float
-    copy. ``smoothing`` > 0 smooths each contour ring with a Gaussian of that
-    many pixels of arc length (for binary masks, whose contour is a staircase).
+    The shape is ``image > level`` (``dark=True``: ``image < level``; for a
+    bool image, the True or the False pixels). Only its bounding box plus
+    one pixel is contoured. A bool image is contoured at 0.5 without a
+    float copy. ``smoothing`` > 0 smooths each contour ring with a Gaussian
+    of that many pixels of arc length (for binary masks, whose contour is
+    a staircase).
     """
     from skimage.measure import find_contours
 
-    foreground = image if image.dtype == bool else image > level
+    if image.dtype == bool:
+        foreground = ~image if dark else image
+    else:
+        foreground = image < level if dark else image > level
     rows = np.flatnonzero(foreground.any(axis=1))
     cols = np.flatnonzero(foreground.any(axis=0))
     r0, c0 = max(int(rows[0]) - 1, 0), max(int(cols[0]) - 1, 0)
-    crop = image[r0 : int(rows[-1]) + 2, c0 : int(cols[-1]) + 2]
-    if crop.dtype == bool:
-        padded = np.pad(crop.view(np.uint8), 1)  # 0 is below the 0.5 level
+    box = (slice(r0, int(rows[-1]) + 2), slice(c0, int(cols[-1]) + 2))
+    if image.dtype == bool:
+        padded = np.pad(foreground[box].view(np.uint8), 1)  # 0 is below the 0.5 level
+        level = 0.5
     else:
-        crop = crop.astype(np.float64)
+        # The same iso-line either way; the sign makes the shape the high side.
+        crop = -image[box].astype(np.float64) if dark else image[box].astype(np.float64)
+        level = -level if dark else level
         padded = np.pad(crop, 1, constant_values=min(float(crop.min()), level) - 1.0)
     rings = find_contours(padded, level, positive_orientation="high")
     if smoothing > 0:
@@ -211,7 +266,9 @@ def contour_region(image: np.ndarray, level: float, spacing: np.ndarray, smoothi
     return _rings_to_region(rings)
 
 
-def _from_array(arr: np.ndarray, threshold: float | None, spacing: np.ndarray) -> PlanarInput:
+def _from_array(
+    arr: np.ndarray, threshold: float | None, spacing: np.ndarray, foreground: str = "auto"
+) -> PlanarInput:
     if arr.ndim != 2:
         raise InvalidInputError(
             f"the planar method needs a 2D image, got an array of shape {arr.shape}"
@@ -224,23 +281,30 @@ def _from_array(arr: np.ndarray, threshold: float | None, spacing: np.ndarray) -
         raise InvalidInputError(f"image dtype must be bool, integer or float, got {arr.dtype}")
     if arr.dtype.kind == "f" and not np.all(np.isfinite(arr)):
         raise InvalidInputError("the image contains NaN or infinite values")
-    foreground, level = _threshold(arr, threshold)
-    count = int(np.count_nonzero(foreground))
+    bright, level = _threshold(arr, threshold)
+    side = shape_side(bright, foreground)
+    dark = side == "dark"
+    if dark:
+        mask = ~bright if arr.dtype == bool else arr < level
+    else:
+        mask = bright
+    count = int(np.count_nonzero(mask))
     if count == 0:
-        raise EmptyShapeError("the mask is empty: no foreground pixels")
-    if count == foreground.size:
+        raise EmptyShapeError(f"the mask is empty: no {side} foreground pixels (foreground={foreground!r})")
+    if count == mask.size:
         raise EmptyShapeError(
-            "the mask is all foreground: the shape has no boundary inside the image"
+            f"the mask is all foreground ({side} side, foreground={foreground!r}): "
+            "the shape has no boundary inside the image"
         )
     if arr.dtype == bool:
         # A binary mask is a sampled smooth shape: its staircase is noise.
         # Its 0.5 contour is smoothed along its length by a Gaussian of one
         # pixel, which costs O(perimeter) rather than a blur of every pixel
         # (corners round off by about one pixel).
-        region = contour_region(arr, 0.5, spacing, smoothing=BINARY_SMOOTHING)
+        region = contour_region(arr, 0.5, spacing, smoothing=BINARY_SMOOTHING, dark=dark)
     else:
-        region = contour_region(arr, level, spacing)
-    return PlanarInput(region, spacing, image=arr, foreground=foreground, threshold=level)
+        region = contour_region(arr, level, spacing, dark=dark)
+    return PlanarInput(region, spacing, image=arr, foreground=mask, threshold=level, side=side)
 
 
 # ----------------------------------------------------------------- vectors
@@ -420,21 +484,29 @@ def _read_vector(path: Path) -> Any:
 
 
 # ------------------------------------------------------------------ entry
-def load_planar(shape: Any, *, threshold: float | None = None, spacing: Any = None) -> PlanarInput:
+def load_planar(
+    shape: Any, *, threshold: float | None = None, spacing: Any = None, foreground: str = "auto"
+) -> PlanarInput:
     """Read and validate any planar input.
+
+    ``foreground`` ("auto", "bright" or "dark", see :func:`shape_side`)
+    says which side of the threshold of an image is the shape; vector
+    inputs accept only "auto".
 
     Raises
     ------
     InvalidInputError, EmptyShapeError, InputFileError, ResourceLimitError
     """
+    foreground = check_foreground(foreground)
     if isinstance(shape, (str, os.PathLike)):
         path = Path(shape)
         if not path.is_file():
             raise InputFileError(f"no such file: {str(path)!r}")
         ext = path.suffix.lower()
         if ext in IMAGE_EXTENSIONS:
-            return _from_array(_read_image(path), threshold, check_spacing(spacing, 2))
+            return _from_array(_read_image(path), threshold, check_spacing(spacing, 2), foreground)
         if ext in (".svg", ".wkt", ".geojson", ".json"):
+            _vector_only_auto(foreground, str(path))
             geom, repaired = _validate_polygonal(_read_vector(path), str(path))
             return PlanarInput(geom, np.ones(2), repaired=repaired)
         if ext == ".npy":
@@ -442,17 +514,26 @@ def load_planar(shape: Any, *, threshold: float | None = None, spacing: Any = No
                 arr = np.load(path, allow_pickle=False)
             except Exception as exc:  # noqa: BLE001
                 raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
-            return load_planar(arr, threshold=threshold, spacing=spacing)
+            return load_planar(arr, threshold=threshold, spacing=spacing, foreground=foreground)
         raise UnsupportedFormatError(f"unsupported planar file type {ext!r} for {str(path)!r}")
     if hasattr(shape, "geom_type"):
         if spacing is not None:
             raise InvalidInputError("spacing applies to arrays only; vector inputs keep their coordinates")
+        _vector_only_auto(foreground, "a polygon")
         geom, repaired = _validate_polygonal(shape, "polygon")
         return PlanarInput(geom, np.ones(2), repaired=repaired)
     if isinstance(shape, (list, tuple)) and shape and all(hasattr(s, "geom_type") for s in shape):
-        return load_planar(shapely.union_all(list(shape)), threshold=threshold, spacing=spacing)
+        return load_planar(shapely.union_all(list(shape)), threshold=threshold, spacing=spacing, foreground=foreground)
     arr = np.asarray(shape)
     if arr.ndim == 2 and arr.shape[1] == 2 and arr.dtype != bool and arr.dtype.kind in "iuf":
+        _vector_only_auto(foreground, "a boundary loop")
         geom, repaired = _validate_polygonal(_from_loop(arr.astype(np.float64)), "boundary loop")
         return PlanarInput(geom, np.ones(2), repaired=repaired)
-    return _from_array(arr, threshold, check_spacing(spacing, 2))
+    return _from_array(arr, threshold, check_spacing(spacing, 2), foreground)
+
+
+def _vector_only_auto(foreground: str, what: str) -> None:
+    if foreground != "auto":
+        raise InvalidInputError(
+            f"foreground={foreground!r} applies to images; {what} has an inside already (use 'auto')"
+        )

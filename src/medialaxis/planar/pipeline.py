@@ -145,11 +145,12 @@ def planar_stages(
     tolerance: float | None = None,
     detour: float | None = None,
     boundary: Literal["contour", "canny"] = "contour",
+    foreground: Literal["auto", "bright", "dark"] = "auto",
 ) -> Stages:
     """Run the planar pipeline and keep every stage (see :func:`voronoi_medial_axis`)."""
     if boundary not in ("contour", "canny"):
         raise InvalidInputError(f"boundary must be 'contour' or 'canny', got {boundary!r}")
-    src = load_planar(shape, threshold=threshold, spacing=spacing)
+    src = load_planar(shape, threshold=threshold, spacing=spacing, foreground=foreground)
     region = src.region
     size = shape_size(region)
     if tolerance is None:
@@ -200,6 +201,7 @@ def planar_stages(
     if src.is_raster:
         metadata["image_shape"] = tuple(int(s) for s in src.image.shape)
         metadata["threshold"] = src.threshold
+        metadata["foreground"] = src.side
     if src.repaired:
         metadata["repaired"] = src.repaired
     raw = MedialAxis(
@@ -227,6 +229,7 @@ def voronoi_medial_axis(
     tolerance: float | None = None,
     detour: float | None = None,
     boundary: Literal["contour", "canny"] = "contour",
+    foreground: Literal["auto", "bright", "dark"] = "auto",
 ) -> MedialAxis:
     """Medial axis of a planar shape from the Voronoi diagram of boundary samples.
 
@@ -264,6 +267,14 @@ def voronoi_medial_axis(
         ``"contour"``: sub-pixel iso-contour (default). ``"canny"``: the
         paper's route, Canny edge pixels as the point set with inside and
         outside taken from the filled region.
+    foreground : {"auto", "bright", "dark"}
+        For images: which side of the threshold is the shape. ``"bright"``
+        takes the pixels above the threshold (True of a bool mask),
+        ``"dark"`` those below it (a black shape on white paper).
+        ``"auto"`` (default) takes the side that does not own most of the
+        image border (the outermost rows and columns); a tie goes to the
+        side with fewer pixels, then to the bright side. The side taken is
+        ``metadata["foreground"]``. Vector inputs accept only ``"auto"``.
 
     Returns
     -------
@@ -290,7 +301,14 @@ def voronoi_medial_axis(
     (4, 2)
     """
     return planar_stages(
-        shape, lam=lam, threshold=threshold, spacing=spacing, tolerance=tolerance, detour=detour, boundary=boundary
+        shape,
+        lam=lam,
+        threshold=threshold,
+        spacing=spacing,
+        tolerance=tolerance,
+        detour=detour,
+        boundary=boundary,
+        foreground=foreground,
     ).result
 
 
