@@ -15,9 +15,11 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.io import is_result_file, load
+from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
 
-__all__ = ["METHODS", "DEFAULT_METHOD", "classify", "resolve", "repruner"]
+__all__ = ["METHODS", "DEFAULT_METHOD", "RESULT", "classify", "resolve", "repruner", "load_result"]
 
 #: Entry points per domain and method name.
 METHODS: dict[str, dict[str, str]] = {
@@ -36,6 +38,12 @@ METHODS: dict[str, dict[str, str]] = {
 
 #: Default method per domain.
 DEFAULT_METHOD = {"planar": "voronoi", "mesh": "voronoi", "volume": "midsurface"}
+
+#: The pseudo-domain of results saved by :meth:`MedialAxis.save` (``.json``, ``.npz``).
+RESULT = "result"
+
+#: Options a saved result accepts: they re-prune it (see :meth:`MedialAxis.prune`).
+PRUNING_OPTIONS = ("lam", "detour")
 
 #: Re-pruning entry points, keyed by domain.
 REPRUNERS: dict[str, str] = {
@@ -61,6 +69,8 @@ def _classify_path(path: Path, method: str | None) -> str:
     if path.is_dir():
         return "volume"  # TIFF slices or a DICOM series
     ext = _suffix(path)
+    if ext == ".npz" or (ext == ".json" and is_result_file(path)):
+        return RESULT
     for domain, exts in EXTENSIONS.items():
         if ext in exts:
             return domain
@@ -92,7 +102,7 @@ def _classify_ndim(ndim: int, shape: tuple[int, ...], dtype: np.dtype) -> str:
 
 
 def classify(shape: Any, method: str | None = None) -> str:
-    """Return the domain (``"planar"``, ``"mesh"`` or ``"volume"``) of an input."""
+    """Return the domain (``"planar"``, ``"mesh"``, ``"volume"``) of an input, or :data:`RESULT`."""
     if isinstance(shape, (str, os.PathLike)):
         return _classify_path(Path(shape), method)
     module = type(shape).__module__ or ""
@@ -145,3 +155,28 @@ def repruner(metadata: Mapping[str, Any]) -> Callable[..., Any]:
     if domain not in REPRUNERS:
         raise InvalidInputError(f"results of domain {domain!r} cannot be re-pruned")
     return _load(REPRUNERS[domain])
+
+
+def load_result(path: str | os.PathLike[str], method: str | None, options: Mapping[str, Any]) -> MedialAxis:
+    """A saved result, as loaded, or re-pruned when ``lam`` or ``detour`` is given.
+
+    Raises
+    ------
+    InvalidInputError
+        ``method`` differs from the saved one, or an option other than the
+        pruning options is given (the axis is computed already).
+    InputFileError
+        The file cannot be read.
+    """
+    ma = load(path)
+    saved = ma.metadata.get("method")
+    if method is not None and method != saved:
+        raise InvalidInputError(f"{str(path)!r} is a saved {saved!r} result; method {method!r} does not apply to it")
+    bad = [k for k, v in options.items() if v is not None and k not in PRUNING_OPTIONS]
+    if bad:
+        raise InvalidInputError(
+            f"{str(path)!r} is a saved result, returned as loaded; option(s) {', '.join(map(repr, bad))} "
+            f"apply when computing an axis (only {', '.join(PRUNING_OPTIONS)} re-prune a saved one)"
+        )
+    pruning = {k: v for k, v in options.items() if v is not None}
+    return ma.prune(**pruning) if pruning else ma

@@ -28,6 +28,8 @@ def medial_axis(
         (non-bool dtype), a shapely ``Polygon``/``MultiPolygon``, an image /
         SVG / GeoJSON / WKT file; a mesh (``trimesh.Trimesh`` or mesh file);
         or a 3D volume (array or volume file). The input is never modified.
+        A result saved by :meth:`MedialAxis.save` (``.json``, ``.npz``) is
+        returned as loaded (re-pruned if ``lam`` or ``detour`` is given).
     method : str, optional
         Method within the input's domain. Planar: ``"voronoi"`` (default).
         Other domains list theirs in their error message.
@@ -37,7 +39,9 @@ def medial_axis(
         documented default.
     threshold : float, optional
         Grey level separating foreground from background for grey images
-        (default: Otsu's threshold).
+        (default: Otsu's threshold). Which side is the shape is the planar
+        option ``foreground`` (``"auto"``: the side that does not own most
+        of the image border; ``"bright"``; ``"dark"``).
     spacing : float or sequence of float, optional
         Physical size of a pixel/voxel along each array axis (default 1).
     **options
@@ -67,8 +71,10 @@ def medial_axis(
     (4, 2)
     """
     domain = _dispatch.classify(shape, method)
-    name, fn = _dispatch.resolve(domain, method)
     given = {"lam": lam, "threshold": threshold, "spacing": spacing}
     kwargs = {k: v for k, v in given.items() if v is not None}
     kwargs.update(options)
+    if domain == _dispatch.RESULT:
+        return _dispatch.load_result(shape, method, kwargs)
+    name, fn = _dispatch.resolve(domain, method)
     return _dispatch.call_checked(fn, shape, kwargs)

@@ -77,7 +77,8 @@ def _add_compute(sub: Any) -> None:
         description="Compute the medial axis of an image, polygon file, mesh or volume.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter,
     )
-    p.add_argument("input", type=Path, help="image, SVG/GeoJSON/WKT, mesh or volume file (or folder)")
+    p.add_argument("input", type=Path,
+                   help="image, SVG/GeoJSON/WKT, mesh or volume file (or folder), or a saved result (.json/.npz)")
     p.add_argument("-o", "--output", type=Path, action="append", default=[],
                    help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj .vtk); repeatable")
     p.add_argument("--method", default=None, help="method within the input's domain (default: the domain's default)")
@@ -89,6 +90,9 @@ def _add_compute(sub: Any) -> None:
     p.add_argument("--tolerance", type=float, default=None, help="planar accuracy parameter (output units)")
     p.add_argument("--detour", type=float, default=None, help="planar pruning detour ratio")
     p.add_argument("--boundary", choices=["contour", "canny"], default=None, help="planar boundary extraction")
+    p.add_argument("--foreground", choices=["auto", "bright", "dark"], default=None,
+                   help="images: which side of the threshold is the shape; auto (the default) takes the side "
+                        "that does not own most of the image border, so a dark shape on light paper works")
     p.add_argument("--steps", type=Path, default=None,
                    help="save the pipeline stages: planar, one figure (PNG/SVG/PDF); volume, one mesh file per stage "
                         "named STEM_<k>_<stage>.<ext> (.ply .vtk .obj .json .npz)")
@@ -106,6 +110,8 @@ def _run_compute(args: argparse.Namespace) -> int:
     _check_outputs([args.input], list(args.output))
     domain = mx._dispatch.classify(str(args.input), args.method)
     if args.steps is not None:
+        if domain == mx._dispatch.RESULT:
+            raise UsageError("--steps needs a shape, not a saved result")
         if domain == "mesh":
             raise UsageError("--steps is available for planar and volume inputs")
         if domain == "planar":
@@ -113,7 +119,7 @@ def _run_compute(args: argparse.Namespace) -> int:
         else:
             _check_outputs([args.input], [args.steps], option="--steps")
     options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
-    for name in ("tolerance", "detour", "boundary"):
+    for name in ("tolerance", "detour", "boundary", "foreground"):
         value = getattr(args, name)
         if value is not None:
             options[name] = value

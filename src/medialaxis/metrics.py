@@ -11,7 +11,14 @@ from medialaxis.errors import InvalidInputError
 __all__ = ["reconstruction_error", "ReconstructionError"]
 
 
-def reconstruction_error(ma: MedialAxis, shape: Any = None, *, spacing: Any = None, threshold: float | None = None) -> ReconstructionError:
+def reconstruction_error(
+    ma: MedialAxis,
+    shape: Any = None,
+    *,
+    spacing: Any = None,
+    threshold: float | None = None,
+    foreground: str | None = None,
+) -> ReconstructionError:
     """Compare the union of the medial balls of ``ma`` with the original shape.
 
     Parameters
@@ -21,8 +28,10 @@ def reconstruction_error(ma: MedialAxis, shape: Any = None, *, spacing: Any = No
     shape : optional
         The original shape, as anything :func:`medialaxis.medial_axis` takes
         for planar input. Default: the region stored in ``ma.shape``.
-    spacing, threshold : optional
+    spacing, threshold, foreground : optional
         As for :func:`medialaxis.medial_axis` when ``shape`` is an image.
+        Default ``spacing`` and ``foreground``: those the axis was computed
+        with (``metadata``).
 
     Returns
     -------
@@ -48,7 +57,8 @@ def reconstruction_error(ma: MedialAxis, shape: Any = None, *, spacing: Any = No
     else:
         from medialaxis.planar.inputs import load_planar
 
-        if spacing is None and "image_shape" in ma.metadata:
-            spacing = ma.metadata.get("spacing")
-        region = load_planar(shape, threshold=threshold, spacing=spacing).region
+        if "image_shape" in ma.metadata:
+            spacing = ma.metadata.get("spacing") if spacing is None else spacing
+            foreground = ma.metadata.get("foreground", "auto") if foreground is None else foreground
+        region = load_planar(shape, threshold=threshold, spacing=spacing, foreground=foreground or "auto").region
     return compare_regions(ma.reconstruct(), region)

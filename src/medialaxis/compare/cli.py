@@ -17,7 +17,7 @@ import numpy as np
 __all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture"]
 
 #: File types ``search`` ranks inside a folder.
-PLANAR_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff", ".svg", ".geojson", ".json", ".wkt")
+PLANAR_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff", ".svg", ".geojson", ".json", ".wkt", ".npz")
 
 
 def _add_matching_options(p: argparse.ArgumentParser) -> None:
@@ -55,18 +55,7 @@ def add_compare(sub: Any) -> None:
 def _axis(path: Path) -> Any:
     import medialaxis as mx
 
-    if path.suffix.lower() in (".npz",) or (path.suffix.lower() == ".json" and _is_saved_axis(path)):
-        return mx.load(path)
-    return mx.medial_axis(str(path))
-
-
-def _is_saved_axis(path: Path) -> bool:
-    try:
-        with open(path, "rb") as fh:
-            head = fh.read(4096)
-    except OSError:
-        return False
-    return b'"points"' in head and b'"radii"' in head
+    return mx.medial_axis(str(path))  # a saved result (.json/.npz) comes back as loaded
 
 
 def _run_compare(args: argparse.Namespace) -> int:

@@ -86,8 +86,9 @@ def shape_signature(
     Parameters
     ----------
     shape : Signature, MedialAxis, path, array or shapely geometry
-        A signature (returned as is), a planar :class:`MedialAxis`, or
-        anything :func:`medialaxis.medial_axis` takes that is planar.
+        A signature (returned as is), a planar :class:`MedialAxis` or a
+        saved one (``.json``, ``.npz``), or anything
+        :func:`medialaxis.medial_axis` takes that is planar.
     n_samples, prune : see :func:`medialaxis.compare.signature`
     **axis_options
         Passed to :func:`medialaxis.medial_axis` (``lam``, ``tolerance``...).
@@ -118,7 +119,7 @@ def shape_signature(
     from medialaxis.api import medial_axis
 
     domain = _dispatch.classify(shape)
-    if domain != "planar":
+    if domain not in ("planar", _dispatch.RESULT):
         raise InvalidInputError(
             f"shape comparison works on planar shapes; got {domain} input {_describe(shape)} (mixed 2D/3D inputs?)"
         )
@@ -133,12 +134,19 @@ def shape_signature(
                 _FILE_CACHE.move_to_end(file_key)
                 return hit
     options = dict(axis_options)
-    if "tolerance" not in options:
-        area = _vector_area(shape)
-        if area is not None and area > 0:
-            # The planar default follows the bounding box, which rotation changes.
-            options["tolerance"] = VECTOR_TOLERANCE * float(np.sqrt(area))
-    sig = signature(medial_axis(shape, **options), n_samples=n_samples, prune=prune)
+    if domain == _dispatch.RESULT:
+        # A saved axis is compared as the axis it was when saved.
+        ma = _dispatch.load_result(shape, None, options)
+        if ma.dim != 2:
+            raise InvalidInputError(f"shape comparison works on planar shapes; {_describe(shape)} holds a 3D axis")
+    else:
+        if "tolerance" not in options:
+            area = _vector_area(shape)
+            if area is not None and area > 0:
+                # The planar default follows the bounding box, which rotation changes.
+                options["tolerance"] = VECTOR_TOLERANCE * float(np.sqrt(area))
+        ma = medial_axis(shape, **options)
+    sig = signature(ma, n_samples=n_samples, prune=prune)
     if file_key is not None:
         with _LOCK:
             _FILE_CACHE[file_key] = sig

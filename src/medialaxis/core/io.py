@@ -15,6 +15,8 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import re
+import stat
 import tempfile
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -25,20 +27,59 @@ import numpy as np
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
 
-__all__ = ["save", "load", "atomic_write", "WRITERS", "LOSSLESS"]
+__all__ = ["save", "load", "atomic_write", "output_mode", "is_result_file", "WRITERS", "LOSSLESS"]
 
 FORMAT_VERSION = 1
 
 
+def _umask() -> int:
+    """The process umask, read without changing it where the system allows."""
+    try:
+        with open("/proc/self/status") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)  # elsewhere: set and restore (not atomic across threads)
+    os.umask(mask)
+    return mask
+
+
+def output_mode(path: str | os.PathLike[str]) -> int:
+    """Permission bits for a file written at ``path``.
+
+    A file being replaced keeps its permissions; a new file gets what
+    ``open(path, "w")`` would give it, ``0o666`` less the umask (``0o644``
+    under the usual umask 022).
+    """
+    try:
+        st = os.stat(path)
+    except OSError:
+        return 0o666 & ~_umask()
+    return stat.S_IMODE(st.st_mode) if stat.S_ISREG(st.st_mode) else 0o666 & ~_umask()
+
+
 @contextlib.contextmanager
 def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO[Any]]:
-    """Open a temporary file next to ``path``; rename it over ``path`` on success."""
+    """Open a temporary file next to ``path``; rename it over ``path`` on success.
+
+    The temporary file is created private (``tempfile.mkstemp``) and given
+    the permissions of :func:`output_mode` before it is renamed, so the
+    result is readable as any file the user writes would be.
+    """
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise InputFileError(f"output folder does not exist: {str(folder)!r}")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    permissions = output_mode(path)
     try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    except OSError as exc:
+        raise InputFileError(f"cannot write in {str(folder)!r}: {exc.strerror or exc}") from exc
+    try:
+        if hasattr(os, "fchmod"):
+            os.fchmod(fd, permissions)
         with os.fdopen(fd, mode) as fh:
             yield fh
         os.replace(tmp, path)
@@ -164,6 +205,37 @@ def _from_npz(z: Any, prefix: str) -> MedialAxis:
         shape=shape,
         raw=_from_npz(z, prefix + "raw__") if has_raw else None,
     )
+
+
+#: A ``.json`` file larger than this is sniffed, not parsed, by :func:`is_result_file`.
+_PARSE_JSON_BELOW = 64 << 20
+_FORMAT_TAG = re.compile(rb'^\s*\{\s*"format"\s*:\s*"medialaxis"')
+
+
+def is_result_file(path: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` is a result saved by :meth:`MedialAxis.save` (``.json`` or ``.npz``).
+
+    A ``.npz`` is one if it holds a ``format`` array equal to
+    ``"medialaxis"``; a ``.json`` if its top-level object has
+    ``"format": "medialaxis"`` (GeoJSON and other JSON are not). Files that
+    cannot be read are not results (their reader reports why).
+    """
+    path = Path(path)
+    ext = path.suffix.lower()
+    if ext not in LOSSLESS or not path.is_file():
+        return False
+    try:
+        if ext == ".npz":
+            with np.load(path, allow_pickle=False) as z:
+                return "format" in z.files and str(z["format"]) == "medialaxis"
+        if path.stat().st_size > _PARSE_JSON_BELOW:
+            with open(path, "rb") as fh:  # :func:`save` writes the tag first
+                return bool(_FORMAT_TAG.match(fh.read(256)))
+        with open(path, "rb") as fh:
+            doc = json.load(fh)
+        return isinstance(doc, dict) and doc.get("format") == "medialaxis"
+    except Exception:  # noqa: BLE001 - unreadable or corrupt: not a result
+        return False
 
 
 def load(path: str | os.PathLike[str]) -> MedialAxis:
