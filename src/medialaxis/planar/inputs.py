@@ -121,7 +121,11 @@ def _read_image(path: Path) -> np.ndarray:
 
 
 def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, float]:
-    """The bright side (``image > level``) and the level; bool images are their own bright side."""
+    """The bright side (``image > level``) and the level; bool images are their own bright side.
+
+    The default level is Otsu's threshold, or the mid-grey of an image
+    with two grey levels.
+    """
     if threshold is not None:
         try:
             threshold = float(threshold)
@@ -138,7 +142,9 @@ def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, 
         from skimage.filters import threshold_otsu
 
         threshold = float(threshold_otsu(image))
-        if not lo <= threshold < hi:  # Otsu can land on the max for two-level images
+        if not lo < threshold < hi:
+            # Otsu lands on a level for two-level images; an iso-line at a
+            # level runs through pixel centres and leaves one side empty.
             threshold = 0.5 * (lo + hi)
     return image > threshold, threshold
 
