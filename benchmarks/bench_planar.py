@@ -12,7 +12,12 @@ and the ratio:
    images at 0/10/30/45 degrees) against the exact axis;
 4. Kimia-99 robustness: connected axes, cycles = holes, endpoint count kept
    after a 30 degree rotation;
-5. the tolerance (accuracy parameter) trade-off.
+5. the tolerance (accuracy parameter) trade-off;
+6. images with holes (1-3 round and square holes, 4 rotations, bool, float and
+   uint8, bright and dark shapes) and the annulus of radii 60 and 150.
+
+Pieces and holes are counted by scikit-image (``label`` and ``euler_number``
+with 4-connected foreground), never read from our own metadata.
 """
 
 from __future__ import annotations
@@ -36,6 +41,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # for tests.planar.shapes
 
 import medialaxis as mx  # noqa: E402
+from tests.planar.holed import holed_shapes, rasterize, truth_counts  # noqa: E402
 from tests.planar.shapes import (  # noqa: E402
     annulus,
     distance_to_segments,
@@ -154,7 +160,7 @@ def bench_accuracy():
 def bench_kimia():
     print("\n4. Kimia-99: endpoint count after a 30 degree rotation, connectivity, cycles")
     files = sorted(KIMIA.glob("*.png"))
-    same_ours = same_sk = connected = cycles_ok = 0
+    same_ours = same_sk = connected = cycles_ok = holes = with_holes = 0
     t_ours = t_sk = 0.0
     for f in files:
         m = np.asarray(Image.open(f)).astype(bool)
@@ -167,11 +173,15 @@ def bench_kimia():
         t_sk += time.perf_counter() - t0
         same_ours += len(a.endpoints) == len(b.endpoints)
         same_sk += skeleton_endpoints(sa) == skeleton_endpoints(sb)
-        connected += a.n_components == a.metadata["n_polygons"] and b.n_components == b.metadata["n_polygons"]
-        cycles_ok += a.n_cycles == a.metadata["n_holes"] and b.n_cycles == b.metadata["n_holes"]
+        (pa, ha), (pb, hb) = truth_counts(m), truth_counts(r)
+        connected += a.n_components == pa and b.n_components == pb
+        cycles_ok += a.n_cycles == ha and b.n_cycles == hb
+        holes += ha + hb
+        with_holes += (ha > 0) + (hb > 0)
     n = len(files)
     print(f"  same endpoint count after rotation: ours {same_ours}/{n}, skimage medial_axis {same_sk}/{n} (target >= 90%)")
-    print(f"  one connected axis per shape: {connected}/{n}; cycles = holes: {cycles_ok}/{n}")
+    print(f"  axis components = pieces (skimage) at 0 and 30 deg: {connected}/{n}; cycles = holes (skimage): "
+          f"{cycles_ok}/{n} ({with_holes} of the {2 * n} masks have holes, {holes} holes in all)")
     row("time per shape [ms]", 1000 * t_ours / (2 * n), 1000 * t_sk / (2 * n), "ms")
 
 
@@ -188,6 +198,58 @@ def bench_tolerance():
               f"p99 distance to the tolerance-1e-6 axis {np.percentile(err, 99):.2e}")
 
 
+# ---------------------------------------------------------------- 6. holes
+def skeleton_cycles(skel: np.ndarray) -> int:
+    """Independent cycles of a pixel skeleton (8-connected): its holes, by scikit-image."""
+    from skimage.measure import euler_number, label
+
+    return int(label(skel, connectivity=2).max()) - int(euler_number(skel, connectivity=2))
+
+
+def bench_holes():
+    print("\n6. Images with holes: cycles = holes and components = pieces, counted by scikit-image")
+    shapes = holed_shapes()
+    ok = total = ok_sk = total_sk = 0
+    t_ours = t_sk = 0.0
+    for name, geom in shapes.items():
+        for angle in (0, 15, 30, 45):
+            for kind in ("bool", "float", "uint8"):
+                image = rasterize(geom, 320, angle, kind)
+                mask = image if kind == "bool" else image > (0.5 if kind == "float" else 127)
+                pieces, holes = truth_counts(mask)
+                dark = ~image if kind == "bool" else (1.0 - image if kind == "float" else 255 - image)
+                for img in (image, dark):
+                    t0 = time.perf_counter()
+                    ma = mx.medial_axis(img)
+                    t_ours += time.perf_counter() - t0
+                    ok += ma.n_cycles == holes and ma.n_components == pieces
+                    total += 1
+                t0 = time.perf_counter()
+                skel = sk_medial_axis(mask)
+                t_sk += time.perf_counter() - t0
+                ok_sk += skeleton_cycles(skel) == holes and int(ndimage.label(skel, np.ones((3, 3)))[1]) == pieces
+                total_sk += 1
+    print(f"  {len(shapes)} shapes x 4 rotations x (bool, float, uint8) x (bright, dark): ours {ok}/{total} right; "
+          f"skimage medial_axis (bright masks) {ok_sk}/{total_sk}")
+    row("time per image [ms]", 1000 * t_ours / total, 1000 * t_sk / total_sk, "ms")
+    centre = 255.5
+    rr, cc = np.mgrid[:512, :512]
+    r = np.hypot(rr - centre, cc - centre)
+    cover = np.clip(150.5 - r, 0, 1) * np.clip(r - 59.5, 0, 1)
+    images = {"binary": (r < 150) & (r > 60), "anti-aliased": cover, "dark uint8": np.round(255 * (1 - cover)).astype(np.uint8)}
+    for label_, img in images.items():
+        for boundary in ("contour", "canny"):
+            ma = mx.medial_axis(img, boundary=boundary)
+            off = np.abs(np.hypot(ma.points[:, 0] - centre, ma.points[:, 1] - centre) - 105)
+            print(f"  annulus 60/150 {label_:<12} {boundary:<7}: {ma.n_cycles} cycle, p99 distance to the circle of "
+                  f"radius 105 {np.percentile(off, 99):.2f} px, p99 radius error {np.percentile(np.abs(ma.radii - 45), 99):.2f} px")
+    mask = images["binary"]
+    sk, dist = sk_medial_axis(mask, return_distance=True)
+    pts = np.argwhere(sk)
+    off = np.abs(np.hypot(pts[:, 0] - centre, pts[:, 1] - centre) - 105)
+    print(f"  peer: skimage medial_axis on the binary annulus: {skeleton_cycles(sk)} cycle, p99 {np.percentile(off, 99):.2f} px")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="one repetition per timing")
@@ -199,6 +261,7 @@ def main(argv=None):
     bench_accuracy()
     bench_kimia()
     bench_tolerance()
+    bench_holes()
 
 
 if __name__ == "__main__":

@@ -288,6 +288,11 @@ def _from_array(
     if arr.dtype.kind == "f" and not np.all(np.isfinite(arr)):
         raise InvalidInputError("the image contains NaN or infinite values")
     bright, level = _threshold(arr, threshold)
+    n_bright = int(np.count_nonzero(bright))
+    if foreground == "auto" and n_bright in (0, bright.size):  # one side only: nothing to choose
+        if n_bright == 0:
+            raise EmptyShapeError("the mask is empty: no foreground pixels")
+        raise EmptyShapeError("the mask is all foreground: the shape has no boundary inside the image")
     side = shape_side(bright, foreground)
     dark = side == "dark"
     if dark:
