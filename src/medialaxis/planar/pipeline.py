@@ -279,6 +279,10 @@ def voronoi_medial_axis(
     Returns
     -------
     MedialAxis
+        One connected axis per piece of the shape and one independent cycle
+        per hole. For images, pieces are 4-connected: foreground pixels
+        that touch only at a corner are separate pieces, as
+        ``skimage.measure.label(mask, connectivity=1)`` counts them.
         ``points`` (n, 2), ``radii`` (distance to the boundary), ``edges``;
         ``metadata`` holds the parameters used; ``raw`` the unpruned axis
         (extras ``edge_contact_diameter``, ``edge_contact_arc`` and
@@ -299,6 +303,17 @@ def voronoi_medial_axis(
     >>> ma = voronoi_medial_axis(box(0, 0, 4, 2))
     >>> len(ma.endpoints), len(ma.junctions)
     (4, 2)
+
+    A dark rectangle with a round hole, printed on light paper:
+
+    >>> import numpy as np
+    >>> rows, cols = np.mgrid[:60, :100]
+    >>> paper = np.full((60, 100), 240, np.uint8)
+    >>> paper[10:50, 10:90] = 20
+    >>> paper[(rows - 30) ** 2 + (cols - 50) ** 2 < 8**2] = 240
+    >>> ma = voronoi_medial_axis(paper)
+    >>> ma.metadata["foreground"], ma.n_components, ma.n_cycles
+    ('dark', 1, 1)
     """
     return planar_stages(
         shape,
