@@ -140,3 +140,19 @@ def test_demo_writes_results_and_plots(tmp_path, capsys):
     files = {p.name for p in (tmp_path / "demo").iterdir()}
     assert {"kimia_class1_01.json", "kimia_class1_01.png", "kimia_class1_01.svg", "kimia_class1_01_steps.png"} <= files
     assert "bracket_two_holes.json" in files
+
+
+def test_foreground_option(tmp_path, capsys):
+    img = np.full((60, 100), 235, np.uint8)
+    img[10:50, 10:90] = 25  # a dark rectangle on light paper
+    path = tmp_path / "dark.png"
+    Image.fromarray(img).save(path)
+    out = tmp_path / "a.json"
+    assert main(["compute", str(path), "-o", str(out)]) == 0
+    assert mx.load(out).metadata["foreground"] == "dark"
+    assert "endpoints=4 junctions=2" in capsys.readouterr().out
+    assert main(["compute", str(path), "--foreground", "bright", "-o", str(out)]) == 0
+    assert mx.load(out).metadata["foreground"] == "bright"
+    assert main(["compute", str(path), "--foreground", "black"]) == 2
+    err = capsys.readouterr().err
+    assert "--foreground" in err and "black" in err

@@ -111,7 +111,7 @@ def holed_scenes(draw):
                 holes.append(hole)
         piece = blob.difference(shapely.union_all(holes)) if holes else blob
         pieces.append(shapely.affinity.translate(piece, 80 + 160 * k, 80))
-    kind = draw(st.sampled_from(["bool", "float", "uint8"]))
+    kind = draw(st.sampled_from(["bool", "float", "uint8", "int16"]))
     dark = draw(st.booleans())
     return shapely.union_all(pieces), n_pieces, kind, dark
 
@@ -122,9 +122,14 @@ def test_random_shapes_with_random_holes(scene):
     note(f"{kind} dark={dark}: {geom.wkt}")
     cover = render(geom, (160, 160 * n_pieces), 2)
     mask = cover > 0.5
-    image = {"bool": mask, "float": cover, "uint8": np.round(cover * 255).astype(np.uint8)}[kind]
+    image = {
+        "bool": mask,
+        "float": cover,
+        "uint8": np.round(cover * 255).astype(np.uint8),
+        "int16": np.round(cover * 2000 - 1000).astype(np.int16),  # signed, as CT slices are
+    }[kind]
     if dark:
-        image = ~image if kind == "bool" else (1.0 - image if kind == "float" else 255 - image)
+        image = ~image if kind == "bool" else -image if kind == "int16" else (1.0 - image if kind == "float" else 255 - image)
     ma = mx.medial_axis(image)
     assert truth_counts(mask)[0] == n_pieces
     assert ma.metadata["foreground"] == ("dark" if dark else "bright")
