@@ -40,7 +40,7 @@ smaller sample count.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from medialaxis._jit import njit
 from scipy.optimize import linear_sum_assignment
 
 __all__ = [

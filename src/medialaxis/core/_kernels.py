@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from medialaxis._jit import njit
 
 __all__ = ["peel_leaves_kernel", "peel_leaves_reference"]
 

@@ -173,7 +173,7 @@ def medial_poles(
             break
         p, nrm, r = points[active], normals[active], radius[active]
         centre = p - r[:, None] * nrm
-        _dist, cand = tree.query(centre, k=k, workers=-1)
+        _dist, cand = tree.query(centre, k=range(1, min(k, n) + 1), workers=-1)  # 2D even for k = 1
         far = np.linalg.norm(points[cand] - p[:, None, :], axis=2) > ignore
         first = np.argmax(far, axis=1)
         q_index = cand[np.arange(len(active)), first]

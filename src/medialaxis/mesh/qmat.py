@@ -21,7 +21,7 @@ import heapq
 from typing import Any
 
 import numpy as np
-from numba import njit
+from medialaxis._jit import njit
 from scipy.spatial import cKDTree
 
 from medialaxis.core.result import MedialAxis

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import heapq
 
-from numba import njit
+from medialaxis._jit import njit
 
 __all__ = [
     "topology_class",
