@@ -38,6 +38,61 @@ def test_help_and_version(capsys):
 
 def test_no_command_is_a_usage_error(capsys):
     assert main([]) == 2
+    assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_debug_shows_the_traceback(png):
+    with pytest.raises(mx.InvalidInputError):
+        main(["--debug", "compute", str(png), "--lam", "-3"])
+
+
+def test_outputs_are_checked_before_any_work_and_all_or_none_appear(png, tmp_path, capsys, monkeypatch):
+    ok, bad = tmp_path / "ok.json", tmp_path / "nodir" / "x.json"
+    calls = []
+    monkeypatch.setattr(mx, "medial_axis", lambda *a, **k: calls.append(a))  # must not be reached
+    assert main(["compute", str(png), "-o", str(ok), "-o", str(bad)]) == 1
+    assert calls == [] and not ok.exists()
+    monkeypatch.undo()
+    # A writer that fails after others have written: none of the outputs is left.
+    from medialaxis.core import io
+
+    def broken(ma, path):
+        raise mx.InputFileError("disk full")
+
+    monkeypatch.setitem(io.WRITERS, ".svg", broken)
+    assert main(["compute", str(png), "-o", str(ok), "-o", str(tmp_path / "b.npz"), "-o", str(tmp_path / "c.svg")]) == 1
+    assert "disk full" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rect.png"]
+
+
+def test_interrupt_leaves_nothing_and_exits_130(png, tmp_path, capsys, monkeypatch):
+    from medialaxis.core import io
+
+    def interrupted(ma, path):
+        raise KeyboardInterrupt
+
+    monkeypatch.setitem(io.WRITERS, ".npz", interrupted)
+    assert main(["compute", str(png), "-o", str(tmp_path / "a.json"), "-o", str(tmp_path / "b.npz")]) == 130
+    assert capsys.readouterr().err == "medialaxis: interrupted\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rect.png"]
+
+
+def test_sigint_during_start_up_is_one_line(png, tmp_path):
+    """Ctrl-C at any moment of a run, start-up included: exit 130 (or 0 if done), never a traceback."""
+    import signal
+    import time
+
+    script = [sys.executable, "-c", "import sys; from medialaxis._entry import run; sys.exit(run())"]
+    for delay in (0.2, 0.3, 0.4, 0.6, 0.9):
+        proc = subprocess.Popen([*script, "compute", str(png), "-o", str(tmp_path / "a.json")],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(delay)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=120)
+        assert "Traceback" not in err, (delay, err)
+        assert proc.returncode in (0, 130), (delay, proc.returncode, err)
+        if proc.returncode == 130:
+            assert err == "medialaxis: interrupted\n"
 
 
 @pytest.mark.parametrize("ext", [".json", ".npz", ".svg", ".png", ".graphml", ".geojson", ".ply", ".obj"])
@@ -104,20 +159,23 @@ def test_never_overwrites_its_input(png, capsys):
         (["compute", "{png}", "--lam", "abc"], 2, "invalid float"),
         (["compute", "{png}", "--option", "novalue"], 2, "KEY=VALUE"),
         (["compute", "{png}", "--option", "colour=1"], 1, "colour"),
-        (["compute", "{png}", "--method", "flux"], 1, "flux"),
+        (["compute", "{png}", "--method", "flux"], 2, "flux"),
         (["compute", "{png}", "--steps", "s.txt"], 2, "--steps"),
+        (["compute", "{png}", "-o", "nodir/a.json"], 1, "does not exist"),
         (["frobnicate"], 2, "invalid choice"),
+        (["compute"], 2, "required: input"),
+        ([], 2, "a command is required"),
     ],
 )
 def test_errors_exit_codes_one_line_no_traceback(png, tmp_path, capsys, args, code, words):
     args = [a.replace("{png}", str(png)) for a in args]
-    args = [str(tmp_path / a) if a in ("x.docx", "s.txt") else a for a in args]
+    args = [str(tmp_path / a) if a in ("x.docx", "s.txt", "nodir/a.json") else a for a in args]
     assert main(args) == code
-    err = capsys.readouterr().err
-    assert words in err
-    assert "Traceback" not in err
-    if code == 1:
-        assert len(err.strip().splitlines()) == 1
+    captured = capsys.readouterr()
+    assert words in captured.err
+    assert "Traceback" not in captured.err
+    assert len(captured.err.strip().splitlines()) == 1
+    assert captured.out == ""  # failed before any work
 
 
 def test_empty_image_fails_cleanly(tmp_path, capsys):

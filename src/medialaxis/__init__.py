@@ -7,11 +7,9 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from medialaxis._version import __version__
-from medialaxis.api import medial_axis
-from medialaxis.core.io import load
-from medialaxis.core.result import Branch, MedialAxis
-from medialaxis.metrics import reconstruction_error
 from medialaxis.errors import (
     Cancelled,
     ComputationError,
@@ -46,9 +44,23 @@ __all__ = [
 ]
 
 
-# Entry points of heavier layers load on first use, so ``import medialaxis``
-# stays light (no numba compilation, no trimesh).
+if TYPE_CHECKING:  # pragma: no cover
+    from medialaxis.api import medial_axis
+    from medialaxis.compare import distance_matrix, shape_distance
+    from medialaxis.core.io import load
+    from medialaxis.core.result import Branch, MedialAxis
+    from medialaxis.mesh.deform import deform
+    from medialaxis.metrics import reconstruction_error
+
+# Everything but the errors loads on first use, so ``import medialaxis`` is
+# light (no NumPy, no numba, no trimesh) and the command line can report a
+# Ctrl-C during start-up as an interruption.
 _LAZY = {
+    "medial_axis": "medialaxis.api",
+    "load": "medialaxis.core.io",
+    "MedialAxis": "medialaxis.core.result",
+    "Branch": "medialaxis.core.result",
+    "reconstruction_error": "medialaxis.metrics",
     "shape_distance": "medialaxis.compare",
     "distance_matrix": "medialaxis.compare",
     "deform": "medialaxis.mesh.deform",
@@ -63,3 +75,7 @@ def __getattr__(name: str):
         globals()[name] = value
         return value
     raise AttributeError(f"module 'medialaxis' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

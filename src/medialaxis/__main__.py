@@ -2,6 +2,6 @@
 
 import sys
 
-from medialaxis.cli import main
+from medialaxis._entry import run
 
-sys.exit(main())
+sys.exit(run())

@@ -12,8 +12,9 @@ import json
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
+from medialaxis._dispatch import DEFAULT_METHOD, METHODS
 from medialaxis._version import __version__
 from medialaxis.errors import Cancelled, MedialAxisError, UnsupportedFormatError
 
@@ -22,6 +23,17 @@ __all__ = ["main", "SUBCOMMANDS"]
 
 class UsageError(Exception):
     """A command-line usage problem (exit code 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are :class:`UsageError` (one line, exit 2), not a usage dump."""
+
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(f"{self.prog}: {message} (see {self.prog} --help)")
+
+
+#: Exit code of an interrupted run (128 + SIGINT), as shells report it.
+EXIT_INTERRUPTED = 130
 
 
 def _parse_option(text: str) -> tuple[str, Any]:
@@ -37,8 +49,8 @@ def _parse_option(text: str) -> tuple[str, Any]:
 def _check_outputs(
     inputs: Sequence[Path], outputs: Sequence[Path], formats: Sequence[str] | None = None, option: str = "--output"
 ) -> None:
-    """Refuse outputs that are an input file, or whose extension is not in ``formats``."""
-    from medialaxis.core.io import WRITERS
+    """Refuse, before any work, outputs that are an input file, of an unknown format, or not writable."""
+    from medialaxis.core.io import WRITERS, check_writable
 
     formats = tuple(WRITERS) if formats is None else tuple(formats)
     existing = [p for p in inputs if p.exists()]
@@ -49,6 +61,7 @@ def _check_outputs(
             raise UsageError(
                 f"{option}: unsupported output format {out.suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(formats)}"
             )
+        check_writable(out)
 
 
 def _summary(ma: Any) -> str:
@@ -81,7 +94,9 @@ def _add_compute(sub: Any) -> None:
                    help="image, SVG/GeoJSON/WKT, mesh or volume file (or folder), or a saved result (.json/.npz)")
     p.add_argument("-o", "--output", type=Path, action="append", default=[],
                    help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj .vtk); repeatable")
-    p.add_argument("--method", default=None, help="method within the input's domain (default: the domain's default)")
+    p.add_argument("--method", default=None, metavar="METHOD",
+                   help="method within the input's domain: " + "; ".join(
+                       f"{domain} {', '.join(methods)} (default {DEFAULT_METHOD[domain]})" for domain, methods in METHODS.items()))
     p.add_argument("--lam", type=float, default=None, help="lambda: smallest contact-set diameter kept (output units)")
     p.add_argument("--threshold", type=float, default=None,
                    help="grey level of the foreground (default: images, Otsu's threshold; volumes, ISO-50: "
@@ -109,6 +124,18 @@ def _run_compute(args: argparse.Namespace) -> int:
     outputs = list(args.output) + ([args.steps] if args.steps else [])
     _check_outputs([args.input], list(args.output))
     domain = mx._dispatch.classify(str(args.input), args.method)
+    if args.method is not None and domain in METHODS and args.method not in METHODS[domain]:
+        raise UsageError(
+            f"--method {args.method!r} does not apply to {domain} input; choose one of {', '.join(METHODS[domain])}"
+        )
+    if args.frames is not None:
+        if domain != "mesh" or args.method != "flow":
+            raise UsageError("--frames is available for meshes with --method flow")
+        if args.frames.exists() and not args.frames.is_dir():
+            raise UsageError(f"--frames needs a folder, {str(args.frames)!r} is a file")
+        from medialaxis.core.io import check_writable
+
+        check_writable(args.frames / "step_0001.ply" if args.frames.is_dir() else args.frames)
     if args.steps is not None:
         if domain == mx._dispatch.RESULT:
             raise UsageError("--steps needs a shape, not a saved result")
@@ -124,34 +151,36 @@ def _run_compute(args: argparse.Namespace) -> int:
         if value is not None:
             options[name] = value
     spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
-    if args.steps is not None and domain == "volume":
-        from medialaxis.volume.steps import save_steps, stages_for_method
+    from medialaxis.core.io import output_batch
 
-        stages = stages_for_method(str(args.input), args.method, lam=args.lam, threshold=args.threshold,
-                                   spacing=spacing, **options)
-        ma = stages.result
-        outputs = list(args.output) + save_steps(stages, args.steps)
-    elif args.steps is not None:
-        from medialaxis.planar.pipeline import planar_stages
-        from medialaxis.planar.plotting import save_stages_figure
+    # Every output appears at the end, or none does (a failure or Ctrl-C leaves nothing).
+    with output_batch():
+        if args.steps is not None and domain == "volume":
+            from medialaxis.volume.steps import save_steps, stages_for_method
 
-        stages = planar_stages(str(args.input), lam=args.lam, threshold=args.threshold, spacing=spacing, **options)
-        ma = stages.result
-        save_stages_figure(stages, args.steps)
-    else:
-        writer = None
-        if args.frames is not None:
-            from medialaxis.mesh.flow_frames import FrameWriter
+            stages = stages_for_method(str(args.input), args.method, lam=args.lam, threshold=args.threshold,
+                                       spacing=spacing, **options)
+            ma = stages.result
+            outputs = list(args.output) + save_steps(stages, args.steps)
+        elif args.steps is not None:
+            from medialaxis.planar.pipeline import planar_stages
+            from medialaxis.planar.plotting import save_stages_figure
 
-            if domain != "mesh" or args.method != "flow":
-                raise UsageError("--frames is available for meshes with --method flow")
-            writer = options["callback"] = FrameWriter(args.frames)
-        ma = mx.medial_axis(str(args.input), method=args.method, lam=args.lam, threshold=args.threshold,
-                            spacing=spacing, **options)
-        if writer is not None:
-            outputs += writer.finish()
-    for out in args.output:
-        ma.save(out)
+            stages = planar_stages(str(args.input), lam=args.lam, threshold=args.threshold, spacing=spacing, **options)
+            ma = stages.result
+            save_stages_figure(stages, args.steps)
+        else:
+            writer = None
+            if args.frames is not None:
+                from medialaxis.mesh.flow_frames import FrameWriter
+
+                writer = options["callback"] = FrameWriter(args.frames)
+            ma = mx.medial_axis(str(args.input), method=args.method, lam=args.lam, threshold=args.threshold,
+                                spacing=spacing, **options)
+            if writer is not None:
+                outputs += writer.finish()
+        for out in args.output:
+            ma.save(out)
     print(f"{args.input}: {_summary(ma)}")
     for out in outputs:
         print(f"wrote {out}")
@@ -187,43 +216,60 @@ SUBCOMMANDS += [add_compare, add_search]
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="medialaxis",
         description="Medial axis transforms of images, polygons, meshes and volumes.",
     )
     parser.add_argument("--version", action="version", version=f"medialaxis {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for add in SUBCOMMANDS:
         add(sub)
     return parser
 
 
+def _fail(message: str) -> None:
+    print(f"medialaxis: error: {' '.join(str(message).split())}", file=sys.stderr)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``medialaxis`` console script; returns the exit code."""
-    parser = build_parser()
+    """Entry point of the ``medialaxis`` console script; returns the exit code.
+
+    0 success; 1 failure (bad or unreadable input, the computation failed,
+    an output could not be written); 2 usage error; 130 interrupted
+    (Ctrl-C). An error is one line on stderr, never a traceback unless
+    ``--debug`` is given.
+    """
+    debug = "--debug" in (sys.argv[1:] if argv is None else argv)
     try:
-        args = parser.parse_args(argv)
-    except SystemExit as exc:  # argparse: --help/--version exit 0, errors exit 2
-        return int(exc.code or 0)
-    if not getattr(args, "run", None):
-        parser.print_help(sys.stderr)
-        return 2
-    try:
+        parser = build_parser()
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as exc:  # --help and --version
+            return int(exc.code or 0)
+        if not getattr(args, "run", None):
+            commands = ", ".join(sorted(parser._subparsers._group_actions[0].choices))  # type: ignore[union-attr]
+            raise UsageError(f"a command is required: {commands} (see medialaxis --help)")
         return int(args.run(args))
-    except UsageError as exc:
-        print(f"medialaxis: error: {exc}", file=sys.stderr)
-        return 2
-    except UnsupportedFormatError as exc:
-        print(f"medialaxis: error: {exc}", file=sys.stderr)
+    except (UsageError, UnsupportedFormatError) as exc:
+        if debug:
+            raise
+        _fail(str(exc))
         return 2
     except (Cancelled, KeyboardInterrupt):
-        print("medialaxis: cancelled", file=sys.stderr)
-        return 1
+        if debug:
+            raise
+        print("medialaxis: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except MedialAxisError as exc:
-        print(f"medialaxis: error: {exc}", file=sys.stderr)
+        if debug:
+            raise
+        _fail(str(exc))
         return 1
     except MemoryError:
-        print("medialaxis: error: out of memory", file=sys.stderr)
+        if debug:
+            raise
+        _fail("out of memory")
         return 1
 
 
