@@ -117,6 +117,19 @@ MESH_SAMPLES = 1000  # smallest value the mesh Voronoi method accepts; keeps a v
 
 STATUSES = ("ok", "clean", "crash", "hang")
 
+#: A clean error whose message names one of these wraps an internal failure (a bug reported as a bad file);
+#: listed apart as "leaks", not counted as crashes.
+_LEAK_RE = re.compile(r"\b(ModuleNotFoundError|No module named|ImportError|IndexError|KeyError|AttributeError|TypeError|"
+                      r"ZeroDivisionError|AssertionError|RecursionError|UnboundLocalError|NameError|"
+                      r"NotImplementedError|OverflowError|MemoryError|LinAlgError|QhullError)\b")
+
+
+def _normalize(message: str) -> str:
+    """A message with paths, numbers and quoted values blanked, for grouping."""
+    m = re.sub(r"'[^']*'|\"[^\"]*\"", "'…'", str(message))
+    m = re.sub(r"(?<![A-Za-z_])[-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?", "N", m)
+    return m[:160]
+
 
 def _mask2d() -> np.ndarray:
     """64 x 64 uint8: a rectangle with a notch and a round bump (foreground 255)."""
@@ -372,8 +385,8 @@ def _json_mutate(text: bytes, rng: np.random.Generator) -> bytes | None:
 
 def mutate_text(text: bytes, rng: np.random.Generator, fmt: str) -> tuple[bytes, str]:
     """One token- or line-level mutation of a text (kept as bytes, latin-1 safe)."""
-    ops = ["number", "number", "index", "scale", "delete_line", "duplicate_line", "swap_lines", "cut_line",
-           "insert_line", "word", "delete_token"]
+    ops = ["number", "number", "index", "scale", "nudge", "nudge", "copy_number", "delete_line", "duplicate_line",
+           "swap_lines", "cut_line", "insert_line", "word", "delete_token"]
     if fmt in ("json", "geojson"):
         ops += ["json", "json", "json"]
     op = str(rng.choice(ops))
@@ -382,7 +395,7 @@ def mutate_text(text: bytes, rng: np.random.Generator, fmt: str) -> tuple[bytes,
         if out is not None:
             return out, op
         op = "number"
-    if op in ("number", "index", "scale"):
+    if op in ("number", "index", "scale", "nudge", "copy_number"):
         matches = list((_INT_RE if op == "index" else _NUM_RE).finditer(text))
         if matches:
             out = bytearray(text)
@@ -397,12 +410,18 @@ def mutate_text(text: bytes, rng: np.random.Generator, fmt: str) -> tuple[bytes,
                         v = 0
                     cand = [v + 1, v - 1, -1, -v - 1, 2**31, 2**31 - 1, 2**32, 2**63, 2**64, 10**30, v * 1000, 0]
                     new = str(cand[int(rng.integers(len(cand)))]).encode()
+                elif op == "copy_number":  # another number of the file: coincident points, repeated indices
+                    new = matches[int(rng.integers(len(matches)))].group()
                 else:
                     try:
                         v = float(m.group())
                     except ValueError:
                         v = 1.0
-                    new = repr(v * float(rng.choice([-1.0, 1e10, -1e10, 1e300, 1e-300, 0.0]))).encode()
+                    if op == "nudge":  # small geometric change: the file stays well-formed
+                        v = v * float(rng.uniform(0.5, 1.5)) + float(rng.normal(0, 1e-3))
+                        new = f"{v:.6f}".encode()
+                    else:
+                        new = repr(v * float(rng.choice([-1.0, 1e10, -1e10, 1e300, 1e-300, 0.0]))).encode()
                 out[m.start() : m.end()] = new
             return bytes(out), op
         op = "delete_line"
@@ -633,8 +652,17 @@ def _run_cli(main: Any, job: dict[str, Any], tmp: Path) -> dict[str, Any]:
     sys.stdout, sys.stderr = py_out, py_err
     code: Any = None
     escaped: BaseException | None = None
+    where: list[str] = []  # deepest medialaxis frame of each printed warning
+    show = warnings.showwarning
+
+    def showwarning(message: Any, category: Any, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
+        ours = [f for f in traceback.extract_stack()[:-1] if f"{os.sep}medialaxis{os.sep}" in f.filename]
+        where.append(_frame_str(ours[-1]) if ours else "")
+        show(message, category, filename, lineno, file, line)
+
     try:
         with warnings.catch_warnings():  # fresh warning registries: a warning shows as in a new process
+            warnings.showwarning = showwarning
             code = main(argv)
     except BaseException as exc:  # noqa: BLE001 - an exception escaping main is what we look for
         escaped = exc
@@ -673,7 +701,8 @@ def _run_cli(main: Any, job: dict[str, Any], tmp: Path) -> dict[str, Any]:
             last, kind = f"{_short(m.group(1))}:{m.group(2)}", f"CLI stderr {m.group(3)}"
         else:
             last, kind = "cli stderr", f"CLI stderr of {len(lines)} lines (exit {code})"
-        res.update(status="crash", type=kind, message=stderr.strip()[:600], last_frame=last, medialaxis_frame="")
+        res.update(status="crash", type=kind, message=stderr.strip()[:600], last_frame=last,
+                   medialaxis_frame=where[0] if where else "")
         return res
     res["status"] = "ok" if code == 0 else "clean"
     if code != 0:
@@ -695,6 +724,8 @@ def worker_main(workdir: str) -> None:
     crash_file = open(tmp / "fatal.txt", "w")  # noqa: SIM115
     faulthandler.enable(file=crash_file)
     hang_file = open(tmp / "hang.txt", "w")  # noqa: SIM115
+    usr1_file = open(tmp / "usr1.txt", "w")  # noqa: SIM115 - the parent asks for a stack dump with SIGUSR1
+    faulthandler.register(signal.SIGUSR1, file=usr1_file, all_threads=True)
     runs = tmp / "run"
     runs.mkdir(exist_ok=True)
 
@@ -721,6 +752,19 @@ def worker_main(workdir: str) -> None:
         try:
             if job["kind"] == "cli":
                 res = _run_cli(cli_main, job, runs)
+            elif job["kind"] == "selftest":  # the harness's own checks: hang, fatal signal, memory, crash
+                what = job["what"]
+                if what == "hang":
+                    time.sleep(3600)
+                elif what == "segv":
+                    os.kill(os.getpid(), signal.SIGSEGV)
+                elif what == "memory":
+                    hog = [np.ones(2**27) for _ in range(64)]  # 64 GiB, touched gradually
+                    del hog
+                try:
+                    raise IndexError("selftest")
+                except IndexError as exc:
+                    res = {"status": "crash", **_exc_info(exc)}
             else:
                 try:
                     if job["kind"] == "distance":
@@ -861,7 +905,7 @@ class Worker:
             self.start()
         assert self.proc is not None and self.proc.stdin is not None
         job = dict(job, timeout=timeout)
-        for name in ("hang.txt", "fatal.txt"):
+        for name in ("hang.txt", "fatal.txt", "usr1.txt"):
             with open(self.workdir / name, "w"):
                 pass
         t0 = time.perf_counter()
@@ -877,9 +921,19 @@ class Worker:
             res["peak_kib"] = max(int(res.get("peak_kib", 0)), track[0])
             return res
         # hang, memory blow-up or death: kill, diagnose from the faulthandler files, restart later
-        code = self.proc.poll()
+        if res is None or res["status"] == "memory":
+            try:  # where is it? (faulthandler's SIGUSR1 handler dumps even while C code holds the GIL)
+                os.kill(self.proc.pid, signal.SIGUSR1)
+                time.sleep(0.5)
+            except OSError:
+                pass
+        try:
+            code = self.proc.wait(2) if res is not None and res["status"] == "died" else self.proc.poll()
+        except subprocess.TimeoutExpired:
+            code = None
         self.kill()
-        hang = (self.workdir / "hang.txt").read_text(errors="replace")
+        usr1 = (self.workdir / "usr1.txt").read_text(errors="replace")
+        hang = usr1 if "File " in usr1 else (self.workdir / "hang.txt").read_text(errors="replace")
         fatal = (self.workdir / "fatal.txt").read_text(errors="replace")
         if res is None:
             return {"status": "hang", "type": "Timeout", "message": f"no answer within {timeout:g} s",
@@ -888,8 +942,9 @@ class Worker:
         if res["status"] == "memory":
             return {"status": "crash", "type": "MemoryLimit",
                     "message": f"worker RSS {res['rss_kib'] // 1024} MiB passed the limit "
-                               f"{self.memory_limit_kib // 1024} MiB",
-                    "last_frame": "?", "medialaxis_frame": "", "seconds": elapsed, "peak_kib": track[0]}
+                               f"{(self.memory_limit_kib or 0) // 1024} MiB",
+                    "last_frame": _parse_dump(hang) if hang else "?", "medialaxis_frame": _dump_ours(hang),
+                    "traceback": hang[-4000:], "seconds": elapsed, "peak_kib": track[0]}
         sig = f"signal {-code}" if code is not None and code < 0 else f"exit {code}"
         return {"status": "crash", "type": f"WorkerDied({sig})", "message": fatal.strip().splitlines()[0] if fatal.strip() else "",
                 "last_frame": _parse_dump(fatal) if fatal else "?", "medialaxis_frame": _dump_ours(fatal),
@@ -1029,6 +1084,8 @@ def run_fuzz(
         }
         seed_status: dict[str, dict[str, str]] = {f: {} for f in formats}
         distinct: dict[tuple[str, str, str], dict[str, Any]] = {}
+        leaks: dict[tuple[str, str], dict[str, Any]] = {}
+        clean_messages: dict[str, dict[str, int]] = {f: {} for f in formats}
         n_bad = {"crash": 0, "hang": 0}
         for (case, kind, job), res in zip(tasks, results):
             st = res["status"]
@@ -1040,6 +1097,24 @@ def run_fuzz(
                 row[st] += 1
                 row["max_seconds"] = max(row["max_seconds"], float(res.get("seconds", 0.0)))
                 row["peak_mib"] = max(row["peak_mib"], int(res.get("peak_kib", 0)) / 1024)
+            if st == "clean":
+                msg = str(res.get("message", ""))
+                norm = _normalize(msg)
+                counts = clean_messages[case.fmt]
+                counts[norm] = counts.get(norm, 0) + 1
+                hit = _LEAK_RE.search(msg)
+                if hit and kind != "cli":  # the CLI prints the same message as the API run
+                    lk = (hit.group(1), norm)
+                    if lk not in leaks:
+                        leaks[lk] = {"wrapped": hit.group(1), "type": res.get("type"), "message": msg,
+                                     "formats": [], "kinds": [], "count": 0, "example": str(case.path),
+                                     "repro": repro_command(job, str(case.path)), "_case": case, "_job": job}
+                    e = leaks[lk]
+                    e["count"] += 1
+                    if case.fmt not in e["formats"]:
+                        e["formats"].append(case.fmt)
+                    if kind not in e["kinds"]:
+                        e["kinds"].append(kind)
             if st not in ("crash", "hang"):
                 continue
             n_bad[st] += 1
@@ -1069,8 +1144,17 @@ def run_fuzz(
                 entry["formats"].append(case.fmt)
             if kind not in entry["kinds"]:
                 entry["kinds"].append(kind)
+        for e in leaks.values():  # keep one example input of each leak
+            case, job = e.pop("_case"), e.pop("_job")
+            if keep_dir is not None:
+                name = f"leak_{case.fmt}_{'seed' if case.index < 0 else f'{case.index:06d}'}{FORMATS[case.fmt][0]}"
+                shutil.copyfile(case.path, keep_dir / name)
+                e["example"] = str(keep_dir / name)
+                e["repro"] = repro_command(job, e["example"])
+        top = {f: dict(sorted(c.items(), key=lambda kv: -kv[1])[:10]) for f, c in clean_messages.items()}
         summary = {
             "count": count, "seed": seed, "timeout": timeout, "jobs": jobs, "formats": table, "seeds": seed_status,
+            "leaks": list(leaks.values()), "clean_messages": top,
             "crashes": [e for e in distinct.values() if e["status"] == "crash"],
             "hangs": [e for e in distinct.values() if e["status"] == "hang"],
             "n_crashes": n_bad["crash"], "n_hangs": n_bad["hang"], "n_runs": len(tasks),
@@ -1084,7 +1168,8 @@ def run_fuzz(
             shutil.rmtree(base, ignore_errors=True)
 
 
-def print_summary(summary: dict[str, Any], out: Any = sys.stdout) -> None:
+def print_summary(summary: dict[str, Any], out: Any = None, show_clean: bool = False) -> None:
+    out = sys.stdout if out is None else out
     cols = ("files", "runs", "ok", "clean", "crash", "hang")
     print(f"{'format':<11}" + "".join(f"{c:>7}" for c in cols) + f"{'max s':>8}{'peak MiB':>10}", file=out)
     tot = {c: 0 for c in cols}
@@ -1110,6 +1195,20 @@ def print_summary(summary: dict[str, Any], out: Any = sys.stdout) -> None:
                 print(f"    medialaxis frame: {e['medialaxis_frame']}", file=out)
             print(f"    input: {e['example']}", file=out)
             print(f"    repro: {e['repro']}", file=out)
+    leaks = summary.get("leaks", [])
+    print(f"\n{len(leaks)} distinct clean errors that leak an internal exception (not counted as crashes)", file=out)
+    for k, e in enumerate(leaks, 1):
+        print(f"\n[L{k}] {e['type']} wrapping {e['wrapped']}  x{e['count']}  formats={','.join(e['formats'])}  "
+              f"runs={','.join(e['kinds'])}", file=out)
+        print(f"    message: {str(e['message'])[:300]}", file=out)
+        print(f"    input: {e['example']}", file=out)
+        print(f"    repro: {e['repro']}", file=out)
+    if show_clean:
+        print("\nmost frequent clean errors per format:", file=out)
+        for fmt, counts in summary.get("clean_messages", {}).items():
+            print(f"  {fmt}:", file=out)
+            for msg, n in counts.items():
+                print(f"    {n:>5}  {msg}", file=out)
     print(f"\n{summary['n_runs']} runs in {summary['seconds']:.1f} s", file=out)
 
 
@@ -1129,11 +1228,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--mesh-samples", type=int, default=MESH_SAMPLES,
                     help="samples= of the default mesh method (0: the library default)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
+    ap.add_argument("--show-clean", action="store_true", help="also list the most frequent clean errors per format")
     a = ap.parse_args(argv)
     summary = run_fuzz(a.count, a.seed, a.formats, timeout=a.timeout, jobs=a.jobs, keep=a.keep,
                        mesh_samples=a.mesh_samples or None, memory_limit_mib=a.memory_limit or None,
                        verbose=not a.quiet)
-    print_summary(summary)
+    print_summary(summary, show_clean=a.show_clean)
     return 1 if summary["n_crashes"] or summary["n_hangs"] else 0
 
 

@@ -173,3 +173,66 @@ def test_errors_share_one_hierarchy():
     for cls in (mx.InvalidInputError, mx.EmptyShapeError, mx.InputFileError, mx.UnsupportedFormatError,
                 mx.ResourceLimitError, mx.MissingDependencyError, mx.ComputationError, mx.Cancelled):
         assert issubclass(cls, mx.MedialAxisError)
+
+
+# ------------------------------------------------- issue 16: named failures
+@pytest.mark.parametrize("make", ["box", "tetrahedron", "thin box"])
+def test_flow_handles_the_smallest_closed_meshes(make):
+    trimesh = pytest.importorskip("trimesh")
+    mesh = {
+        "box": lambda: trimesh.creation.box(),
+        "tetrahedron": lambda: trimesh.creation.icosphere(0),
+        "thin box": lambda: trimesh.creation.box(extents=(4, 1, 1)),
+    }[make]()
+    sk = mx.medial_axis(mesh, method="flow")
+    assert sk.n_components == 1 and len(sk.points) >= 1
+    # inside the (convex) solid, about its middle
+    assert np.all(np.abs(sk.points - mesh.centroid) < 0.5 * mesh.extents)
+
+
+def test_both_mesh_methods_refuse_overlapping_shells_and_accept_disjoint_ones():
+    trimesh = pytest.importorskip("trimesh")
+    a, b = trimesh.creation.box(), trimesh.creation.box()
+    b.apply_translation([0.5, 0.3, 0.2])
+    overlapping = trimesh.util.concatenate([a, b])
+    for method in ("flow", "voronoi"):
+        with pytest.raises(mx.InvalidInputError, match="self-intersecting or has nested shells"):
+            mx.medial_axis(overlapping, method=method)
+    c = trimesh.creation.box()
+    c.apply_translation([3.0, 0, 0])
+    apart = trimesh.util.concatenate([a, c])
+    assert mx.medial_axis(apart, method="flow").n_components == 2
+    assert mx.medial_axis(apart, method="voronoi", samples=20_000).n_components == 2
+
+
+def test_corrupt_mesh_files_name_the_defect(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    box = trimesh.creation.box()
+    box.export(tmp_path / "box.stl")
+    data = (tmp_path / "box.stl").read_bytes()
+    (tmp_path / "cut.stl").write_bytes(data[:300])
+    (tmp_path / "tiny.stl").write_bytes(b"\x00\x01")
+    box.export(tmp_path / "box.obj")
+    text = (tmp_path / "box.obj").read_text()
+    (tmp_path / "bad.obj").write_text(text.replace("\nf 1 ", "\nf 99 ", 1))
+    with pytest.raises(mx.InputFileError, match=r"truncated or corrupt binary STL: its header announces 12 triangles \(684 bytes\) but the file has 300"):
+        mx.medial_axis(tmp_path / "cut.stl")
+    with pytest.raises(mx.InputFileError, match="not an STL file"):
+        mx.medial_axis(tmp_path / "tiny.stl")
+    with pytest.raises(mx.InputFileError, match="a face refers to a vertex that does not exist"):
+        mx.medial_axis(tmp_path / "bad.obj")
+    ascii_stl = tmp_path / "ascii.stl"
+    box.export(ascii_stl, file_type="stl_ascii")
+    assert mx.medial_axis(ascii_stl, method="flow").n_components == 1
+
+
+def test_overflowing_coordinates_are_named():
+    with pytest.raises(mx.InvalidInputError, match=r"coordinates up to 1e\+300 are too large"):
+        mx.medial_axis(shapely.box(0, 0, 1e300, 1e300))
+    trimesh = pytest.importorskip("trimesh")
+    big = trimesh.creation.box()
+    big.vertices *= 1e299
+    with pytest.raises(mx.InvalidInputError, match="mesh vertices: coordinates up to"):
+        mx.medial_axis(big, method="flow")
+    with pytest.raises(mx.InvalidInputError, match="spacing"):
+        mx.medial_axis(np.eye(8, dtype=bool), spacing=1e300)

@@ -67,6 +67,9 @@ def _run_compare(args: argparse.Namespace) -> int:
             raise UsageError(f"--output needs a .png, .svg or .pdf file, got {str(args.output)!r}")
         if args.output.exists() and any(args.output.resolve() == p.resolve() for p in (args.first, args.second)):
             raise UsageError(f"refusing to overwrite the input file {str(args.output)!r}")
+        from medialaxis.core.io import check_writable
+
+        check_writable(args.output)  # before any work
     a, b = _axis(args.first), _axis(args.second)
     options = _matching(args)
     distance = shape_distance(a, b, **options)

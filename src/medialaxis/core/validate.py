@@ -12,7 +12,11 @@ import numpy as np
 
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["check_number", "check_spacing"]
+__all__ = ["MAX_COORDINATE", "check_coordinates", "check_number", "check_spacing"]
+
+#: Largest coordinate magnitude accepted: squared distances and areas must
+#: stay finite in float64 (about 1.8e308).
+MAX_COORDINATE = 1e150
 
 
 def check_number(value: Any, name: str, *, positive: bool = False) -> float:
@@ -48,4 +52,27 @@ def check_spacing(spacing: Any, ndim: int) -> np.ndarray:
         out = np.repeat(out, ndim)
     if out.size != ndim or not np.all(np.isfinite(out)) or np.any(out <= 0):
         raise InvalidInputError(f"spacing must be one or {ndim} positive finite numbers, got {spacing!r}")
+    if np.any(out > MAX_COORDINATE / 1e10):
+        raise InvalidInputError(f"spacing {spacing!r} is too large: coordinates would overflow; use another unit")
     return out
+
+
+def check_coordinates(coords: np.ndarray, where: str) -> None:
+    """Refuse NaN, infinite, or overflowing (beyond :data:`MAX_COORDINATE`) coordinates, naming them.
+
+    Examples
+    --------
+    >>> check_coordinates(np.array([[0.0, 1e300]]), "polygon")
+    Traceback (most recent call last):
+    ...
+    medialaxis.errors.InvalidInputError: polygon: coordinates up to 1e+300 are too large (squared distances overflow beyond 1e+150); rescale the shape
+    """
+    if not np.all(np.isfinite(coords)):
+        bad = np.argwhere(~np.isfinite(coords))[0]
+        raise InvalidInputError(f"{where}: coordinates contain NaN or infinity (at {tuple(int(i) for i in bad)})")
+    largest = float(np.abs(coords).max()) if coords.size else 0.0
+    if largest > MAX_COORDINATE:
+        raise InvalidInputError(
+            f"{where}: coordinates up to {largest:.3g} are too large (squared distances overflow beyond "
+            f"{MAX_COORDINATE:.3g}); rescale the shape"
+        )

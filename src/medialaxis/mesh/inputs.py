@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis._optional import require
+from medialaxis.core.validate import check_coordinates
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError, UnsupportedFormatError
 
 __all__ = ["MeshInput", "load_mesh", "MESH_EXTENSIONS"]
@@ -45,13 +46,114 @@ def _read(path: Path) -> Any:
     ext = path.suffix.lower()
     if ext not in MESH_EXTENSIONS:
         raise UnsupportedFormatError(f"unsupported mesh file type {ext!r}; use one of {', '.join(MESH_EXTENSIONS)}")
+    if ext == ".stl":
+        _check_stl(path)
     try:
         loaded = trimesh.load(str(path), force="mesh", process=False)
+    except IndexError as exc:
+        raise InputFileError(f"cannot read mesh {str(path)!r}: a face refers to a vertex that does not exist ({exc})") from exc
     except Exception as exc:  # noqa: BLE001 - trimesh raises many types on bad files
         raise InputFileError(f"cannot read mesh {str(path)!r}: {type(exc).__name__}: {exc}") from exc
     if not isinstance(loaded, trimesh.Trimesh):
         raise InputFileError(f"{str(path)!r} holds no triangle mesh")
     return loaded
+
+
+def _check_stl(path: Path) -> None:
+    """Refuse an STL that is neither a whole binary STL nor ASCII text, naming what is wrong.
+
+    A binary STL is an 80-byte header, a triangle count ``n`` and ``50 n``
+    bytes; anything else must be an ASCII STL (``solid ...``).
+    """
+    size = path.stat().st_size
+    with open(path, "rb") as fh:
+        head = fh.read(84)
+        if len(head) == 84:
+            count = int(np.frombuffer(head[80:84], "<u4")[0])
+            if size == 84 + 50 * count:
+                return  # binary, and whole
+        fh.seek(0)
+        sample = fh.read(1 << 16)
+    text = sample.lstrip().lower().startswith(b"solid")
+    try:
+        sample.decode("ascii")
+    except UnicodeDecodeError:
+        text = False
+    if text:
+        return
+    if len(head) < 84:
+        raise InputFileError(f"{str(path)!r} is not an STL file: {size} bytes, no ASCII 'solid' header")
+    raise InputFileError(
+        f"{str(path)!r} is a truncated or corrupt binary STL: its header announces {count} triangles "
+        f"({84 + 50 * count} bytes) but the file has {size} bytes"
+    )
+
+
+def _solid_angle_sums(points: np.ndarray, triangles: np.ndarray, chunk: int = 2_000_000) -> np.ndarray:
+    """Winding number of the closed triangle surface ``triangles`` (T, 3, 3) at each of ``points`` (P, 3).
+
+    Sum of the signed solid angles of the triangles (Van Oosterom and
+    Strackee), over 4 pi: 1 inside, 0 outside, 1/2 on the surface.
+    """
+    out = np.zeros(len(points))
+    step = max(1, chunk // max(len(triangles), 1))
+    for start in range(0, len(points), step):
+        rel = triangles[None, :, :, :] - points[start : start + step, None, None, :]
+        a, b, c = rel[:, :, 0], rel[:, :, 1], rel[:, :, 2]
+        la, lb, lc = (np.linalg.norm(v, axis=2) for v in (a, b, c))
+        det = np.einsum("ptk,ptk->pt", a, np.cross(b, c))
+        den = (la * lb * lc + np.einsum("ptk,ptk->pt", a, b) * lc + np.einsum("ptk,ptk->pt", a, c) * lb
+               + np.einsum("ptk,ptk->pt", b, c) * la)
+        out[start : start + step] = 2.0 * np.arctan2(det, den).sum(axis=1) / (4.0 * np.pi)
+    return out
+
+
+#: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
+SHELL_PROBES = 500
+
+
+def check_shells(mesh: Any) -> None:
+    """Refuse a mesh whose outer shells overlap or lie inside one another.
+
+    A closed mesh of several shells bounds a solid only if each outward
+    shell lies outside every other shell's solid (inward shells are
+    cavities, inside their outer shell). A vertex of an outward shell where
+    the other shells' winding number is about 1 lies in another shell's
+    solid: the surface is self-intersecting or has nested shells. Both mesh
+    methods use this check; ``method="voronoi"`` also compares the volume
+    of the inner Delaunay tetrahedra with the mesh's signed volume, which
+    catches a single shell that passes through itself.
+
+    Raises
+    ------
+    InvalidInputError
+    """
+    from trimesh.graph import connected_component_labels
+
+    labels = connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
+    n_shells = int(labels.max()) + 1
+    if n_shells < 2:
+        return
+    tri = np.asarray(mesh.triangles)
+    for k in range(n_shells):
+        own = labels == k
+        shell = tri[own]
+        signed = float(np.einsum("ij,ij->i", shell[:, 0], np.cross(shell[:, 1], shell[:, 2])).sum()) / 6.0
+        if signed <= 0:
+            continue  # a cavity
+        vertices = np.unique(mesh.faces[own])
+        probes = np.asarray(mesh.vertices)[vertices[np.linspace(0, len(vertices) - 1, min(SHELL_PROBES, len(vertices))).astype(int)]]
+        others = tri[~own]
+        lo, hi = others.reshape(-1, 3).min(axis=0), others.reshape(-1, 3).max(axis=0)
+        near = np.all((probes >= lo) & (probes <= hi), axis=1)
+        if not near.any():
+            continue
+        winding = _solid_angle_sums(probes[near], others)
+        if (winding > 0.75).any():
+            raise InvalidInputError(
+                f"the mesh has {n_shells} shells and shell {k} lies (partly) inside another one's solid: the surface "
+                "is self-intersecting or has nested shells; fix it (e.g. a mesh boolean union) first"
+            )
 
 
 def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> MeshInput:
@@ -90,8 +192,7 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> Me
         raise InvalidInputError(f"mesh vertices must have shape (n, 3), got {vertices.shape}")
     if len(faces) == 0 or len(vertices) < 4:
         raise EmptyShapeError(f"the mesh is empty ({len(vertices)} vertices, {len(faces)} faces)")
-    if not np.all(np.isfinite(vertices)):
-        raise InvalidInputError("mesh vertices contain NaN or infinite coordinates")
+    check_coordinates(vertices, "mesh vertices")
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise InvalidInputError("mesh faces index vertices that do not exist")
     repairs: list[str] = []
@@ -119,4 +220,5 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> Me
             repairs.append("flipped inward-facing normals")
         if not work.volume > 0:
             raise EmptyShapeError(f"the mesh encloses no volume (volume {work.volume:.3g})")
+        check_shells(work)
     return MeshInput(work, tuple(repairs))

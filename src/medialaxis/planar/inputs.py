@@ -19,7 +19,7 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from medialaxis.core.validate import check_spacing
+from medialaxis.core.validate import check_coordinates, check_spacing
 from medialaxis.errors import (
     EmptyShapeError,
     InputFileError,
@@ -325,8 +325,7 @@ def _validate_polygonal(geom: Any, where: str) -> tuple[Any, str | None]:
     coords = shapely.get_coordinates(geom)
     if len(coords) == 0 or geom.is_empty:
         raise EmptyShapeError(f"{where}: the geometry is empty")
-    if not np.all(np.isfinite(coords)):
-        raise InvalidInputError(f"{where}: coordinates contain NaN or infinity")
+    check_coordinates(coords, where)
     repaired = None
     if not geom.is_valid:
         reason = shapely.is_valid_reason(geom)
