@@ -83,7 +83,7 @@ def test_sigint_during_start_up_is_one_line(png, tmp_path):
     import time
 
     script = [sys.executable, "-c", "import sys; from medialaxis._entry import run; sys.exit(run())"]
-    for delay in (0.2, 0.3, 0.4, 0.6, 0.9):
+    for delay in (0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.2):
         proc = subprocess.Popen([*script, "compute", str(png), "-o", str(tmp_path / "a.json")],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         time.sleep(delay)

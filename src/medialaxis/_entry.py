@@ -6,6 +6,8 @@ numba load is reported as an interruption (exit 130), not a traceback.
 
 from __future__ import annotations
 
+import contextlib
+import signal
 import sys
 
 __all__ = ["run"]
@@ -16,9 +18,14 @@ def run() -> int:
     try:
         from medialaxis.cli import main
 
-        return main()
+        code = main()
     except KeyboardInterrupt:
         if "--debug" in sys.argv[1:]:
             raise
         print("medialaxis: interrupted", file=sys.stderr)
-        return 130
+        code = 130
+    # The work is done (or reported): a Ctrl-C now would only break the
+    # interpreter's shutdown and end the process by the signal, silently.
+    with contextlib.suppress(ValueError):  # not the main thread
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    return code
