@@ -29,8 +29,11 @@ class MeshInput:
     Attributes
     ----------
     mesh : trimesh.Trimesh
-        A cleaned copy (duplicate vertices merged, degenerate and duplicate
-        faces dropped, normals made consistent and outward).
+        A copy, as given where it is a closed, consistently oriented
+        2-manifold (coincident but distinct vertices are kept); otherwise
+        coincident vertices welded (triangle soups such as STL), degenerate
+        and duplicate faces and unused vertices dropped, winding made
+        consistent and the whole surface turned outward.
     repairs : tuple of str
         What was changed to make the mesh usable, if anything.
     """
@@ -156,6 +159,33 @@ def check_shells(mesh: Any) -> None:
             )
 
 
+def _closed(mesh: Any) -> bool:
+    """Every edge (by vertex index) shared by exactly two faces."""
+    return bool(mesh.is_watertight)
+
+
+def _drop_bad_faces(vertices: np.ndarray, faces: np.ndarray, repairs: list[str]) -> np.ndarray:
+    """Faces without a repeated vertex, of non-zero area, each once; what was dropped goes to ``repairs``."""
+    tri = vertices[faces]
+    area2 = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    scale = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+    repeated = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
+    keep = ~repeated & (area2 > (1e-14 * scale) ** 2)
+    _, first = np.unique(np.sort(faces, axis=1), axis=0, return_index=True)
+    unique = np.zeros(len(faces), bool)
+    unique[first] = True
+    degenerate = int((~keep).sum())
+    duplicate = int((keep & ~unique).sum())
+    if degenerate:
+        repairs.append(f"dropped {degenerate} degenerate faces")
+    if duplicate:
+        repairs.append(f"dropped {duplicate} duplicate faces")
+    faces = faces[keep & unique]
+    if len(faces) == 0:
+        raise EmptyShapeError("every face of the mesh is degenerate")
+    return faces
+
+
 def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> MeshInput:
     """Read and check a mesh.
 
@@ -196,21 +226,34 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> Me
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise InvalidInputError("mesh faces index vertices that do not exist")
     repairs: list[str] = []
-    work = trimesh.Trimesh(vertices, faces, process=True, validate=True)
-    if len(work.faces) < len(faces):
-        repairs.append(f"dropped {len(faces) - len(work.faces)} degenerate or duplicate faces")
-    if len(work.faces) == 0:
-        raise EmptyShapeError("every face of the mesh is degenerate")
-    if watertight and not work.is_watertight and repair:
+    faces = _drop_bad_faces(vertices, faces, repairs)
+    work = trimesh.Trimesh(vertices, faces, process=False)
+    if not _closed(work):
+        # Triangle soups (STL) and some exporters do not share the vertices
+        # of adjacent faces: weld coincident vertices. A mesh that is closed
+        # as given keeps its vertices, coincident ones included (a boolean
+        # union keeps the two sides of a touching edge apart on purpose).
+        welded = work.copy()
+        welded.merge_vertices(merge_tex=True, merge_norm=True)
+        if _closed(welded) or not watertight:
+            if len(welded.vertices) < len(work.vertices):
+                repairs.append(f"welded {len(work.vertices) - len(welded.vertices)} coincident vertices")
+            work = welded
+    unused = len(work.vertices) - len(np.unique(work.faces))
+    if unused:
+        work.remove_unreferenced_vertices()
+        repairs.append(f"dropped {unused} vertices used by no face")
+    if watertight and not _closed(work) and repair:
         trimesh.repair.fill_holes(work)
-        if work.is_watertight:
+        if _closed(work):
             repairs.append("closed holes with trimesh.repair.fill_holes")
     if watertight:
-        if not work.is_watertight:
-            broken = int((np.bincount(work.edges_unique_inverse, minlength=len(work.edges_unique)) != 2).sum())
+        if not _closed(work):
+            shared = np.bincount(work.edges_unique_inverse, minlength=len(work.edges_unique))
+            open_edges, crowded = int((shared == 1).sum()), int((shared > 2).sum())
             raise InvalidInputError(
-                f"the mesh is not watertight ({broken} edges are not shared by exactly two faces); "
-                "close it first or pass repair=True"
+                f"the mesh is not watertight ({open_edges} open edges, {crowded} edges shared by more than two "
+                "faces); close it first or pass repair=True"
             )
         if not work.is_winding_consistent:
             trimesh.repair.fix_winding(work)
