@@ -46,12 +46,20 @@ What it does:
    ``/proc/self/status``, reset before each run through
    ``/proc/self/clear_refs``; ``getrusage`` where that is missing), together
    with the RSS the parent polls (psutil when installed).
+   A worker serves many runs; process-global settings a run changes (PIL's
+   decompression-bomb limit, NumPy error state, warning filters, logging,
+   cwd, environment, ``sys.path``...) are reported and put back after each
+   run, so every run starts from the same state.
 5. Prints a table per format (files, runs, ok, clean errors, crashes, hangs,
    max seconds of a run, peak MiB), checks that every unmutated seed runs
    ``ok``, and lists the distinct crashes and hangs, deduplicated by
-   (exception type, last traceback frame), with the deepest medialaxis frame
-   and a reproduction command. Every crashing or hanging input is copied to
-   ``--keep DIR`` (with a ``.txt`` record next to it, and ``summary.json``).
+   (exception type, last traceback frame), with the deepest medialaxis frame,
+   whether it happens again in a fresh worker (``--no-confirm`` skips that)
+   and a reproduction command. Also listed, not counted as crashes: clean
+   errors whose message names an internal exception (``InputFileError:
+   ... IndexError: ...``, ``No module named ...``) and the global settings
+   runs changed. Every crashing or hanging input is copied to ``--keep DIR``
+   (with a ``.txt`` record next to it, and ``summary.json``).
 
 Exit status 1 if any crash or hang (seeds included), else 0.
 :func:`run_fuzz` returns the summary as a dict (used by
@@ -61,6 +69,7 @@ Exit status 1 if any crash or hang (seeds included), else 0.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import io
 import json
 import os
@@ -119,7 +128,8 @@ STATUSES = ("ok", "clean", "crash", "hang")
 
 #: A clean error whose message names one of these wraps an internal failure (a bug reported as a bad file);
 #: listed apart as "leaks", not counted as crashes.
-_LEAK_RE = re.compile(r"\b(ModuleNotFoundError|No module named|ImportError|IndexError|KeyError|AttributeError|TypeError|"
+_LEAK_RE = re.compile(r"\b(ModuleNotFoundError|No module named|ImportError|IndexError|KeyError|AttributeError|"
+                      r"TypeError|"
                       r"ZeroDivisionError|AssertionError|RecursionError|UnboundLocalError|NameError|"
                       r"NotImplementedError|OverflowError|MemoryError|LinAlgError|QhullError)\b")
 
@@ -294,7 +304,8 @@ def _pack_interesting(rng: np.random.Generator) -> bytes:
         size = int(rng.choice([1, 2, 4, 8]))
         return (v % (1 << (8 * size))).to_bytes(size, "little" if order == "<" else "big")
     v = float(rng.choice(INTERESTING_FLOATS))
-    return np.array([v], dtype=order + ("f4" if rng.random() < 0.5 else "f8")).tobytes()
+    with np.errstate(over="ignore"):  # 1e308 as float32 is inf: fine
+        return np.array([v], dtype=order + ("f4" if rng.random() < 0.5 else "f8")).tobytes()
 
 
 def mutate_bytes(data: bytes, rng: np.random.Generator) -> tuple[bytes, str]:
@@ -374,9 +385,7 @@ def _json_mutate(text: bytes, rng: np.random.Generator) -> bytes | None:
     if isinstance(old, (int, float)) and not isinstance(old, bool):
         choices += [-old, old * 1e12, int(old) + 1, str(old)]
     action = rng.random()
-    if action < 0.15 and isinstance(parent, dict):
-        del parent[key]
-    elif action < 0.25 and isinstance(parent, list):
+    if (action < 0.15 and isinstance(parent, dict)) or (action < 0.25 and isinstance(parent, list)):
         del parent[key]
     else:
         parent[key] = choices[int(rng.integers(len(choices)))]
@@ -499,6 +508,7 @@ def _mutate_npz_member(data: bytes, rng: np.random.Generator) -> tuple[bytes, st
 def mutate(data: bytes, fmt: str, rng: np.random.Generator) -> tuple[bytes, list[str]]:
     """1 to 3 stacked mutations suited to ``fmt``; returns the data and the operations applied."""
     kind = FORMATS[fmt][2]
+    original = data
     ops: list[str] = []
     for _ in range(int(rng.choice([1, 1, 1, 1, 2, 2, 3]))):
         r = rng.random()
@@ -521,6 +531,9 @@ def mutate(data: bytes, fmt: str, rng: np.random.Generator) -> tuple[bytes, list
     if fmt == "png" and rng.random() < 0.5:
         data = _fix_png_crcs(data)
         ops.append("fix_crc")
+    while data == original:  # a no-op (a number replaced by itself, identical lines swapped): flip a bit
+        data, op = mutate_bytes(data, rng)
+        ops.append(op)
     return data, ops
 
 
@@ -576,11 +589,12 @@ def repro_command(job: dict[str, Any], path: str) -> str:
     if job["kind"] == "cli":
         args = " ".join(_shell_quote(a) for a in job["args"])
         return f"{py} -m medialaxis compute {_shell_quote(path)} -o /tmp/fuzz-out.json{' ' + args if args else ''}"
+    lit = json.dumps  # double-quoted literals: the command is single-quoted for the shell
     if job["kind"] == "distance":
-        code = f"import medialaxis as mx; print(mx.shape_distance({path!r}, {path!r}))"
+        code = f"import medialaxis as mx; print(mx.shape_distance({lit(path)}, {lit(path)}))"
     else:
-        opts = "".join(f", {k}={v!r}" for k, v in job["options"].items())
-        code = f"import medialaxis as mx; print(mx.medial_axis({path!r}{opts}))"
+        opts = "".join(f", {k}={lit(v)}" for k, v in job["options"].items())
+        code = f"import medialaxis as mx; print(mx.medial_axis({lit(path)}{opts}))"
     return f"{py} -c {_shell_quote(code)}"
 
 
@@ -641,7 +655,7 @@ def _run_cli(main: Any, job: dict[str, Any], tmp: Path) -> dict[str, Any]:
 
     out_json = tmp / "out.json"
     argv = ["compute", job["path"], "-o", str(out_json), *job["args"]]
-    fd_out, fd_err = tempfile.TemporaryFile(dir=tmp), tempfile.TemporaryFile(dir=tmp)
+    fd_out, fd_err = tempfile.TemporaryFile(dir=tmp), tempfile.TemporaryFile(dir=tmp)  # noqa: SIM115 - closed below
     py_out, py_err = io.StringIO(), io.StringIO()
     sys.stdout.flush()
     sys.stderr.flush()
@@ -655,7 +669,8 @@ def _run_cli(main: Any, job: dict[str, Any], tmp: Path) -> dict[str, Any]:
     where: list[str] = []  # deepest medialaxis frame of each printed warning
     show = warnings.showwarning
 
-    def showwarning(message: Any, category: Any, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
+    def showwarning(message: Any, category: Any, filename: str, lineno: int, file: Any = None,
+                    line: Any = None) -> None:
         ours = [f for f in traceback.extract_stack()[:-1] if f"{os.sep}medialaxis{os.sep}" in f.filename]
         where.append(_frame_str(ours[-1]) if ours else "")
         show(message, category, filename, lineno, file, line)
@@ -692,7 +707,7 @@ def _run_cli(main: Any, job: dict[str, Any], tmp: Path) -> dict[str, Any]:
                    medialaxis_frame="")
         return res
     if "Traceback" in stderr or len(lines) > 1 or (code != 0 and len(lines) != 1):
-        m = re.search(r"^(\S.*?):(\d+): (\w+): (.*)$", stderr, re.M)  # a printed warning
+        m = re.search(r"^(\S.*?):(\d+): (\w+): (.*)$", stderr, re.MULTILINE)  # a printed warning
         if "Traceback" in stderr:
             tb = re.findall(r'File "([^"]+)", line (\d+), in (\S+)', stderr)
             last = f"{_short(tb[-1][0])}:{tb[-1][1]} in {tb[-1][2]}" if tb else "?"
@@ -708,6 +723,62 @@ def _run_cli(main: Any, job: dict[str, Any], tmp: Path) -> dict[str, Any]:
     if code != 0:
         res["message"] = lines[0][:600]
     return res
+
+
+def _global_state() -> dict[str, Any]:
+    """Process-global settings a run should leave as it found them (a change makes runs order-dependent)."""
+    import logging
+    import warnings
+
+    pil = sys.modules.get("PIL.Image")
+    return {
+        "PIL.Image.MAX_IMAGE_PIXELS": getattr(pil, "MAX_IMAGE_PIXELS", None),
+        "numpy.geterr()": dict(np.geterr()),
+        "warnings.filters": list(warnings.filters),
+        "logging root level/handlers": (logging.root.level, len(logging.root.handlers)),
+        "sys.getrecursionlimit()": sys.getrecursionlimit(),
+        "os.getcwd()": os.getcwd(),
+        "SIGINT handler": repr(signal.getsignal(signal.SIGINT)),
+        "os.environ": dict(os.environ),
+        "sys.path": list(sys.path),
+    }
+
+
+def _restore_state(base: dict[str, Any]) -> list[str]:
+    """Names (with before -> after) of the settings a run changed; the simple ones are put back."""
+    import warnings
+
+    now = _global_state()
+    changed = []
+    for key, before in base.items():
+        after = now[key]
+        if after == before:
+            continue
+        if key == "os.environ":
+            diff = sorted(k for k in set(before) | set(after) if before.get(k) != after.get(k))
+            changed.append(f"os.environ[{', '.join(diff)}]")
+            for k in diff:
+                if k in before:
+                    os.environ[k] = before[k]
+                else:
+                    os.environ.pop(k, None)
+        elif key == "warnings.filters":
+            changed.append(f"warnings.filters ({len(before)} -> {len(after)} entries)")
+            warnings.filters[:] = before
+            warnings._filters_mutated()  # type: ignore[attr-defined]
+        else:
+            changed.append(f"{key}: {before!r} -> {after!r}"[:200])
+            if key == "PIL.Image.MAX_IMAGE_PIXELS":
+                sys.modules["PIL.Image"].MAX_IMAGE_PIXELS = before
+            elif key == "numpy.geterr()":
+                np.seterr(**before)
+            elif key == "sys.getrecursionlimit()":
+                sys.setrecursionlimit(before)
+            elif key == "os.getcwd()":
+                os.chdir(before)
+            elif key == "sys.path":
+                sys.path[:] = before
+    return changed
 
 
 def worker_main(workdir: str) -> None:
@@ -730,14 +801,18 @@ def worker_main(workdir: str) -> None:
     runs.mkdir(exist_ok=True)
 
     os.environ.setdefault("MPLBACKEND", "Agg")
+    # imported now, so that import time is not in the first runs' times and PIL's settings are in the baseline
+    import PIL.Image  # noqa: F401
+
     import medialaxis as mx
-    import medialaxis.compare  # noqa: F401 - lazily imported otherwise; keep it out of the first run's time
-    import medialaxis.mesh.flow  # noqa: F401
-    import medialaxis.mesh.voronoi  # noqa: F401
-    import medialaxis.planar.pipeline  # noqa: F401
-    import medialaxis.volume.pipeline  # noqa: F401
+    import medialaxis.compare
+    import medialaxis.mesh.flow
+    import medialaxis.mesh.voronoi
+    import medialaxis.planar.pipeline
+    import medialaxis.volume.pipeline
     from medialaxis.cli import main as cli_main
 
+    baseline = _global_state()
     out.write(json.dumps({"ready": True, "pid": os.getpid()}) + "\n")
     for line in sys.stdin:
         job = json.loads(line)
@@ -772,7 +847,7 @@ def worker_main(workdir: str) -> None:
                         res = {"status": "ok", "value": float(value)}
                     else:
                         ma = mx.medial_axis(job["path"], **job["options"])
-                        res = {"status": "ok", "points": int(len(ma.points))}
+                        res = {"status": "ok", "points": len(ma.points)}
                 except mx.MedialAxisError as exc:
                     res = {"status": "clean", "type": type(exc).__name__, "message": str(exc)[:600]}
                 except BaseException as exc:  # noqa: BLE001 - every other exception is a crash
@@ -783,6 +858,10 @@ def worker_main(workdir: str) -> None:
         faulthandler.cancel_dump_traceback_later()
         res["seconds"] = time.perf_counter() - t0
         res["peak_kib"] = _vm_hwm_kib()
+        try:  # each run starts from the same process state, as in a fresh process
+            res["state_changed"] = _restore_state(baseline)
+        except Exception as exc:  # noqa: BLE001
+            res["state_changed"] = [f"(state check failed: {exc!r})"]
         out.write(json.dumps(res, default=str) + "\n")
 
 
@@ -891,13 +970,11 @@ class Worker:
 
     def stop(self) -> None:
         if self.proc is not None:
-            try:
+            with contextlib.suppress(Exception):  # it may be dead already
                 assert self.proc.stdin is not None
                 self.proc.stdin.write(b"null\n")
                 self.proc.stdin.flush()
                 self.proc.wait(5)
-            except Exception:  # noqa: BLE001
-                pass
             self.kill()
 
     def run(self, job: dict[str, Any], timeout: float) -> dict[str, Any]:
@@ -946,7 +1023,8 @@ class Worker:
                     "last_frame": _parse_dump(hang) if hang else "?", "medialaxis_frame": _dump_ours(hang),
                     "traceback": hang[-4000:], "seconds": elapsed, "peak_kib": track[0]}
         sig = f"signal {-code}" if code is not None and code < 0 else f"exit {code}"
-        return {"status": "crash", "type": f"WorkerDied({sig})", "message": fatal.strip().splitlines()[0] if fatal.strip() else "",
+        first = fatal.strip().splitlines()[0] if fatal.strip() else ""
+        return {"status": "crash", "type": f"WorkerDied({sig})", "message": first,
                 "last_frame": _parse_dump(fatal) if fatal else "?", "medialaxis_frame": _dump_ours(fatal),
                 "traceback": fatal[-4000:], "seconds": elapsed, "peak_kib": track[0]}
 
@@ -1003,6 +1081,17 @@ def _pool_run(tasks: list[tuple[Case, str, dict[str, Any]]], jobs: int, timeout:
     return [r if r is not None else {"status": "crash", "type": "harness", "message": "not run"} for r in results]
 
 
+def _keep_example(e: dict[str, Any], prefix: str, keep_dir: Path | None) -> None:
+    case, job = e.pop("_case"), e.pop("_job")
+    if keep_dir is not None:
+        name = f"{prefix}_{case.fmt}_{'seed' if case.index < 0 else f'{case.index:06d}'}{FORMATS[case.fmt][0]}"
+        shutil.copyfile(case.path, keep_dir / name)
+        e["example"] = str(keep_dir / name)
+        if "message" in e:
+            e["message"] = e["message"].replace(str(case.path), e["example"])
+        e["repro"] = repro_command(job, e["example"])
+
+
 def run_fuzz(
     count: int,
     seed: int,
@@ -1015,6 +1104,7 @@ def run_fuzz(
     memory_limit_mib: float | None = 4096,
     verbose: bool = False,
     workdir: str | os.PathLike[str] | None = None,
+    confirm: bool = True,
 ) -> dict[str, Any]:
     """Build seeds, mutate ``count`` files, run them all; return the summary.
 
@@ -1085,9 +1175,10 @@ def run_fuzz(
         seed_status: dict[str, dict[str, str]] = {f: {} for f in formats}
         distinct: dict[tuple[str, str, str], dict[str, Any]] = {}
         leaks: dict[tuple[str, str], dict[str, Any]] = {}
+        state_leaks: dict[str, dict[str, Any]] = {}
         clean_messages: dict[str, dict[str, int]] = {f: {} for f in formats}
         n_bad = {"crash": 0, "hang": 0}
-        for (case, kind, job), res in zip(tasks, results):
+        for (case, kind, job), res in zip(tasks, results, strict=True):
             st = res["status"]
             if case.index < 0:
                 seed_status[case.fmt][kind] = st
@@ -1097,6 +1188,18 @@ def run_fuzz(
                 row[st] += 1
                 row["max_seconds"] = max(row["max_seconds"], float(res.get("seconds", 0.0)))
                 row["peak_mib"] = max(row["peak_mib"], int(res.get("peak_kib", 0)) / 1024)
+            for change in res.get("state_changed") or []:
+                sk = change.split(":")[0].split(" (")[0].split("[")[0]
+                if sk not in state_leaks:
+                    state_leaks[sk] = {"change": change, "count": 0, "formats": [], "kinds": [],
+                                       "example": str(case.path), "repro": repro_command(job, str(case.path)),
+                                       "_case": case, "_job": job}
+                sl = state_leaks[sk]
+                sl["count"] += 1
+                if case.fmt not in sl["formats"]:
+                    sl["formats"].append(case.fmt)
+                if kind not in sl["kinds"]:
+                    sl["kinds"].append(kind)
             if st == "clean":
                 msg = str(res.get("message", ""))
                 norm = _normalize(msg)
@@ -1128,7 +1231,11 @@ def run_fuzz(
                     fh.write(f"format: {case.fmt}\nrun: {kind}\nmutations: {case.ops}\nstatus: {st}\n"
                              f"type: {res.get('type')}\nmessage: {res.get('message')}\n"
                              f"last frame: {res.get('last_frame')}\nmedialaxis frame: {res.get('medialaxis_frame')}\n"
-                             f"repro: {repro_command(job, kept)}\n{res.get('traceback') or res.get('stderr') or ''}\n\n")
+                             f"repro: {repro_command(job, kept)}\n"
+                             f"{res.get('traceback') or res.get('stderr') or ''}\n\n")
+            for name in ("message", "traceback", "stderr"):  # name the kept copy, not the temporary file
+                if isinstance(res.get(name), str):
+                    res[name] = res[name].replace(str(case.path), kept)
             key = (st, str(res.get("type")), str(res.get("last_frame")))
             entry = distinct.get(key)
             if entry is None:
@@ -1138,23 +1245,37 @@ def run_fuzz(
                     "medialaxis_frame": res.get("medialaxis_frame"), "formats": [], "kinds": [], "count": 0,
                     "example": kept, "example_ops": case.ops, "seed": case.index < 0,
                     "repro": repro_command(job, kept), "traceback": res.get("traceback") or res.get("stderr"),
+                    "_job": job,
                 }
             entry["count"] += 1
             if case.fmt not in entry["formats"]:
                 entry["formats"].append(case.fmt)
             if kind not in entry["kinds"]:
                 entry["kinds"].append(kind)
-        for e in leaks.values():  # keep one example input of each leak
-            case, job = e.pop("_case"), e.pop("_job")
-            if keep_dir is not None:
-                name = f"leak_{case.fmt}_{'seed' if case.index < 0 else f'{case.index:06d}'}{FORMATS[case.fmt][0]}"
-                shutil.copyfile(case.path, keep_dir / name)
-                e["example"] = str(keep_dir / name)
-                e["repro"] = repro_command(job, e["example"])
+        for prefix, group in (("leak", leaks.values()), ("state", state_leaks.values())):
+            for e in group:  # keep one example input of each
+                _keep_example(e, prefix, keep_dir)
         top = {f: dict(sorted(c.items(), key=lambda kv: -kv[1])[:10]) for f, c in clean_messages.items()}
+        if confirm and distinct:
+            # each distinct crash/hang once more, in a fresh worker: does it happen without earlier runs?
+            if verbose:
+                print(f"  confirming {len(distinct)} distinct crashes/hangs in fresh workers", file=sys.stderr)
+            limit = int(memory_limit_mib * 1024) if memory_limit_mib else None
+            for k, entry in enumerate(distinct.values()):
+                worker = Worker(base / "workers" / f"confirm{k}", limit)
+                try:
+                    again = worker.run(entry["_job"], timeout)
+                finally:
+                    worker.stop()
+                entry["standalone"] = {"status": again["status"], "type": again.get("type"),
+                                       "last_frame": again.get("last_frame"),
+                                       "message": str(again.get("message", ""))[:300]}
+                entry["reproduces"] = again["status"] == entry["status"] and again.get("type") == entry["type"]
+        for entry in distinct.values():
+            entry.pop("_job", None)
         summary = {
             "count": count, "seed": seed, "timeout": timeout, "jobs": jobs, "formats": table, "seeds": seed_status,
-            "leaks": list(leaks.values()), "clean_messages": top,
+            "leaks": list(leaks.values()), "clean_messages": top, "state_leaks": list(state_leaks.values()),
             "crashes": [e for e in distinct.values() if e["status"] == "crash"],
             "hangs": [e for e in distinct.values() if e["status"] == "hang"],
             "n_crashes": n_bad["crash"], "n_hangs": n_bad["hang"], "n_runs": len(tasks),
@@ -1193,8 +1314,18 @@ def print_summary(summary: dict[str, Any], out: Any = None, show_clean: bool = F
             print(f"    last frame: {e['last_frame']}", file=out)
             if e.get("medialaxis_frame") and e["medialaxis_frame"] != e["last_frame"]:
                 print(f"    medialaxis frame: {e['medialaxis_frame']}", file=out)
+            if "standalone" in e:
+                sa = e["standalone"]
+                print(f"    fresh process: {'reproduces' if e['reproduces'] else 'DOES NOT reproduce'} "
+                      f"({sa['status']}: {sa['type']} at {sa['last_frame']})", file=out)
             print(f"    input: {e['example']}", file=out)
             print(f"    repro: {e['repro']}", file=out)
+    state = summary.get("state_leaks", [])
+    print(f"\n{len(state)} process-global settings changed by runs (put back after each run)", file=out)
+    for k, e in enumerate(state, 1):
+        print(f"\n[S{k}] {e['change']}  x{e['count']}  formats={','.join(e['formats'])}  runs={','.join(e['kinds'])}",
+              file=out)
+        print(f"    first seen: {e['repro']}", file=out)
     leaks = summary.get("leaks", [])
     print(f"\n{len(leaks)} distinct clean errors that leak an internal exception (not counted as crashes)", file=out)
     for k, e in enumerate(leaks, 1):
@@ -1217,7 +1348,8 @@ def main(argv: list[str] | None = None) -> int:
     if argv[:1] == ["--worker"]:
         worker_main(argv[1])
         return 0
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--count", type=int, default=10000, help="mutated files in all, spread evenly over the formats")
     ap.add_argument("--seed", type=int, default=0, help="seed of np.random.default_rng")
     ap.add_argument("--timeout", type=float, default=20.0, help="wall-clock limit of one run, seconds")
@@ -1228,11 +1360,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--mesh-samples", type=int, default=MESH_SAMPLES,
                     help="samples= of the default mesh method (0: the library default)")
     ap.add_argument("--quiet", action="store_true", help="no progress lines")
+    ap.add_argument("--no-confirm", action="store_true",
+                    help="do not re-run each distinct crash/hang in a fresh worker")
     ap.add_argument("--show-clean", action="store_true", help="also list the most frequent clean errors per format")
     a = ap.parse_args(argv)
+    if a.formats:
+        unknown = [f for f in a.formats.split(",") if f.strip() and f.strip() not in FORMATS]
+        if unknown:
+            ap.error(f"unknown format(s) {', '.join(unknown)}; known: {','.join(FORMATS)}")
     summary = run_fuzz(a.count, a.seed, a.formats, timeout=a.timeout, jobs=a.jobs, keep=a.keep,
                        mesh_samples=a.mesh_samples or None, memory_limit_mib=a.memory_limit or None,
-                       verbose=not a.quiet)
+                       verbose=not a.quiet, confirm=not a.no_confirm)
     print_summary(summary, show_clean=a.show_clean)
     return 1 if summary["n_crashes"] or summary["n_hangs"] else 0
 

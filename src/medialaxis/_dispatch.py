@@ -78,9 +78,9 @@ def _classify_path(path: Path, method: str | None) -> str:
         if method in METHODS["volume"] or method in ("midsurface", "voxels"):
             return "volume"
         try:
-            from PIL import Image
+            from medialaxis.core.images import open_image
 
-            with Image.open(path) as im:
+            with open_image(path, None) as im:  # the page count only: nothing is decoded
                 return "volume" if getattr(im, "n_frames", 1) > 1 else "planar"
         except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
             raise InputFileError(f"cannot read TIFF {str(path)!r}: {exc}") from exc

@@ -1,15 +1,20 @@
 """The ``medialaxis`` command line.
 
 Exit codes: 0 success, 1 failure (bad or unreadable input, computation
-failed), 2 usage error (bad arguments). Errors print one line on stderr,
-never a traceback. Outputs are written atomically and never over the input.
+failed, an output that cannot be written), 2 usage error (bad arguments),
+130 interrupted (Ctrl-C). Errors print one line on stderr, never a
+traceback (``--debug`` shows it); the libraries' warnings and log records
+are silenced. Outputs are checked before any work, written atomically and
+never over the input, and appear together at the end or not at all.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import logging
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, NoReturn
@@ -241,6 +246,21 @@ def main(argv: Sequence[str] | None = None) -> int:
     ``--debug`` is given.
     """
     debug = "--debug" in (sys.argv[1:] if argv is None else argv)
+    if debug:
+        return _main(argv, debug)
+    # The libraries' warnings and log records about a bad file are not ours to
+    # print: the error line says what went wrong (--debug shows them).
+    previous = logging.root.manager.disable
+    logging.disable(logging.CRITICAL)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return _main(argv, debug)
+    finally:
+        logging.disable(previous)
+
+
+def _main(argv: Sequence[str] | None, debug: bool) -> int:
     try:
         parser = build_parser()
         try:

@@ -522,6 +522,9 @@ def signature(
         tours.append(_tour_versions(r_points, r_radii, r_edges, r_scale, r_order, r_weights, r_lengths))
     else:
         tours.append(tours[0])
+    t = max(version[0].shape[1] for version in tours)
+    # An axis pruned to one point has a one-sample tour: that sample, all along the walk.
+    tours = [tuple(np.repeat(part, t // part.shape[1], axis=1) for part in version) for version in tours]
     tour, tour_radii, tour_points = (np.concatenate(parts) for parts in zip(*tours))
     return Signature(
         path_r / scale, path_l / scale, chords / scale, bends / scale, weights / scale, ends_xy, scale, points, radii,

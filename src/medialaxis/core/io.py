@@ -313,6 +313,21 @@ def is_result_file(path: str | os.PathLike[str]) -> bool:
         return False
 
 
+def _check_loaded(ma: MedialAxis, what: str) -> None:
+    """Refuse a loaded result whose numbers no computation could have produced."""
+    from medialaxis.core.validate import MAX_COORDINATE
+
+    for name, values in (("points", ma.points), ("radii", ma.radii)):
+        bad = ~np.isfinite(values) | (np.abs(values) > MAX_COORDINATE)
+        if name == "radii":
+            bad |= values < 0
+        if bad.any():
+            kinds = "negative, infinite or overflowing" if name == "radii" else "infinite or overflowing"
+            raise InputFileError(f"{what} is corrupt: its {name} hold {kinds} values")
+    if ma.raw is not None:
+        _check_loaded(ma.raw, what + " (unpruned axis)")
+
+
 def load(path: str | os.PathLike[str]) -> MedialAxis:
     """Read a result written by :meth:`MedialAxis.save` as ``.json`` or ``.npz``.
 
@@ -332,15 +347,18 @@ def load(path: str | os.PathLike[str]) -> MedialAxis:
     try:
         if ext == ".json":
             with open(path) as fh:
-                return _from_dict(json.load(fh))
-        with np.load(path, allow_pickle=False) as z:
-            if "format" not in z.files or str(z["format"]) != "medialaxis":
-                raise InputFileError(f"{str(path)!r} is not a medialaxis result file")
-            return _from_npz(z, "")
+                ma = _from_dict(json.load(fh))
+        else:
+            with np.load(path, allow_pickle=False) as z:
+                if "format" not in z.files or str(z["format"]) != "medialaxis":
+                    raise InputFileError(f"{str(path)!r} is not a medialaxis result file")
+                ma = _from_npz(z, "")
     except InputFileError:
         raise
     except Exception as exc:  # noqa: BLE001 - corrupt files raise many types
         raise InputFileError(f"cannot read {str(path)!r}: {type(exc).__name__}: {exc}") from exc
+    _check_loaded(ma, repr(str(path)))
+    return ma
 
 
 # -------------------------------------------------------------- exports

@@ -12,7 +12,7 @@ import numpy as np
 
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["MAX_COORDINATE", "check_coordinates", "check_number", "check_spacing"]
+__all__ = ["MAX_COORDINATE", "check_coordinates", "check_number", "check_spacing", "memory_budget"]
 
 #: Largest coordinate magnitude accepted: squared distances and areas must
 #: stay finite in float64 (about 1.8e308).
@@ -76,3 +76,14 @@ def check_coordinates(coords: np.ndarray, where: str) -> None:
             f"{where}: coordinates up to {largest:.3g} are too large (squared distances overflow beyond "
             f"{MAX_COORDINATE:.3g}); rescale the shape"
         )
+
+
+def memory_budget() -> int:
+    """Bytes an input may use while it is processed: half the physical memory."""
+    import os
+
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):  # pragma: no cover - non-POSIX
+        total = 8 << 30
+    return int(total // 2)

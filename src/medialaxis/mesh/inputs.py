@@ -55,6 +55,10 @@ def _read(path: Path) -> Any:
         loaded = trimesh.load(str(path), force="mesh", process=False)
     except IndexError as exc:
         raise InputFileError(f"cannot read mesh {str(path)!r}: a face refers to a vertex that does not exist ({exc})") from exc
+    except ImportError as exc:  # trimesh guesses the encoding of text that is not UTF-8 with charset_normalizer
+        if "charset_normalizer" not in str(exc):
+            raise
+        raise InputFileError(f"cannot read mesh {str(path)!r}: its text is not UTF-8 (a corrupt {ext} file?)") from exc
     except Exception as exc:  # noqa: BLE001 - trimesh raises many types on bad files
         raise InputFileError(f"cannot read mesh {str(path)!r}: {type(exc).__name__}: {exc}") from exc
     if not isinstance(loaded, trimesh.Trimesh):

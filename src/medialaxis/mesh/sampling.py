@@ -20,10 +20,14 @@ from typing import Any
 import numpy as np
 from scipy.spatial import cKDTree
 
+from medialaxis.errors import ResourceLimitError
+
 __all__ = ["SurfaceSample", "sample_surface", "pseudo_normals", "measure_epsilon", "face_spacing_for_count"]
 
 #: Samples per unit area at spacing h on a triangular lattice: 2 / (sqrt(3) h^2).
 _LATTICE = 2.0 / np.sqrt(3.0)
+#: Most surface samples one call may make (about 1 GB of points, normals and indices).
+MAX_SURFACE_SAMPLES = 20_000_000
 
 
 @dataclasses.dataclass(frozen=True)
@@ -127,7 +131,9 @@ def face_spacing_for_count(areas: np.ndarray, relative: np.ndarray, count: int) 
     return scale * relative
 
 
-def sample_surface(mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None = None) -> SurfaceSample:
+def sample_surface(
+    mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None = None, *, limit: int = MAX_SURFACE_SAMPLES
+) -> SurfaceSample:
     """Sample a mesh with a target spacing per face.
 
     Parameters
@@ -138,6 +144,8 @@ def sample_surface(mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None
         Target distance between neighbouring samples on each face.
     normals : PseudoNormals, optional
         Precomputed pseudo-normals.
+    limit : int
+        Most samples made; more is refused before any is made.
 
     Returns
     -------
@@ -155,9 +163,16 @@ def sample_surface(mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None
     for k in range(3):
         np.minimum.at(edge_h, pn.face_edges[:, k], spacing)
         edge_face[pn.face_edges[:, k]] = np.arange(len(f))
-    edge_counts = np.maximum(np.round(edge_len / edge_h).astype(np.int64), 1)
-    ep, eo = _edge_points(v, edges, edge_counts)
+    edge_counts = np.maximum(np.round(edge_len / edge_h), 1.0)
     tri = v[f]
+    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    planned = float(edge_counts.sum()) + float(np.floor(_LATTICE * area / spacing**2).sum()) + len(v)
+    if not planned <= min(limit, MAX_SURFACE_SAMPLES):
+        raise ResourceLimitError(
+            f"sampling the surface at this spacing needs {planned:.3g} points (at most {min(limit, MAX_SURFACE_SAMPLES):,}): "
+            "some edges are far longer than the faces are wide (a needle, a spike or a stray vertex?)"
+        )
+    ep, eo = _edge_points(v, edges, edge_counts.astype(np.int64))
     fp, fo = _face_points(tri, spacing)
     vertex_face = np.zeros(len(v), np.int64)
     vertex_face[f.ravel()] = np.repeat(np.arange(len(f)), 3)

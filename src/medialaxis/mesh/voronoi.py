@@ -152,7 +152,8 @@ def _lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
     """
     area = np.asarray(mesh.area_faces, np.float64)
     h = face_spacing_for_count(area, np.ones(len(area)), count)
-    points = sample_surface(mesh, h, normals).points
+    # About ``count`` points are wanted; far more means needle-like faces.
+    points = sample_surface(mesh, h, normals, limit=len(mesh.vertices) + 100 * count).points
     _, first = np.unique(np.floor(points / h[0]).astype(np.int64), axis=0, return_index=True)
     dt = tetrahedralise(points[np.sort(first)])
     diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))

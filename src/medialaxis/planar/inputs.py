@@ -19,7 +19,8 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from medialaxis.core.validate import check_coordinates, check_spacing
+from medialaxis.core.images import open_image
+from medialaxis.core.validate import check_coordinates, check_spacing, memory_budget
 from medialaxis.errors import (
     EmptyShapeError,
     InputFileError,
@@ -81,11 +82,7 @@ class PlanarInput:
 
 def max_pixels() -> int:
     """Largest image (in pixels) processed: half the physical memory / BYTES_PER_PIXEL."""
-    try:
-        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (ValueError, OSError, AttributeError):  # pragma: no cover - non-POSIX
-        total = 8 << 30
-    return int(total // 2 // BYTES_PER_PIXEL)
+    return memory_budget() // BYTES_PER_PIXEL
 
 
 # ----------------------------------------------------------------- rasters
@@ -99,11 +96,9 @@ def _check_pixels(n_pixels: int, what: str) -> None:
 
 
 def _read_image(path: Path) -> np.ndarray:
-    from PIL import Image
-
-    Image.MAX_IMAGE_PIXELS = None  # our own limit below, checked before decoding
     try:
-        with Image.open(path) as im:
+        # Our own size check, below, runs before anything is decoded.
+        with open_image(path, None) as im:
             _check_pixels(im.width * im.height, f"image {str(path)!r}")
             if getattr(im, "n_frames", 1) > 1:
                 raise InvalidInputError(
@@ -116,6 +111,13 @@ def _read_image(path: Path) -> np.ndarray:
     except (ResourceLimitError, InvalidInputError):
         raise
     except Exception as exc:  # noqa: BLE001 - PIL raises many types for bad files
+        from PIL import Image
+
+        if isinstance(exc, Image.DecompressionBombError):
+            raise ResourceLimitError(
+                f"image {str(path)!r} has more than {max_pixels():,} pixels, the most that fit in memory here "
+                f"(refused before decoding: {exc})"
+            ) from exc
         raise InputFileError(f"cannot read image {str(path)!r}: {exc}") from exc
     return arr
 
@@ -362,7 +364,7 @@ def _read_svg(path: Path) -> Any:
 
     try:
         root = ET.parse(path).getroot()
-    except (ET.ParseError, OSError) as exc:
+    except Exception as exc:  # noqa: BLE001 - ParseError, OSError, LookupError (bad encoding), ValueError...
         raise InputFileError(f"cannot parse SVG {str(path)!r}: {exc}") from exc
     rings: list[np.ndarray] = []
     for el in root.iter():
@@ -389,10 +391,14 @@ def _read_svg(path: Path) -> Any:
     rings = [r for r in rings if len(r) >= 3]
     if not rings:
         raise EmptyShapeError(f"SVG {str(path)!r} contains no closed shape")
+    check_coordinates(np.vstack(rings), f"SVG {str(path)!r}")
     # Even-odd fill: symmetric difference of all rings.
     geom = Polygon()
-    for r in rings:
-        geom = geom.symmetric_difference(shapely.make_valid(Polygon(r)))
+    try:
+        for r in rings:
+            geom = geom.symmetric_difference(shapely.make_valid(Polygon(r)))
+    except shapely.errors.GEOSException as exc:
+        raise InputFileError(f"malformed shape in SVG {str(path)!r}: {exc}") from exc
     return geom
 
 

@@ -15,12 +15,36 @@ from typing import Any
 import numpy as np
 
 from medialaxis._optional import require
-from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
+from medialaxis.core.validate import memory_budget
+from medialaxis.errors import InputFileError, InvalidInputError, ResourceLimitError, UnsupportedFormatError
 
 __all__ = ["read_volume", "VOLUME_SUFFIXES"]
 
 #: Suffixes handled by :func:`read_volume` (a folder is a TIFF or DICOM series).
 VOLUME_SUFFIXES = (".nrrd", ".nhdr", ".nii", ".nii.gz", ".tif", ".tiff", ".dcm", ".npy", ".raw")
+
+#: Bytes of working memory per voxel of the in-memory pipeline (distance and
+#: feature transforms, labels, masks), used to refuse a volume before reading it.
+BYTES_PER_VOXEL = 32
+
+
+def check_voxels(shape: Any, what: str) -> None:
+    """Refuse, before reading, a volume whose declared ``shape`` needs more memory than allowed."""
+    try:
+        sizes = [int(s) for s in shape]
+    except (TypeError, ValueError, OverflowError):
+        raise InputFileError(f"{what} declares a bad shape {shape!r}") from None
+    if any(s < 0 for s in sizes):
+        raise InputFileError(f"{what} declares a negative size in its shape {tuple(sizes)}")
+    voxels = 1
+    for s in sizes:
+        voxels *= s
+    limit = memory_budget() // BYTES_PER_VOXEL
+    if voxels > limit:
+        raise ResourceLimitError(
+            f"{what} has {voxels:,} voxels (shape {tuple(sizes)}); at most {limit:,} fit in memory here "
+            f"(about {BYTES_PER_VOXEL} bytes per voxel are needed)"
+        )
 
 
 
@@ -31,6 +55,7 @@ def _suffix(path: Path) -> str:
 
 def _read_nrrd(path: Path) -> tuple[np.ndarray, Any]:
     nrrd = require("nrrd", "pynrrd")
+    check_voxels(nrrd.read_header(str(path)).get("sizes", ()), f"NRRD {str(path)!r}")
     data, header = nrrd.read(str(path), index_order="C")
     spacing = None
     if "spacings" in header:
@@ -47,6 +72,7 @@ def _read_nrrd(path: Path) -> tuple[np.ndarray, Any]:
 def _read_nifti(path: Path) -> tuple[np.ndarray, Any]:
     nib = require("nibabel", "nibabel")
     img = nib.load(str(path))
+    check_voxels(img.shape, f"NIfTI {str(path)!r}")
     data = np.asanyarray(img.dataobj)
     zooms = tuple(float(z) for z in img.header.get_zooms()[: data.ndim])
     return data, zooms if len(zooms) == 3 else None
@@ -58,8 +84,12 @@ def _read_tiff(path: Path) -> tuple[np.ndarray, Any]:
         files = sorted(p for p in path.iterdir() if p.suffix.lower() in (".tif", ".tiff"))
         if not files:
             raise InputFileError(f"folder {str(path)!r} holds no .tif/.tiff slices or .dcm files")
+        with tifffile.TiffFile(str(files[0])) as tf:
+            check_voxels((len(files), *tf.series[0].shape), f"TIFF series {str(path)!r}")
         data = tifffile.imread([str(f) for f in files])
     else:
+        with tifffile.TiffFile(str(path)) as tf:
+            check_voxels(tf.series[0].shape, f"TIFF {str(path)!r}")
         data = tifffile.imread(str(path))
     return data, None
 
@@ -97,6 +127,7 @@ def _read_dicom(path: Path) -> tuple[np.ndarray, Any]:
 
 
 def _read_npy(path: Path) -> tuple[np.ndarray, Any]:
+    check_voxels(np.load(path, mmap_mode="r", allow_pickle=False).shape, f"{str(path)!r}")
     return np.load(path, allow_pickle=False), None
 
 
@@ -110,6 +141,7 @@ def _read_raw(path: Path, shape: Any, dtype: Any) -> tuple[np.ndarray, Any]:
         raise InvalidInputError(f"bad raw shape {shape!r} or dtype {dtype!r}: {exc}") from None
     if len(shape) != 3 or min(shape) < 1:
         raise InvalidInputError(f"raw shape must be 3 positive sizes, got {shape}")
+    check_voxels(shape, f"raw file {str(path)!r}")
     expected = int(np.prod(shape)) * dt.itemsize
     size = path.stat().st_size
     if size != expected:
@@ -172,8 +204,10 @@ def read_volume(path: str | os.PathLike[str], *, shape: Any = None, dtype: Any =
         reader, args = table[ext], ()
     try:
         result = reader(p, *args)
-    except (InputFileError, InvalidInputError, ImportError):
+    except (InputFileError, InvalidInputError, ImportError, ResourceLimitError):
         raise
+    except MemoryError as exc:
+        raise ResourceLimitError(f"reading {str(p)!r} needs more memory than is free: {exc}") from exc
     except Exception as exc:  # noqa: BLE001 - decoder errors of any kind mean a bad file
         raise InputFileError(f"cannot read volume {str(p)!r}: {type(exc).__name__}: {exc}") from exc
     return _check3d(result, p)
