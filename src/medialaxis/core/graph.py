@@ -71,8 +71,13 @@ def branches(n: int, edges: np.ndarray) -> list[np.ndarray]:
     """
     edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     deg = degree(n, edges)
-    adj = adjacency(n, edges)
-    indptr, nbrs, eids = adj.indptr, adj.indices, adj.data - 1
+    # Neighbour lists by sorting, not a sparse matrix: repeated edges and
+    # self-loops keep one entry each instead of being summed into one.
+    rows = np.concatenate([edges[:, 0], edges[:, 1]])
+    order = np.argsort(rows, kind="stable")
+    indptr = np.searchsorted(rows[order], np.arange(n + 1))
+    nbrs = np.concatenate([edges[:, 1], edges[:, 0]])[order]
+    eids = np.tile(np.arange(len(edges)), 2)[order]
     used = np.zeros(len(edges), bool)
     chains: list[np.ndarray] = []
 

@@ -324,6 +324,9 @@ def _check_loaded(ma: MedialAxis, what: str) -> None:
         if bad.any():
             kinds = "negative, infinite or overflowing" if name == "radii" else "infinite or overflowing"
             raise InputFileError(f"{what} is corrupt: its {name} hold {kinds} values")
+    for key, value in ma.extras.items():
+        if value.dtype.kind not in "biuf":
+            raise InputFileError(f"{what} is corrupt: its extra {key!r} holds {value.dtype} values, not numbers")
     if ma.raw is not None:
         _check_loaded(ma.raw, what + " (unpruned axis)")
 

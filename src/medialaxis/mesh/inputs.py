@@ -142,20 +142,26 @@ def check_shells(mesh: Any) -> None:
     if n_shells < 2:
         return
     tri = np.asarray(mesh.triangles)
-    for k in range(n_shells):
-        own = labels == k
-        shell = tri[own]
+    shells = [np.flatnonzero(labels == k) for k in range(n_shells)]
+    lo = np.array([tri[f].reshape(-1, 3).min(axis=0) for f in shells])
+    hi = np.array([tri[f].reshape(-1, 3).max(axis=0) for f in shells])
+    for k, faces in enumerate(shells):
+        shell = tri[faces]
         signed = float(np.einsum("ij,ij->i", shell[:, 0], np.cross(shell[:, 1], shell[:, 2])).sum()) / 6.0
         if signed <= 0:
             continue  # a cavity
-        vertices = np.unique(mesh.faces[own])
-        probes = np.asarray(mesh.vertices)[vertices[np.linspace(0, len(vertices) - 1, min(SHELL_PROBES, len(vertices))).astype(int)]]
-        others = tri[~own]
-        lo, hi = others.reshape(-1, 3).min(axis=0), others.reshape(-1, 3).max(axis=0)
-        near = np.all((probes >= lo) & (probes <= hi), axis=1)
-        if not near.any():
-            continue
-        winding = _solid_angle_sums(probes[near], others)
+        vertices = np.unique(mesh.faces[faces])
+        pick = np.linspace(0, len(vertices) - 1, min(SHELL_PROBES, len(vertices))).astype(int)
+        probes = np.asarray(mesh.vertices)[vertices[pick]]
+        # Only shells whose boxes meet this one's can hold its vertices; the
+        # winding numbers of closed shells add up (a cavity's is -1 inside).
+        winding = np.zeros(len(probes))
+        for j in np.flatnonzero(np.all((lo <= hi[k]) & (hi >= lo[k]), axis=1)):
+            if j == k:
+                continue
+            near = np.all((probes >= lo[j]) & (probes <= hi[j]), axis=1)
+            if near.any():
+                winding[near] += _solid_angle_sums(probes[near], tri[shells[j]])
         if (winding > 0.75).any():
             raise InvalidInputError(
                 f"the mesh has {n_shells} shells and shell {k} lies (partly) inside another one's solid: the surface "

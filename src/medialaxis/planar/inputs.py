@@ -484,6 +484,8 @@ def _read_vector(path: Path) -> Any:
         raise InputFileError(f"cannot parse JSON in {str(path)!r}: {exc}") from exc
     geoms = []
     feats = doc.get("features") if isinstance(doc, dict) else None
+    if feats is not None and not isinstance(feats, list):
+        raise InputFileError(f"bad GeoJSON in {str(path)!r}: 'features' must be a list, got {type(feats).__name__}")
     items = feats if feats is not None else [doc]
     for item in items:
         g = item.get("geometry", item) if isinstance(item, dict) else None

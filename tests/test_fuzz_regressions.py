@@ -1,0 +1,105 @@
+"""Inputs the fuzz harness (benchmarks/fuzz.py) found crashing, each now one named error."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import medialaxis as mx
+from medialaxis.core import graph
+
+
+def test_svg_with_an_unknown_encoding_or_nan_coordinates(tmp_path):
+    (tmp_path / "enc.svg").write_text('<?xml version="1.0" encoding="UTF-8.159"?><svg><rect width="4" height="2"/></svg>')
+    (tmp_path / "nan.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg"><polygon points="0,0 4,0 4,1e999 0,2"/></svg>')
+    (tmp_path / "huge.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg"><polygon points="0,0 8e300,0 4,2"/></svg>')
+    with pytest.raises(mx.InputFileError, match="unknown encoding"):
+        mx.medial_axis(tmp_path / "enc.svg")
+    with pytest.raises(mx.InvalidInputError, match="NaN"):
+        mx.medial_axis(tmp_path / "nan.svg")
+    with pytest.raises(mx.InvalidInputError, match="too large"):
+        mx.medial_axis(tmp_path / "huge.svg")
+
+
+def test_geojson_features_that_are_not_a_list(tmp_path):
+    (tmp_path / "f.geojson").write_text('{"type": "FeatureCollection", "features": Infinity}')
+    with pytest.raises(mx.InputFileError, match="'features' must be a list"):
+        mx.medial_axis(tmp_path / "f.geojson")
+
+
+def test_corrupt_saved_results_are_refused_on_load(tmp_path):
+    rows, cols = np.mgrid[:60, :90]
+    ma = mx.medial_axis((rows > 10) & (rows < 50) & (cols > 10) & (cols < 80))
+    ma.save(tmp_path / "a.json")
+    doc = json.loads((tmp_path / "a.json").read_text())
+    for key, value, words in [("radii", -1.0, "radii hold negative"), ("points", 1e300, "points hold infinite or overflowing")]:
+        bad = json.loads(json.dumps(doc))
+        target = bad[key]
+        if key == "points":
+            target[0][0] = value
+        else:
+            target[0] = value
+        (tmp_path / "bad.json").write_text(json.dumps(bad))
+        with pytest.raises(mx.InputFileError, match=words):
+            mx.load(tmp_path / "bad.json")
+        with pytest.raises(mx.InputFileError, match=words):
+            mx.shape_distance(tmp_path / "bad.json", tmp_path / "a.json")
+    arrays = dict(np.load(_npz(ma, tmp_path)))
+    arrays["raw__extra__edge_contact_arc"] = arrays["raw__extra__edge_contact_arc"].astype("S8")
+    np.savez(tmp_path / "text.npz", **arrays)
+    with pytest.raises(mx.InputFileError, match="not numbers"):
+        mx.medial_axis(tmp_path / "text.npz")
+
+
+def _npz(ma, folder):
+    path = folder / "a.npz"
+    ma.save(path)
+    return path
+
+
+def test_branches_walk_repeated_edges_and_self_loops_once_each():
+    edges = np.array([[0, 1], [1, 2], [1, 2], [2, 2], [2, 3]])
+    chains = graph.branches(4, edges)
+    walked = sorted(tuple(sorted((int(a), int(b)))) for c in chains for a, b in zip(c[:-1], c[1:]))
+    assert walked == [(0, 1), (1, 2), (1, 2), (2, 2), (2, 3)]
+
+
+def test_a_one_point_axis_beside_a_longer_unpruned_one_is_compared():
+    rows, cols = np.mgrid[:64, :64]
+    disc = (rows - 31.5) ** 2 + (cols - 31.5) ** 2 < 20**2
+    assert mx.shape_distance(disc, disc) == 0.0
+
+
+def test_needle_meshes_are_refused_before_sampling_millions_of_points():
+    trimesh = pytest.importorskip("trimesh")
+    needle = trimesh.creation.icosphere(1)
+    vertices = needle.vertices.copy()
+    vertices[0] *= 5e9
+    needle = trimesh.Trimesh(vertices, needle.faces, process=False)
+    with pytest.raises(mx.ResourceLimitError, match="needle"):
+        mx.medial_axis(needle, method="voronoi", samples=1000)
+
+
+def test_volumes_are_refused_by_their_declared_size_before_reading(tmp_path, monkeypatch):
+    from medialaxis.volume import readers
+
+    np.save(tmp_path / "v.npy", np.zeros((40, 40, 40), np.uint8))
+    monkeypatch.setattr(readers, "memory_budget", lambda: 32 * 1000)
+    read = []
+    monkeypatch.setattr(readers.np, "fromfile", lambda *a, **k: read.append(a))
+    with pytest.raises(mx.ResourceLimitError, match="64,000 voxels"):
+        mx.medial_axis(tmp_path / "v.npy", method="voxels")
+    (tmp_path / "v.raw").write_bytes(bytes(64000))
+    with pytest.raises(mx.ResourceLimitError, match="64,000 voxels"):
+        mx.medial_axis(tmp_path / "v.raw", method="voxels", raw_shape=(40, 40, 40), raw_dtype="uint8")
+    assert read == []
+
+
+def test_pillow_limit_is_left_as_found():
+    from PIL import Image
+
+    before = Image.MAX_IMAGE_PIXELS
+    mx.medial_axis(mx.__path__[0] + "/data/kimia_class1_01.png")
+    assert Image.MAX_IMAGE_PIXELS == before
