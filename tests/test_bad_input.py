@@ -236,3 +236,36 @@ def test_overflowing_coordinates_are_named():
         mx.medial_axis(big, method="flow")
     with pytest.raises(mx.InvalidInputError, match="spacing"):
         mx.medial_axis(np.eye(8, dtype=bool), spacing=1e300)
+
+
+def test_both_mesh_methods_refuse_a_surface_that_passes_through_itself():
+    trimesh = pytest.importorskip("trimesh")
+    sphere = trimesh.creation.icosphere(2)
+    vertices = sphere.vertices.copy()
+    vertices[np.argmax(vertices[:, 2])] = [0.05, 0.03, -1.5]  # the top pulled out through the bottom
+    folded = trimesh.Trimesh(vertices, sphere.faces, process=False)
+    assert folded.is_watertight and folded.is_winding_consistent  # only the geometry is wrong
+    for method in ("flow", "voronoi"):
+        with pytest.raises(mx.InvalidInputError, match="passes through itself"):
+            mx.medial_axis(folded, method=method)
+
+
+def test_crossing_kernel_matches_its_reference():
+    from medialaxis.mesh._intersect_kernels import first_crossing, first_crossing_reference
+
+    rng = np.random.default_rng(5)
+    triangles = rng.normal(size=(400, 3, 3))
+    pairs = rng.integers(0, 400, size=(3000, 2))
+    pairs = pairs[pairs[:, 0] != pairs[:, 1]]
+    hits_fast = [first_crossing(triangles, pairs[k : k + 1], 1e-12) for k in range(len(pairs))]
+    hits_ref = [first_crossing_reference(triangles, pairs[k : k + 1], 1e-12) for k in range(len(pairs))]
+    assert hits_fast == hits_ref and 0 < hits_fast.count(0) < len(pairs)
+    # two triangles that only touch along an edge or at a vertex do not cross
+    a = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    edge_touch = np.array([[1.0, 0, 0], [0, 1, 0], [1, 1, 1]])
+    vertex_touch = np.array([[0.0, 0, 0], [-1, 0, 1], [0, -1, 1]])
+    through = np.array([[0.2, 0.2, -1], [0.2, 0.2, 1], [3, 3, 0]])
+    tris = np.stack([a, edge_touch, vertex_touch, through])
+    assert first_crossing(tris, np.array([[0, 1]]), 1e-12) == -1
+    assert first_crossing(tris, np.array([[0, 2]]), 1e-12) == -1
+    assert first_crossing(tris, np.array([[0, 3]]), 1e-12) == 0

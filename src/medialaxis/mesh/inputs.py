@@ -126,10 +126,9 @@ def check_shells(mesh: Any) -> None:
     shell lies outside every other shell's solid (inward shells are
     cavities, inside their outer shell). A vertex of an outward shell where
     the other shells' winding number is about 1 lies in another shell's
-    solid: the surface is self-intersecting or has nested shells. Both mesh
-    methods use this check; ``method="voronoi"`` also compares the volume
-    of the inner Delaunay tetrahedra with the mesh's signed volume, which
-    catches a single shell that passes through itself.
+    solid: the surface is self-intersecting or has nested shells (nested
+    shells do not cross, so :func:`check_self_intersection` alone misses
+    them). Both mesh methods run both checks.
 
     Raises
     ------
@@ -167,6 +166,67 @@ def check_shells(mesh: Any) -> None:
                 f"the mesh has {n_shells} shells and shell {k} lies (partly) inside another one's solid: the surface "
                 "is self-intersecting or has nested shells; fix it (e.g. a mesh boolean union) first"
             )
+
+
+def _sphere_pairs(tri: np.ndarray) -> np.ndarray:
+    """Pairs ``(i, j)``, ``i < j``, of triangles whose bounding spheres (about their centroids) meet.
+
+    Triangles up to four times the median size go through one
+    ``cKDTree.query_pairs``; the few larger ones (long CAD slivers) are
+    matched against every triangle within reach.
+    """
+    from scipy.spatial import cKDTree
+
+    centre = tri.mean(axis=1)
+    radius = np.linalg.norm(tri - centre[:, None, :], axis=2).max(axis=1)
+    small = radius <= 4.0 * float(np.median(radius))
+    idx = np.flatnonzero(small)
+    reach = 2.0 * float(radius[idx].max()) if len(idx) else 0.0
+    pairs = [idx[cKDTree(centre[idx]).query_pairs(reach, output_type="ndarray")]] if len(idx) > 1 else []
+    big = np.flatnonzero(~small)
+    if len(big):
+        tree = cKDTree(centre)
+        near = tree.query_ball_point(centre[big], radius[big] + float(radius.max()))
+        for b, js in zip(big, near):
+            js = np.asarray(js, np.int64)
+            js = js[(js != b) & (small[js] | (js > b))]  # big-big pairs once
+            pairs.append(np.column_stack([np.full(len(js), b), js]))
+    if not pairs:
+        return np.empty((0, 2), np.int64)
+    out = np.vstack(pairs).astype(np.int64)
+    gap = np.linalg.norm(centre[out[:, 0]] - centre[out[:, 1]], axis=1)
+    return out[gap <= radius[out[:, 0]] + radius[out[:, 1]]]
+
+
+def check_self_intersection(mesh: Any) -> None:
+    """Refuse a surface that passes through itself: two faces sharing no vertex that cross.
+
+    Faces that only touch (a boolean union's touching edge, coincident
+    vertices) do not count. Both mesh methods run this check.
+
+    Raises
+    ------
+    InvalidInputError
+    """
+    from medialaxis.mesh._intersect_kernels import first_crossing
+
+    v = np.asarray(mesh.vertices, np.float64)
+    f = np.asarray(mesh.faces, np.int64)
+    centre, size = v.mean(axis=0), float(np.ptp(v, axis=0).max()) or 1.0
+    tri = np.ascontiguousarray(((v - centre) / size)[f])
+    # tolerance on orientation determinants (volumes), from the typical edge
+    edge = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)
+    tol = 1e-9 * float(np.median(edge)) ** 3
+    pairs = _sphere_pairs(tri)
+    share = (f[pairs[:, 0]][:, :, None] == f[pairs[:, 1]][:, None, :]).any(axis=(1, 2))
+    pairs = np.ascontiguousarray(pairs[~share])
+    k = first_crossing(tri, pairs, tol)
+    if k >= 0:
+        i, j = (int(x) for x in pairs[k])
+        raise InvalidInputError(
+            f"the surface passes through itself (faces {i} and {j} cross): it is self-intersecting; "
+            "fix it (e.g. a mesh boolean union or a remesher) first"
+        )
 
 
 def _closed(mesh: Any) -> bool:
@@ -274,4 +334,5 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> Me
         if not work.volume > 0:
             raise EmptyShapeError(f"the mesh encloses no volume (volume {work.volume:.3g})")
         check_shells(work)
+        check_self_intersection(work)
     return MeshInput(work, tuple(repairs))
