@@ -132,7 +132,8 @@ def prepare_flow_mesh(mesh: Any, *, repair: bool = False) -> tuple[Any, np.ndarr
     Raises
     ------
     InvalidInputError
-        Open or non-manifold meshes (edges or vertices), non-finite coordinates.
+        Open, non-manifold (edges or vertices) or self-intersecting meshes,
+        non-finite coordinates.
     EmptyShapeError, InputFileError
         See :func:`medialaxis.mesh.inputs.load_mesh`.
     """
@@ -297,7 +298,8 @@ def flow_skeleton(
     Raises
     ------
     InvalidInputError
-        Open, non-manifold or non-finite meshes; bad option values.
+        Open, non-manifold, self-intersecting (crossing faces, overlapping
+        shells) or non-finite meshes; bad option values.
     EmptyShapeError
         Empty meshes or meshes without volume; a region holding no vertex.
     ComputationError

@@ -281,9 +281,10 @@ def voronoi_medial_axis(
     ------
     InvalidInputError
         Non-watertight mesh (without ``repair``), bad option values, or a
-        self-intersecting mesh (detected when the inner Delaunay
-        tetrahedra's volume differs from the signed volume by more than
-        ``VOLUME_TOLERANCE``).
+        self-intersecting mesh: crossing faces or overlapping shells (the
+        loader's checks, shared with ``method="flow"``), or, as a last
+        guard, inner Delaunay tetrahedra whose volume differs from the
+        signed volume by more than ``VOLUME_TOLERANCE``.
     EmptyShapeError
         Empty or zero-volume mesh.
     InputFileError, UnsupportedFormatError
