@@ -103,3 +103,22 @@ def test_pillow_limit_is_left_as_found():
     before = Image.MAX_IMAGE_PIXELS
     mx.medial_axis(mx.__path__[0] + "/data/kimia_class1_01.png")
     assert Image.MAX_IMAGE_PIXELS == before
+
+
+def test_a_ring_far_below_the_resolution_of_the_shape_is_named(tmp_path):
+    (tmp_path / "wide.svg").write_text(
+        '<svg xmlns="http://www.w3.org/2000/svg"><path d="M 8 8 L 56 8 L 56 30 Q 40 -4e11 32 56 C 24 50 12 44 -8e10 30 Z"/>'
+        '<rect x="20" y="14" width="10" height="8"/></svg>'
+    )
+    with pytest.raises(mx.InvalidInputError, match="only 22 across"):
+        mx.medial_axis(tmp_path / "wide.svg")
+
+
+def test_tiff_stack_whose_pages_differ(tmp_path):
+    tifffile = pytest.importorskip("tifffile")
+    path = tmp_path / "stack.tif"
+    with tifffile.TiffWriter(path) as tw:
+        tw.write(np.zeros((24, 24), np.uint8))
+        tw.write(np.zeros((12, 30), np.uint8))
+    with pytest.raises(mx.InputFileError, match="differ in size"):
+        mx.medial_axis(path, method="voxels")

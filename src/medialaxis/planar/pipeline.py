@@ -42,6 +42,22 @@ MAX_REFINEMENTS = 12
 SIMPLIFY_ABOVE = 10_000
 
 
+#: Smallest ring (piece or hole), as a fraction of the shape's size, that the
+#: triangulation resolves: its samples are jittered by 1e-9 of the extent.
+MIN_RING_FRACTION = 1e-6
+
+
+def _check_resolution(rings: Rings, size: float) -> None:
+    """Refuse a ring far smaller than the shape: float64 cannot triangulate both at once."""
+    extents = [float(np.ptp(v, axis=0).max()) for v in rings.vertices if len(v)]
+    if extents and min(extents) < MIN_RING_FRACTION * size:
+        raise InvalidInputError(
+            f"the shape is {size:.3g} across but has a ring (a piece or a hole) only {min(extents):.3g} across: "
+            f"details below {MIN_RING_FRACTION:g} of the size cannot be triangulated together with it; "
+            "remove them or split the shape"
+        )
+
+
 def shape_size(region: Any) -> float:
     """Twice the largest distance from the centroid to a vertex (rotation invariant)."""
     xy = shapely.get_coordinates(region)
@@ -156,8 +172,8 @@ def planar_stages(
     if tolerance is None:
         tolerance = 0.25 * float(src.spacing.min()) if src.is_raster else 1e-4 * size
     tolerance = check_number(tolerance, "tolerance")
-    if tolerance == 0:
-        tolerance = 1e-9 * size
+    # Below about 1e-9 of the size, float64 and the triangulation's jitter cannot tell samples apart.
+    tolerance = max(tolerance, 1e-9 * size)
     lam = LAM_PER_TOLERANCE * tolerance if lam is None else check_number(lam, "lam")
     if detour is None:
         detour = DEFAULT_DETOUR if src.is_raster else DEFAULT_VECTOR_DETOUR
@@ -175,6 +191,7 @@ def planar_stages(
         n_vertices = len(shapely.get_coordinates(region))
         simplify = src.is_raster or n_vertices > SIMPLIFY_ABOVE
         rings = simplify_rings(region, tolerance if simplify else 0.0)
+        _check_resolution(rings, size)
         min_length = max(tolerance, lam / 8.0)
         smp, tri, inside = _sample_and_triangulate(rings, rings.region, tolerance, min_length)
     if not inside.any():

@@ -88,9 +88,16 @@ def _read_tiff(path: Path) -> tuple[np.ndarray, Any]:
             check_voxels((len(files), *tf.series[0].shape), f"TIFF series {str(path)!r}")
         data = tifffile.imread([str(f) for f in files])
     else:
+        # Page by page: the pages of a stack are its slices. (tifffile's
+        # series detection can walk a corrupt file's tags for minutes.)
         with tifffile.TiffFile(str(path)) as tf:
-            check_voxels(tf.series[0].shape, f"TIFF {str(path)!r}")
-        data = tifffile.imread(str(path))
+            pages = [tf.pages[i] for i in range(len(tf.pages))]
+            shapes = {tuple(page.shape) for page in pages}
+            if len(shapes) != 1:
+                raise InputFileError(f"the pages of TIFF {str(path)!r} differ in size: {sorted(shapes)}")
+            shape = shapes.pop()
+            check_voxels((len(pages), *shape) if len(pages) > 1 else shape, f"TIFF {str(path)!r}")
+            data = np.stack([page.asarray() for page in pages]) if len(pages) > 1 else pages[0].asarray()
     return data, None
 
 
