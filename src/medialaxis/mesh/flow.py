@@ -395,7 +395,10 @@ def flow_skeleton(
     a = (lap0 * tau + sparse.diags(mass * (1.0 + tau * w))).tocsr()
     a_ff = a[free][:, free].tocsc()
     coupling = a[free][:, np.flatnonzero(dirichlet)] @ p0[dirichlet] if dirichlet.any() else 0.0
-    solve = splinalg.factorized(a_ff)
+    try:
+        solve = splinalg.factorized(a_ff)
+    except RuntimeError as exc:  # "Factor is exactly singular": degenerate faces or a mesh of slivers
+        raise ComputationError(f"the diffusion operator of this mesh is singular ({exc}); is the mesh degenerate?") from exc
     attract = (tau * w * mass)[:, None] * poles
     settle = settle_tolerance * s
     for step in progress(range(1, max_steps + 1), desc="diffusion flow", total=max_steps):
@@ -429,11 +432,15 @@ def flow_skeleton(
         rhs_c = mass_c[free, None] * p[free]
         if dirichlet.any():
             rhs_c = rhs_c - a_c[free][:, np.flatnonzero(dirichlet)] @ p[dirichlet]
-        solve_c = splinalg.factorized(a_cf)
-        p_c = p.copy()
-        p_c[free] = np.column_stack([solve_c(rhs_c[:, d]) for d in range(3)])
-        if np.all(np.isfinite(p_c)):
-            p = p_c
+        try:
+            solve_c = splinalg.factorized(a_cf)
+        except RuntimeError:  # singular on a degenerate contracted surface: skip this refinement
+            solve_c = None
+        if solve_c is not None:
+            p_c = p.copy()
+            p_c[free] = np.column_stack([solve_c(rhs_c[:, d]) for d in range(3)])
+            if np.all(np.isfinite(p_c)):
+                p = p_c
     t_flow = time.perf_counter() - t_start
     cell = spacing if spacing is not None else 0.5 * s
     graph = skeleton_graph(p, p0, faces, cell=cell, use=use, fixed=fixed)
