@@ -255,10 +255,11 @@ def test_crossing_kernel_matches_its_reference():
 
     rng = np.random.default_rng(5)
     triangles = rng.normal(size=(400, 3, 3))
+    faces = rng.integers(0, 300, size=(400, 3))  # some pairs share a vertex index: never counted
     pairs = rng.integers(0, 400, size=(3000, 2))
     pairs = pairs[pairs[:, 0] != pairs[:, 1]]
-    hits_fast = [first_crossing(triangles, pairs[k : k + 1], 1e-12) for k in range(len(pairs))]
-    hits_ref = [first_crossing_reference(triangles, pairs[k : k + 1], 1e-12) for k in range(len(pairs))]
+    hits_fast = [first_crossing(triangles, faces, pairs[k : k + 1], 1e-12) for k in range(len(pairs))]
+    hits_ref = [first_crossing_reference(triangles, faces, pairs[k : k + 1], 1e-12) for k in range(len(pairs))]
     assert hits_fast == hits_ref and 0 < hits_fast.count(0) < len(pairs)
     # two triangles that only touch along an edge or at a vertex do not cross
     a = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
@@ -266,6 +267,7 @@ def test_crossing_kernel_matches_its_reference():
     vertex_touch = np.array([[0.0, 0, 0], [-1, 0, 1], [0, -1, 1]])
     through = np.array([[0.2, 0.2, -1], [0.2, 0.2, 1], [3, 3, 0]])
     tris = np.stack([a, edge_touch, vertex_touch, through])
-    assert first_crossing(tris, np.array([[0, 1]]), 1e-12) == -1
-    assert first_crossing(tris, np.array([[0, 2]]), 1e-12) == -1
-    assert first_crossing(tris, np.array([[0, 3]]), 1e-12) == 0
+    distinct = np.arange(12).reshape(4, 3)
+    assert first_crossing(tris, distinct, np.array([[0, 1]]), 1e-12) == -1
+    assert first_crossing(tris, distinct, np.array([[0, 2]]), 1e-12) == -1
+    assert first_crossing(tris, distinct, np.array([[0, 3]]), 1e-12) == 0

@@ -49,15 +49,21 @@ def _crosses(t: np.ndarray, u: np.ndarray, tol: float) -> bool:
 
 
 @njit(cache=True, nogil=True)
-def first_crossing(triangles: np.ndarray, pairs: np.ndarray, tol: float) -> int:
-    """Index of the first pair ``(i, j)`` of ``pairs`` whose triangles cross, or -1."""
+def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> int:
+    """Index of the first pair ``(i, j)`` of ``pairs`` whose triangles share no vertex and cross, or -1."""
     for k in range(len(pairs)):
-        if _crosses(triangles[pairs[k, 0]], triangles[pairs[k, 1]], tol):
+        i, j = pairs[k, 0], pairs[k, 1]
+        share = False
+        for a in range(3):
+            for b in range(3):
+                if faces[i, a] == faces[j, b]:
+                    share = True
+        if not share and _crosses(triangles[i], triangles[j], tol):
             return k
     return -1
 
 
-def first_crossing_reference(triangles: np.ndarray, pairs: np.ndarray, tol: float) -> int:
+def first_crossing_reference(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> int:
     """Pure-Python reference of :func:`first_crossing` (for the tests)."""
 
     def orient(a, b, c, d):
@@ -71,6 +77,8 @@ def first_crossing_reference(triangles: np.ndarray, pairs: np.ndarray, tol: floa
         return all(v > tol for v in s) or all(v < -tol for v in s)
 
     for k, (i, j) in enumerate(pairs):
+        if set(faces[i].tolist()) & set(faces[j].tolist()):
+            continue
         t, u = triangles[i], triangles[j]
         for e in range(3):
             if seg(t[e], t[(e + 1) % 3], *u) or seg(u[e], u[(e + 1) % 3], *t):

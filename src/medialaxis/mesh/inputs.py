@@ -169,7 +169,7 @@ def check_shells(mesh: Any) -> None:
 
 
 def _sphere_pairs(tri: np.ndarray) -> np.ndarray:
-    """Pairs ``(i, j)``, ``i < j``, of triangles whose bounding spheres (about their centroids) meet.
+    """Pairs ``(i, j)`` of triangles that may meet (a superset: centroids within reach of each other).
 
     Triangles up to four times the median size go through one
     ``cKDTree.query_pairs``; the few larger ones (long CAD slivers) are
@@ -191,11 +191,7 @@ def _sphere_pairs(tri: np.ndarray) -> np.ndarray:
             js = np.asarray(js, np.int64)
             js = js[(js != b) & (small[js] | (js > b))]  # big-big pairs once
             pairs.append(np.column_stack([np.full(len(js), b), js]))
-    if not pairs:
-        return np.empty((0, 2), np.int64)
-    out = np.vstack(pairs).astype(np.int64)
-    gap = np.linalg.norm(centre[out[:, 0]] - centre[out[:, 1]], axis=1)
-    return out[gap <= radius[out[:, 0]] + radius[out[:, 1]]]
+    return np.ascontiguousarray(np.vstack(pairs), dtype=np.int64) if pairs else np.empty((0, 2), np.int64)
 
 
 def check_self_intersection(mesh: Any) -> None:
@@ -218,9 +214,7 @@ def check_self_intersection(mesh: Any) -> None:
     edge = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)
     tol = 1e-9 * float(np.median(edge)) ** 3
     pairs = _sphere_pairs(tri)
-    share = (f[pairs[:, 0]][:, :, None] == f[pairs[:, 1]][:, None, :]).any(axis=(1, 2))
-    pairs = np.ascontiguousarray(pairs[~share])
-    k = first_crossing(tri, pairs, tol)
+    k = first_crossing(tri, np.ascontiguousarray(f), pairs, tol)
     if k >= 0:
         i, j = (int(x) for x in pairs[k])
         raise InvalidInputError(
