@@ -169,28 +169,30 @@ def check_shells(mesh: Any) -> None:
 
 
 def _sphere_pairs(tri: np.ndarray) -> np.ndarray:
-    """Pairs ``(i, j)`` of triangles that may meet (a superset: centroids within reach of each other).
+    """Pairs ``(i, j)`` of triangles that may meet (a superset: bounding spheres about the centroids meet).
 
-    Triangles up to four times the median size go through one
-    ``cKDTree.query_pairs``; the few larger ones (long CAD slivers) are
-    matched against every triangle within reach.
+    Triangles up to twice the median size go through one
+    ``cKDTree.query_pairs``; the larger ones (slivers, long CAD faces) are
+    matched against every triangle within their own reach.
     """
     from scipy.spatial import cKDTree
 
     centre = tri.mean(axis=1)
     radius = np.linalg.norm(tri - centre[:, None, :], axis=2).max(axis=1)
-    small = radius <= 4.0 * float(np.median(radius))
+    small = radius <= 2.0 * float(np.median(radius))
     idx = np.flatnonzero(small)
-    reach = 2.0 * float(radius[idx].max()) if len(idx) else 0.0
-    pairs = [idx[cKDTree(centre[idx]).query_pairs(reach, output_type="ndarray")]] if len(idx) > 1 else []
+    pairs = []
+    if len(idx) > 1:
+        pairs.append(idx[cKDTree(centre[idx]).query_pairs(2.0 * float(radius[idx].max()), output_type="ndarray")])
     big = np.flatnonzero(~small)
     if len(big):
-        tree = cKDTree(centre)
-        near = tree.query_ball_point(centre[big], radius[big] + float(radius.max()))
-        for b, js in zip(big, near):
-            js = np.asarray(js, np.int64)
-            js = js[(js != b) & (small[js] | (js > b))]  # big-big pairs once
-            pairs.append(np.column_stack([np.full(len(js), b), js]))
+        near = cKDTree(centre).query_ball_point(centre[big], radius[big] + float(radius.max()), return_sorted=False)
+        count = np.fromiter((len(js) for js in near), np.int64, len(big))
+        js = np.concatenate([np.asarray(j, np.int64) for j in near]) if count.sum() else np.empty(0, np.int64)
+        bs = np.repeat(big, count)
+        keep = (js != bs) & (small[js] | (js > bs))  # big-big pairs once
+        keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
+        pairs.append(np.column_stack([bs[keep], js[keep]]))
     return np.ascontiguousarray(np.vstack(pairs), dtype=np.int64) if pairs else np.empty((0, 2), np.int64)
 
 
