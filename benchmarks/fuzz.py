@@ -134,6 +134,15 @@ _LEAK_RE = re.compile(r"\b(ModuleNotFoundError|No module named|ImportError|Index
                       r"NotImplementedError|OverflowError|MemoryError|LinAlgError|QhullError)\b")
 
 
+def _tally(entry: dict, fmt: str, kind: str) -> None:
+    """Count one more run in ``entry`` and note its format and kind of run (each once)."""
+    entry["count"] += 1
+    if fmt not in entry["formats"]:
+        entry["formats"].append(fmt)
+    if kind not in entry["kinds"]:
+        entry["kinds"].append(kind)
+
+
 def _normalize(message: str) -> str:
     """A message with paths, numbers and quoted values blanked, for grouping."""
     m = re.sub(r"'[^']*'|\"[^\"]*\"", "'…'", str(message))
@@ -1194,12 +1203,7 @@ def run_fuzz(
                     state_leaks[sk] = {"change": change, "count": 0, "formats": [], "kinds": [],
                                        "example": str(case.path), "repro": repro_command(job, str(case.path)),
                                        "_case": case, "_job": job}
-                sl = state_leaks[sk]
-                sl["count"] += 1
-                if case.fmt not in sl["formats"]:
-                    sl["formats"].append(case.fmt)
-                if kind not in sl["kinds"]:
-                    sl["kinds"].append(kind)
+                _tally(state_leaks[sk], case.fmt, kind)
             if st == "clean":
                 msg = str(res.get("message", ""))
                 norm = _normalize(msg)
@@ -1212,12 +1216,7 @@ def run_fuzz(
                         leaks[lk] = {"wrapped": hit.group(1), "type": res.get("type"), "message": msg,
                                      "formats": [], "kinds": [], "count": 0, "example": str(case.path),
                                      "repro": repro_command(job, str(case.path)), "_case": case, "_job": job}
-                    e = leaks[lk]
-                    e["count"] += 1
-                    if case.fmt not in e["formats"]:
-                        e["formats"].append(case.fmt)
-                    if kind not in e["kinds"]:
-                        e["kinds"].append(kind)
+                    _tally(leaks[lk], case.fmt, kind)
             if st not in ("crash", "hang"):
                 continue
             n_bad[st] += 1
@@ -1247,11 +1246,7 @@ def run_fuzz(
                     "repro": repro_command(job, kept), "traceback": res.get("traceback") or res.get("stderr"),
                     "_job": job,
                 }
-            entry["count"] += 1
-            if case.fmt not in entry["formats"]:
-                entry["formats"].append(case.fmt)
-            if kind not in entry["kinds"]:
-                entry["kinds"].append(kind)
+            _tally(entry, case.fmt, kind)
         for prefix, group in (("leak", leaks.values()), ("state", state_leaks.values())):
             for e in group:  # keep one example input of each
                 _keep_example(e, prefix, keep_dir)
