@@ -17,6 +17,7 @@ from medialaxis.errors import (
     InputFileError,
     InvalidInputError,
     MedialAxisError,
+    MedialAxisWarning,
     MissingDependencyError,
     ResourceLimitError,
     UnsupportedFormatError,
@@ -41,6 +42,7 @@ __all__ = [
     "MissingDependencyError",
     "ComputationError",
     "Cancelled",
+    "MedialAxisWarning",
 ]
 
 

@@ -21,7 +21,7 @@ from typing import Any, NoReturn
 
 from medialaxis._dispatch import DEFAULT_METHOD, METHODS
 from medialaxis._version import __version__
-from medialaxis.errors import Cancelled, MedialAxisError, UnsupportedFormatError
+from medialaxis.errors import Cancelled, MedialAxisError, MedialAxisWarning, UnsupportedFormatError
 
 __all__ = ["main", "SUBCOMMANDS"]
 
@@ -80,8 +80,10 @@ def _summary(ma: Any) -> str:
     if ma.dim == 2 or len(ma.faces) == 0:
         parts += [f"endpoints={len(ma.endpoints)}", f"junctions={len(ma.junctions)}", f"cycles={ma.n_cycles}"]
     parts.append(f"components={ma.n_components}")
-    if "lam" in meta:
+    if meta.get("lam") is not None:
         parts.append(f"lam={meta['lam']:.4g}")
+    if meta.get("thickness") is not None:
+        parts.append(f"thickness={meta['thickness']:.4g}")
     if len(ma.radii):
         parts.append(f"radius=[{ma.radii.min():.4g}, {ma.radii.max():.4g}]")
     return " ".join(parts)
@@ -249,15 +251,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     if debug:
         return _main(argv, debug)
     # The libraries' warnings and log records about a bad file are not ours to
-    # print: the error line says what went wrong (--debug shows them).
+    # print: the error line says what went wrong (--debug shows them). Our
+    # own warnings (something left out of a result) are one line each.
     previous = logging.root.manager.disable
     logging.disable(logging.CRITICAL)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
+            warnings.simplefilter("default", MedialAxisWarning)
+            warnings.showwarning = _warning_line
             return _main(argv, debug)
     finally:
         logging.disable(previous)
+
+
+def _warning_line(message: Warning | str, *args: Any, **kwargs: Any) -> None:
+    print(f"medialaxis: warning: {message}", file=sys.stderr)
 
 
 def _main(argv: Sequence[str] | None, debug: bool) -> int:

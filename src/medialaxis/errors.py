@@ -18,6 +18,7 @@ __all__ = [
     "MissingDependencyError",
     "ComputationError",
     "Cancelled",
+    "MedialAxisWarning",
 ]
 
 
@@ -55,3 +56,7 @@ class ComputationError(MedialAxisError, RuntimeError):
 
 class Cancelled(MedialAxisError):
     """The computation was cancelled by the user (Ctrl-C or a callback)."""
+
+
+class MedialAxisWarning(UserWarning):
+    """Something was left out or changed on the way to a result (the result is still valid)."""

@@ -43,6 +43,8 @@ class Features:
     boundary : (b, 3) float64 ndarray
         The sub-voxel boundary sample (physical units).
     spacing : (3,) float64 ndarray
+    feature_index : (n,) int64 ndarray
+        Row of each voxel's nearest boundary point in ``boundary``.
     """
 
     offset: np.ndarray
@@ -52,6 +54,7 @@ class Features:
     feature: np.ndarray
     boundary: np.ndarray
     spacing: np.ndarray
+    feature_index: np.ndarray
 
     def physical(self, crop_index: np.ndarray) -> np.ndarray:
         """Physical coordinates of crop indices (array of shape (..., 3))."""
@@ -142,4 +145,4 @@ def feature_transform(vol: VolumeInput, *, workers: int = -1) -> Features:
     bphys = (bpts + offset) * spacing
     tree = cKDTree(bphys)
     distance, nearest = tree.query((voxels + offset) * spacing, k=1, workers=workers)
-    return Features(offset, index, voxels, distance, bphys[nearest], bphys, spacing)
+    return Features(offset, index, voxels, distance, bphys[nearest], bphys, spacing, nearest.astype(np.int64))

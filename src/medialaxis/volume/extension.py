@@ -212,8 +212,9 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
 
 
 def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: float, spacing: np.ndarray,
-                max_length: float, plane_normals: tuple[np.ndarray, np.ndarray] | None = None,
-                free: np.ndarray | None = None, junction: np.ndarray | None = None, probe: float = 0.0,
+                max_length: float | np.ndarray, plane_normals: tuple[np.ndarray, np.ndarray] | None = None,
+                free: np.ndarray | None = None, junction: np.ndarray | None = None,
+                probe: float | np.ndarray = 0.0,
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Extend the free boundary of a mid-surface mesh to the isosurface.
 
@@ -225,9 +226,9 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     grey : (Z, Y, X) ndarray
     iso : float
     spacing : (3,) float64 ndarray
-    max_length : float
-        Longest extension (physical units); rays that do not leave the part
-        within it are not extended.
+    max_length : float or (v,) float64 ndarray
+        Longest extension (physical units), one value or one per vertex; rays
+        that do not leave the part within it are not extended.
     plane_normals : (owner (p,) int, normal (p, 3)) arrays, optional
         Sheet normals known at each vertex (e.g. of the medial voxels in its
         Voronoi region); like the normals of its faces, a ray must be nearly
@@ -240,8 +241,8 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     junction : (v,) bool ndarray, optional
         Junction vertices. A junction vertex with one junction neighbour ends
         a junction line and is extended along that line.
-    probe : float, optional
-        When > 0: a ray is kept only if, half-way to its hit and one voxel
+    probe : float or (v,) float64 ndarray, optional
+        When > 0 (one value or one per vertex): a ray is kept only if, half-way to its hit and one voxel
         before it, the grey values ``probe`` away along each sheet normal at
         the vertex are background (the part ends beside the sheet there; it does not where
         a ray runs along a sheet into a crease or another plate). Rays along
@@ -258,6 +259,9 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     edges, opposite = boundary_edges(faces)
     if len(edges) == 0:
         return points, faces, np.empty(0, np.int64)
+    limit = np.broadcast_to(np.asarray(max_length, np.float64), (len(points),))
+    probes = np.broadcast_to(np.asarray(probe, np.float64), (len(points),))
+    max_length = float(limit.max())
     vertices, outward = outward_directions(points, edges, opposite)
     directions, eigen, is_normal = _in_sheet_planes(points, faces, vertices, outward)
     in_plane = np.linalg.norm(directions, axis=1)
@@ -280,9 +284,9 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     good &= along_line | (tilt < MAX_NORMAL_COMPONENT)
     vertices, directions = vertices[good], directions[good]
     step = 0.25 * float(spacing.min())
-    length = march_to_iso(grey, iso, spacing, points[vertices], directions, max_length, step)
-    grow = np.isfinite(length) & (length > 0.25 * step)
-    if probe > 0:
+    length = march_to_iso(grey, iso, spacing, points[vertices], directions, float(limit[vertices].max(initial=0.0)), step)
+    grow = np.isfinite(length) & (length > 0.25 * step) & (length <= limit[vertices])
+    if probes.max(initial=0.0) > 0:
         # the part must end on both sides of the sheet, half-way to the hit
         # and just before it: a ray along a sheet into a crease or another
         # plate exits through that plate's face, where the part goes on
@@ -293,9 +297,9 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
                       points[vertices] + np.maximum(reach - float(spacing.max()), 0)[:, None] * directions):
             for k in range(3):
                 n = eigen[good][:, :, k]
-                use = is_normal[good][:, k] & grow & ~along_line
+                use = is_normal[good][:, k] & grow & ~along_line & (probes[vertices] > 0)
                 for sign in (1.0, -1.0):
-                    probe_point = (inner + sign * probe * n) / spacing
+                    probe_point = (inner + sign * probes[vertices][:, None] * n) / spacing
                     val = ndimage.map_coordinates(grey, probe_point.T, order=1, mode="constant", cval=iso - 1.0)
                     grow &= ~(use & (val > iso))
     vertices, directions, length = vertices[grow], directions[grow], length[grow]

@@ -8,18 +8,27 @@ the one closer to the bisector plane of ``f(p)`` and ``f(q)`` is marked
 Each medial voxel keeps the sub-voxel mid-surface point (on the bisector
 planes of the pairs that marked it), half the distance between the boundary
 points (the radius) and their direction (the sheet normal).
+
+``lam`` and the separation-angle exemption are measured against a plate
+thickness (:class:`PlateThickness`): one nominal value for the whole part, or
+the thickness of the plate each boundary point belongs to, so that a part
+whose ribs are thinner than its walls keeps both (a pair compares itself with
+the thinner of the two plates it touches).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import warnings
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.distance import Features
 
-__all__ = ["MedialVoxels", "medial_voxels", "estimate_thickness", "DEFAULT_LAM_RATIO"]
+__all__ = ["MedialVoxels", "PlateThickness", "medial_voxels", "plate_thickness", "estimate_thickness",
+           "DEFAULT_LAM_RATIO", "DEFAULT_MIN_THICKNESS"]
 
 #: Default ``lam`` as a fraction of the thickness: keeps every sheet (contact
 #: sets ~ thickness apart) and drops the branches into convex edges and corners,
@@ -42,6 +51,24 @@ POSITION_REGULARIZATION = 0.01
 #: Pairs whose nearest boundary points are within ~18 degrees of opposite
 #: directions see the two faces of a plate (thickness estimate).
 ANTIPODAL_COS = 0.95
+#: A boundary point's plate thickness is the median label within this many
+#: voxels (of the coarsest spacing).
+LABEL_RADIUS = 1.5
+#: Neighbours looked at within ``LABEL_RADIUS`` (boundary points lie on voxel
+#: edges: about 7 per side within 1.5 voxels of an axis-aligned face).
+LABEL_NEIGHBOURS = 16
+#: The nominal thicknesses of a part are the peaks of the histogram of its
+#: plate-crossing pairs holding at least this share of them (prominence).
+NOMINAL_SHARE = 0.02
+#: A boundary label up to this fraction above a nominal thickness is that
+#: nominal thickness (pairs across a corner see a plate as thicker).
+CORNER_EXCESS = 0.25
+#: A boundary label up to this fraction below a nominal thickness is that
+#: nominal thickness (noise).
+LABEL_NOISE = 0.15
+#: Default lower bound of the plate thickness when none is given, in voxels
+#: (of the finest spacing): thinner plates cannot be told from noise.
+DEFAULT_MIN_THICKNESS = 2.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -72,6 +99,43 @@ class MedialVoxels:
     normal: np.ndarray
     distance: np.ndarray
     coherence: np.ndarray
+    sheet_pairs: int = 0
+    dropped_gaps: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
+
+
+@dataclasses.dataclass(frozen=True)
+class PlateThickness:
+    """The plate thickness the medial test compares voxel pairs with.
+
+    Attributes
+    ----------
+    value : float
+        Nominal thickness: the one given, or the median thickness of the
+        plates kept (physical units).
+    lower, upper : float
+        Plates whose thickness is outside ``[lower, upper]`` are left out
+        (``upper`` may be ``inf``).
+    boundary : (b,) float64 ndarray or None
+        Local mode: thickness of the plate each boundary sample belongs to
+        (the thinnest plate whose two faces it is one of; samples on no
+        plate face, such as end faces, take their nearest labelled
+        sample's). ``None``: one thickness, ``value``, for the whole part.
+    ranged : bool
+        True when the thickness was not given as one number (the plates
+        outside ``[lower, upper]`` are left out); False for a nominal
+        thickness, whose ``lower`` is ``lam``.
+    """
+
+    value: float
+    lower: float
+    upper: float
+    boundary: np.ndarray | None = None
+    ranged: bool = False
+
+    @property
+    def local(self) -> bool:
+        """True when each plate is judged by its own thickness."""
+        return self.boundary is not None
 
 
 def _pairs(features: Features, axis: int) -> tuple[np.ndarray, np.ndarray]:
@@ -92,6 +156,28 @@ def _pair_gaps(features: Features) -> list[tuple[np.ndarray, np.ndarray, np.ndar
         gap = np.linalg.norm(features.feature[p] - features.feature[q], axis=1)
         out.append((p, q, gap))
     return out
+
+
+def _cosines(features: Features, p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Cosine of the angle between the directions from ``p`` and ``q`` to their nearest boundary points."""
+    P_p = (features.voxels[p] + features.offset) * features.spacing
+    P_q = (features.voxels[q] + features.offset) * features.spacing
+    up = features.feature[p] - P_p
+    uq = features.feature[q] - P_q
+    return np.einsum("ij,ij->i", up, uq) / np.maximum(np.linalg.norm(up, axis=1) * np.linalg.norm(uq, axis=1), 1e-12)
+
+
+def _sheet_pairs(features: Features, shortest: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Adjacent voxel pairs that see the two faces of a plate (antipodal contacts), longer than ``shortest``."""
+    out_p, out_q, out_gap = [], [], []
+    for p, q, gap in _pair_gaps(features):
+        keep = gap > shortest
+        p, q, gap = p[keep], q[keep], gap[keep]
+        sheet = _cosines(features, p, q) < -ANTIPODAL_COS
+        out_p.append(p[sheet])
+        out_q.append(q[sheet])
+        out_gap.append(gap[sheet])
+    return np.concatenate(out_p), np.concatenate(out_q), np.concatenate(out_gap)
 
 
 def estimate_thickness(features: Features) -> float:
@@ -117,39 +203,140 @@ def estimate_thickness(features: Features) -> float:
     EmptyShapeError
         If the part has no interior (no straddling pair).
     """
-    unit = float(features.spacing.max())
-    P = (features.voxels + features.offset) * features.spacing
-    found = []
-    for p, q, gap in _pair_gaps(features):
-        keep = gap > 2.0 * unit
-        p, q, gap = p[keep], q[keep], gap[keep]
-        up = features.feature[p] - P[p]
-        uq = features.feature[q] - P[q]
-        cos = np.einsum("ij,ij->i", up, uq) / np.maximum(
-            np.linalg.norm(up, axis=1) * np.linalg.norm(uq, axis=1), 1e-12)
-        found.append(gap[cos < -ANTIPODAL_COS])
-    gaps = np.concatenate(found)
+    gaps = _sheet_pairs(features, 2.0 * float(features.spacing.max()))[2]
     if len(gaps) == 0:
         raise EmptyShapeError("the part is too thin to have medial voxels (thinner than ~2 voxels)")
     return float(np.median(gaps))
 
 
-def medial_voxels(features: Features, lam: float, thickness: float | None = None) -> MedialVoxels:
+def plate_thickness(features: Features, lower: float | None = None, upper: float = np.inf) -> PlateThickness:
+    """The thickness of every plate of the part, on its boundary.
+
+    Each pair of adjacent voxels that sees the two faces of a plate
+    (antipodal nearest boundary points) labels both boundary points with
+    their distance, the plate's local thickness; a boundary point keeps the
+    smallest label it gets (where a thin rib meets a thick wall, the corner
+    belongs to the rib), then the median of the labels around it.
+    Boundary points that no such pair reaches (end faces, convex edges)
+    take the label of the nearest labelled point.
+
+    Parameters
+    ----------
+    features : Features
+    lower, upper : float, optional
+        Plates thinner than ``lower`` (default 2 voxels of the finest spacing)
+        or thicker than ``upper`` are left out by :func:`medial_voxels`.
+
+    Returns
+    -------
+    PlateThickness
+        ``value`` is the median thickness of the plates kept. When the part
+        has one nominal thickness (one peak in the histogram of the pair
+        lengths: a part of uniform or smoothly varying thickness) no
+        boundary labels are kept and the part is judged by ``value``, as
+        with a nominal thickness; with several (a rib thinner than its
+        wall), by the labels.
+
+    Raises
+    ------
+    EmptyShapeError
+        If no plate has a thickness in ``[lower, upper]``.
+    """
+    unit = float(features.spacing.min())
+    lower = DEFAULT_MIN_THICKNESS * unit if lower is None else float(lower)
+    p, q, gap = _sheet_pairs(features, min(0.75 * lower, 1.5 * unit))
+    inside = (gap >= lower) & (gap <= upper)
+    if not inside.any():
+        found = f"; the plates found are {np.min(gap):.3g} to {np.max(gap):.3g} thick" if len(gap) else ""
+        raise EmptyShapeError(f"no plate of the part is between {lower:g} and {upper:g} thick{found}")
+    label = np.full(len(features.boundary), np.inf)
+    np.minimum.at(label, features.feature_index[p], gap)
+    np.minimum.at(label, features.feature_index[q], gap)
+    nominal = _nominal(gap[gap >= lower], unit)
+    value = float(np.median(gap[inside]))
+    if len(nominal) <= 1:
+        # one plate thickness (or a thickness that varies smoothly): the
+        # whole part is judged by it, as with a nominal thickness
+        return PlateThickness(value, lower, float(upper), None, ranged=True)
+    label = _smooth_labels(features.boundary, label, LABEL_RADIUS * float(features.spacing.max()))
+    return PlateThickness(value, lower, float(upper), _snap(label, nominal), ranged=True)
+
+
+def _nominal(gap: np.ndarray, unit: float) -> np.ndarray:
+    """The part's nominal plate thicknesses: the peaks of the histogram of
+    plate-crossing pair lengths that hold at least ``NOMINAL_SHARE`` of them."""
+    from scipy.ndimage import gaussian_filter1d
+    from scipy.signal import find_peaks
+
+    step = 0.25 * unit
+    edges = np.arange(gap.min() - 2 * step, gap.max() + 3 * step, step)
+    hist = gaussian_filter1d(np.histogram(gap, edges)[0].astype(np.float64), 2.0)
+    peaks, _ = find_peaks(hist, prominence=NOMINAL_SHARE * hist.sum() * step / unit)
+    return np.sort(0.5 * (edges[peaks] + edges[peaks + 1]))
+
+
+def _snap(label: np.ndarray, nominal: np.ndarray) -> np.ndarray:
+    """Labels near a nominal thickness take it: up to ``LABEL_NOISE`` below
+    (noise) or ``CORNER_EXCESS`` above (pairs across a corner see a plate as
+    thicker than it is); others (a tapered plate) keep their own."""
+    if len(nominal) == 0:
+        return label
+    ratio = label[:, None] / nominal[None, :]
+    near = (ratio >= 1.0 - LABEL_NOISE) & (ratio <= 1.0 + CORNER_EXCESS)
+    closest = np.where(near, np.abs(np.log(ratio)), np.inf).argmin(axis=1)
+    return np.where(near.any(axis=1), nominal[closest], label)
+
+
+def _smooth_labels(points: np.ndarray, label: np.ndarray, radius: float, block: int = 200_000) -> np.ndarray:
+    """Plate thickness at every boundary point from the labels of some.
+
+    The median of the labels within ``radius`` takes out the noise, and
+    gives a point beside a corner, which only pairs across the corner reach
+    (longer than the plate is thick), the thickness of the plate faces next
+    to it. Points with no label nearby (end faces, convex edges) take the
+    nearest labelled point's.
+    """
+    tree = cKDTree(points)
+    neighbours = np.empty((len(points), LABEL_NEIGHBOURS), np.int32)
+    for lo in range(0, len(points), block):
+        _, idx = tree.query(points[lo:lo + block], k=LABEL_NEIGHBOURS, distance_upper_bound=radius)
+        neighbours[lo:lo + block] = idx  # len(points) where fewer are within radius
+    padded = np.append(label, np.inf)
+    median = np.empty(len(points))
+    for lo in range(0, len(points), block):
+        near = padded[neighbours[lo:lo + block]]
+        near[~np.isfinite(near)] = np.nan
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN rows
+            median[lo:lo + block] = np.nanmedian(near, axis=1)
+    known = np.isfinite(median)
+    if not known.all():
+        _, nearest = cKDTree(points[known]).query(points[~known], k=1)
+        median[~known] = median[known][nearest]
+    return median
+
+
+def medial_voxels(features: Features, lam: float | None, thickness: float | PlateThickness | None = None) -> MedialVoxels:
     """Medial voxels whose contact points are more than ``lam`` apart.
 
     Parameters
     ----------
     features : Features
-    lam : float
+    lam : float or None
         Smallest distance between the two nearest boundary points of a medial
         voxel pair (physical units), the lambda of the lambda-medial axis.
-    thickness : float, optional
-        Nominal thickness; when given, pairs narrower than 0.9 of it must also
-        pass the separation-angle test.
+        ``None`` (local ``thickness`` only): ``DEFAULT_LAM_RATIO`` times the
+        thickness of the plate each pair touches.
+    thickness : float or PlateThickness, optional
+        Nominal thickness, or the thickness of each plate: pairs narrower
+        than 0.9 of it must also pass the separation-angle test, and in
+        local mode pairs on plates outside its bounds are left out.
 
     Returns
     -------
     MedialVoxels
+        With ``sheet_pairs`` (pairs that see both faces of a plate) and
+        ``dropped_gaps`` (the thickness at each of those that was left out).
 
     Raises
     ------
@@ -158,12 +345,20 @@ def medial_voxels(features: Features, lam: float, thickness: float | None = None
     EmptyShapeError
         If no voxel is medial for this ``lam``.
     """
-    if not np.isfinite(lam) or lam <= 0:
+    plates = thickness if isinstance(thickness, PlateThickness) else None
+    if lam is None and not (plates is not None and plates.local):
+        if plates is None:
+            raise InvalidInputError("lam is required unless the thickness is given per plate")
+        lam = DEFAULT_LAM_RATIO * plates.value
+    if lam is not None and (not np.isfinite(lam) or lam <= 0):
         raise InvalidInputError(f"lam must be finite and > 0, got {lam!r}")
+    nominal = 0.0 if thickness is None else (plates.value if plates is not None else float(thickness))
     n = len(features.voxels)
     unit = float(features.spacing.min())
-    if thickness is None:
-        thickness = 0.0
+    if plates is not None and plates.local:
+        shortest = DEFAULT_LAM_RATIO * plates.lower if lam is None else lam
+    else:
+        shortest = float(lam)  # type: ignore[arg-type]
     F = features.feature
     P = (features.voxels + features.offset) * features.spacing
     acc_mid = np.zeros((n, 3))
@@ -172,16 +367,29 @@ def medial_voxels(features: Features, lam: float, thickness: float | None = None
     acc_qm = np.zeros((n, 3))  # sum of u u^T mid
     acc_gap = np.zeros(n)
     count = np.zeros(n)
+    sheet_pairs = 0
+    dropped = []
     for p, q, gap in _pair_gaps(features):
-        keep = gap > lam
-        p, q, gap = p[keep], q[keep], gap[keep]
+        # pairs of a plate too thin for lam are counted (they are dropped)
+        candidate = gap > min(shortest, 1.5 * unit)
+        p, q, gap = p[candidate], q[candidate], gap[candidate]
         fp, fq = F[p], F[q]
         # separation angle: the contact directions of a sheet are opposite; at
         # convex edges and where an end face meets a junction they are ~90 deg
-        up, uq = fp - P[p], fq - P[q]
-        cos = np.einsum("ij,ij->i", up, uq) / np.maximum(np.linalg.norm(up, axis=1) * np.linalg.norm(uq, axis=1), 1e-12)
-        wide = (cos < SEPARATION_COS) | (gap >= FULL_GAP * thickness)
-        p, q, gap, fp, fq = p[wide], q[wide], gap[wide], fp[wide], fq[wide]
+        cos = _cosines(features, p, q)
+        if plates is not None and plates.local:
+            # each pair is judged by the thinner of the plates it touches
+            local = np.minimum(plates.boundary[features.feature_index[p]], plates.boundary[features.feature_index[q]])
+            lam_pair = DEFAULT_LAM_RATIO * local if lam is None else np.full(len(p), float(lam))
+            keep = (gap > lam_pair) & (local >= plates.lower) & (local <= plates.upper)
+        else:
+            local = np.full(len(p), nominal)
+            keep = gap > float(lam)  # type: ignore[arg-type]
+        keep &= (cos < SEPARATION_COS) | (gap >= FULL_GAP * local)
+        sheet = (cos < -ANTIPODAL_COS) & (gap > 1.5 * unit)
+        sheet_pairs += int(sheet.sum())
+        dropped.append(gap[sheet & ~keep])
+        p, q, gap, fp, fq = p[keep], q[keep], gap[keep], fp[keep], fq[keep]
         mid = 0.5 * (fp + fq)
         u = (fq - fp) / gap[:, None]
         sp = np.abs(np.einsum("ij,ij->i", P[p] - mid, u))
@@ -203,7 +411,8 @@ def medial_voxels(features: Features, lam: float, thickness: float | None = None
         count += np.bincount(chosen, minlength=n)
     rows = np.flatnonzero(count)
     if len(rows) == 0:
-        raise EmptyShapeError(f"no medial voxel for lam={lam:g}: the thickness or lam is larger than the part allows")
+        what = f"lam={lam:g}" if lam is not None else f"plates {plates.lower:g} to {plates.upper:g} thick"  # type: ignore[union-attr]
+        raise EmptyShapeError(f"no medial voxel for {what}: the thickness or lam is larger than the part allows")
     c = count[rows]
     normal = acc_normal[rows] / c[:, None]
     coherence = np.linalg.norm(normal, axis=1)
@@ -222,4 +431,6 @@ def medial_voxels(features: Features, lam: float, thickness: float | None = None
         normal=normal,
         distance=features.distance[rows],
         coherence=coherence,
+        sheet_pairs=sheet_pairs,
+        dropped_gaps=np.concatenate(dropped),
     )

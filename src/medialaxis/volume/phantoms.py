@@ -53,13 +53,16 @@ class Phantom:
     midsurface : list of Rect
         The true mid-surface, in voxel index coordinates.
     thickness : float
-        Nominal plate thickness in voxels.
+        Nominal plate thickness in voxels (of the first plate where they differ).
+    plate_thickness : tuple of float
+        Thickness of each rectangle's plate, in the order of ``midsurface``.
     """
 
     volume: np.ndarray
     mask: np.ndarray
     midsurface: list[Rect]
     thickness: float
+    plate_thickness: tuple[float, ...] = ()
 
 
 def _box(mask: np.ndarray, lo: tuple[int, int, int], hi: tuple[int, int, int]) -> None:
@@ -99,6 +102,7 @@ def t_phantom(
     blur: float = 1.0,
     noise: float = 0.05,
     rng: object = 0,
+    stem_thickness: int | None = None,
 ) -> Phantom:
     """A T of two plates: a flange normal to axis 0 and a stem normal to axis 1.
 
@@ -107,13 +111,16 @@ def t_phantom(
     shape : tuple of 3 int
         Volume size ``(Z, Y, X)``; the default is the issue's benchmark size.
     thickness : int
-        Plate thickness in voxels.
+        Plate thickness in voxels (the flange's, when ``stem_thickness`` is given).
     margin : int
         Empty voxels between the part and the volume border.
     blur, noise : float
         Gaussian blur sigma (voxels) and noise standard deviation.
     rng : seed or numpy Generator
         Noise generator seed.
+    stem_thickness : int, optional
+        Thickness of the stem when it differs from the flange's (a rib
+        thinner than its wall), at least 2 voxels.
 
     Returns
     -------
@@ -124,21 +131,26 @@ def t_phantom(
     >>> ph = t_phantom((40, 60, 60), margin=6)
     >>> ph.volume.shape, len(ph.midsurface)
     ((40, 60, 60), 2)
+    >>> t_phantom((60, 80, 80), thickness=8, stem_thickness=4, margin=8).plate_thickness
+    (8.0, 4.0)
     """
     Z, Y, X = _check(shape, thickness, 24)
     m, e = margin, thickness
+    w = e if stem_thickness is None else int(stem_thickness)
+    if not 2 <= w <= e * 4:
+        raise InvalidInputError(f"stem_thickness must be in [2, {4 * e}] voxels, got {stem_thickness}")
     mask = np.zeros((Z, Y, X), bool)
     z0 = m  # flange voxels z0 .. z0+e-1
-    yc = Y // 2 - e // 2  # stem voxels yc .. yc+e-1
+    yc = Y // 2 - w // 2  # stem voxels yc .. yc+w-1
     _box(mask, (z0, m, m), (z0 + e, Y - m, X - m))
-    _box(mask, (z0 + e, yc, m), (Z - m, yc + e, X - m))
-    zmid, ymid = z0 + (e - 1) / 2, yc + (e - 1) / 2
+    _box(mask, (z0 + e, yc, m), (Z - m, yc + w, X - m))
+    zmid, ymid = z0 + (e - 1) / 2, yc + (w - 1) / 2
     lo, hiy, hix, hiz = m - 0.5, Y - m - 0.5, X - m - 0.5, Z - m - 0.5
     rects = [
         _rect([zmid, lo, lo], [0, hiy - lo, 0], [0, 0, hix - lo]),
         _rect([zmid, ymid, lo], [hiz - zmid, 0, 0], [0, 0, hix - lo]),
     ]
-    return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e))
+    return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e), (float(e), float(w)))
 
 
 def x_phantom(
@@ -171,7 +183,7 @@ def x_phantom(
         _rect([zmid, lo, lo], [0, Y - 2 * m, 0], [0, 0, X - 2 * m]),
         _rect([lo, ymid, lo], [Z - 2 * m, 0, 0], [0, 0, X - 2 * m]),
     ]
-    return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e))
+    return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e), (float(e),) * 2)
 
 
 def member_phantom(
@@ -215,4 +227,4 @@ def member_phantom(
         _rect([zt, yr, xl], [zb - zt, 0, 0], [0, 0, xw]),  # right
         _rect([zt, yr, xl], [0, Y - m - 0.5 - yr, 0], [0, 0, xw]),  # flange
     ]
-    return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e))
+    return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e), (float(e),) * 5)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -22,13 +23,15 @@ import numpy as np
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
-from medialaxis.errors import InvalidInputError
+from medialaxis.errors import InvalidInputError, MedialAxisWarning
 from medialaxis.volume.dents import bent_vertices
 from medialaxis.volume.dents import remove_dents as _remove_dents
 from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.extension import extend_mesh
 from medialaxis.volume.inputs import VolumeInput, load_volume
-from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, estimate_thickness, medial_voxels
+from medialaxis.volume.medial import (
+    DEFAULT_LAM_RATIO, MedialVoxels, PlateThickness, medial_voxels, plate_thickness,
+)
 from medialaxis.volume.polygonize import (
     BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, Polygonization, polygonize,
 )
@@ -45,6 +48,10 @@ CREASE_PASSES = 2
 #: Free-edge vertices take planes from faces this many rings away: beside
 #: the end of a junction line their one-ring holds no clean face.
 FREE_EDGE_RINGS = 2
+
+#: Warn when the medial test leaves out at least this fraction of the pairs
+#: that see both faces of a plate (a plate outside the thickness asked for).
+DROPPED_WARNING = 0.01
 
 
 @dataclasses.dataclass(frozen=True)
@@ -86,23 +93,63 @@ def _iso(iso: Any, threshold: Any) -> Any:
     return iso if iso is not None else threshold
 
 
-def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[float, float]:
+def _check_range(thickness: Any) -> tuple[float, float]:
+    try:
+        lo, hi = (float(v) for v in thickness)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"thickness must be a number or a (min, max) pair, got {thickness!r}") from None
+    if not (np.isfinite(lo) and lo > 0 and hi > lo) or np.isnan(hi):
+        raise InvalidInputError(f"thickness range must be 0 < min < max (max may be inf), got {thickness!r}")
+    return lo, hi
+
+
+def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[PlateThickness, float | None]:
+    """The plate thickness (one value, or per plate) and ``lam`` (``None``: per plate)."""
     deepest = 2.0 * float(features.distance.max()) + float(features.spacing.max())
-    if thickness is None:
-        thickness_value = estimate_thickness(features)
-    else:
-        thickness_value = check_number(thickness, "thickness", positive=True)
-        if thickness_value > 2.0 * deepest:
-            raise InvalidInputError(
-                f"thickness={thickness_value:g} does not fit: the thickest part of the volume is about {deepest:.3g}"
-            )
-        if thickness_value < 2.0 * float(features.spacing.max()):
-            raise InvalidInputError(
-                f"thickness={thickness_value:g} is under 2 voxels ({2 * float(features.spacing.max()):g}); "
-                "plates that thin cannot be resolved"
-            )
-    lam_value = DEFAULT_LAM_RATIO * thickness_value if lam is None else check_number(lam, "lam", positive=True)
-    return thickness_value, lam_value
+    lam_value = None if lam is None else check_number(lam, "lam", positive=True)
+    if thickness is None or isinstance(thickness, (tuple, list, np.ndarray)):
+        lower, upper = (None, np.inf) if thickness is None else _check_range(thickness)
+        return plate_thickness(features, lower, upper), lam_value
+    thickness_value = check_number(thickness, "thickness", positive=True)
+    if thickness_value > 2.0 * deepest:
+        raise InvalidInputError(
+            f"thickness={thickness_value:g} does not fit: the thickest part of the volume is about {deepest:.3g}"
+        )
+    if thickness_value < 2.0 * float(features.spacing.max()):
+        raise InvalidInputError(
+            f"thickness={thickness_value:g} is under 2 voxels ({2 * float(features.spacing.max()):g}); "
+            "plates that thin cannot be resolved"
+        )
+    if lam_value is None:
+        lam_value = DEFAULT_LAM_RATIO * thickness_value
+    return PlateThickness(thickness_value, lam_value, np.inf), lam_value
+
+
+def _range(plates: PlateThickness) -> list[float | None] | None:
+    """The thickness bounds for metadata (``None`` for no upper bound: JSON has no infinity)."""
+    if not plates.ranged:
+        return None
+    return [plates.lower, plates.upper if np.isfinite(plates.upper) else None]
+
+
+def _dropped(medial: MedialVoxels, plates: PlateThickness, lam: float | None) -> dict[str, float] | None:
+    """What the medial test left out of the plates (metadata), with a warning when it matters."""
+    gaps = medial.dropped_gaps
+    if medial.sheet_pairs == 0 or len(gaps) == 0:
+        return None
+    fraction = len(gaps) / medial.sheet_pairs
+    info = {"fraction": float(fraction), "thickness": float(np.median(gaps))}
+    if fraction >= DROPPED_WARNING:
+        if plates.ranged:
+            rule = f"thickness range {plates.lower:g} to {plates.upper:g}" + (f" or lam={lam:g}" if lam is not None else "")
+        else:
+            rule = f"thickness={plates.value:g} (lam={lam:g})"
+        warnings.warn(
+            f"plates about {info['thickness']:.3g} thick ({fraction:.0%} of the plate area) are left out of the "
+            f"mid-surface by {rule}; omit thickness or give a (min, max) range to keep them",
+            MedialAxisWarning, stacklevel=4,
+        )
+    return info
 
 
 def volume_stages(
@@ -141,9 +188,11 @@ def volume_stages(
             state["source"] = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
         elif stage == "distance":
             state["features"] = feature_transform(state["source"])
-            state["thickness"], state["lam"] = _thickness_and_lam(state["features"], thickness, lam)
+            state["plates"], state["lam"] = _thickness_and_lam(state["features"], thickness, lam)
+            state["thickness"] = state["plates"].value
         elif stage == "medial voxels":
-            state["medial"] = medial_voxels(state["features"], state["lam"], state["thickness"])
+            state["medial"] = medial_voxels(state["features"], state["lam"], state["plates"])
+            state["dropped"] = _dropped(state["medial"], state["plates"], state["lam"])
         elif stage == "polygonize":
             mesh = polygonize(state["features"], state["medial"], density=density, rng=rng)
             state["mesh"] = mesh
@@ -169,18 +218,33 @@ def volume_stages(
             state["dented_points"] = moved
         elif stage == "extension" and extend:
             src = state["source"]
-            sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
+            if state["plates"].local:
+                # each free edge reaches as far as its own plate's thickness allows
+                plate = 2.0 * state["radii"]
+                sample_radius = density * state["radii"]
+            else:
+                plate = state["thickness"]
+                sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
             points, faces, source = extend_mesh(
                 state["points"], state["faces"], src.grey, src.iso, src.spacing,
-                max_length=1.5 * state["thickness"] + 2.0 * sample_radius,
+                max_length=1.5 * plate + 2.0 * sample_radius,
                 free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
-                probe=0.5 * state["thickness"] + 2.0 * float(src.spacing.max()),
+                probe=0.5 * plate + 2.0 * float(src.spacing.max()),
             )
             state["points"], state["faces"] = points, faces
             state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
             state["kind"] = np.concatenate([state["kind"], np.full(len(source), EXTENSION, np.int8)])
         timings[stage] = time.perf_counter() - t0
     src = state["source"]
+    if len(state["faces"]):
+        # a lone medial voxel (a noisy corner) is a vertex without a face: not part of the mid-surface
+        used = np.zeros(len(state["points"]), bool)
+        used[state["faces"].ravel()] = True
+        if not used.all():
+            new_index = np.cumsum(used) - 1
+            state["faces"] = new_index[state["faces"]]
+            for key in ("points", "radii", "kind"):
+                state[key] = state[key][used]
     faces = state["faces"]
     edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
     metadata = {
@@ -188,7 +252,9 @@ def volume_stages(
         "domain": "volume",
         "iso": src.iso,
         "thickness": state["thickness"],
+        "thickness_range": _range(state["plates"]),
         "lam": state["lam"],
+        "dropped": state["dropped"],
         "spacing": src.spacing.tolist(),
         "image_shape": list(src.mask.shape),
         "extend": bool(extend),
@@ -248,14 +314,21 @@ def midsurface_medial_axis(
         Foreground is ``grey > iso`` (``threshold`` is the dispatcher's name
         for it). Default 0.5 for bool input, else ISO-50: half-way between
         the mean grey levels of Otsu's two classes (:func:`~medialaxis.volume.inputs.iso50`).
-    thickness : float, optional
-        Nominal plate thickness (the paper's epsilon), physical units.
-        Default: estimated from the nearest-boundary transform.
+    thickness : float or (min, max), optional
+        Plate thickness (the paper's epsilon), physical units. Omitted: every
+        plate at least 2 voxels (of the finest spacing) thick is kept, each
+        judged by its own thickness, measured where adjacent voxels see the
+        plate's two faces (a rib thinner than its wall keeps its
+        mid-surface). A ``(min, max)`` range: the same, for plates of
+        thickness in the range (``max`` may be ``inf``). A number: one
+        nominal thickness for the whole part, as in the paper. Plates left
+        out by a number or a range are reported in ``metadata["dropped"]``
+        and by a :class:`~medialaxis.MedialAxisWarning`.
     lam : float, optional
         Lambda of the grid lambda-medial axis: adjacent voxels whose nearest
         boundary points are more than ``lam`` apart are medial. Default
-        ``0.75 * thickness``, which keeps plates and drops the branches into
-        convex edges.
+        ``0.75`` times the thickness (of each plate, or the nominal one),
+        which keeps plates and drops the branches into convex edges.
     spacing : float or 3 floats, optional
         Voxel size per array axis (default: the file's, else 1).
     extend : bool
@@ -280,14 +353,20 @@ def midsurface_medial_axis(
         (non-manifold along junctions); ``edges`` the faces' edges;
         ``radii`` half the local thickness; extras ``thickness (n,)`` and
         ``vertex_kind (n,)`` (0 surface, 1 free edge, 2 junction, 3 extension).
+        ``metadata``: ``thickness`` (the nominal one, or the median of the
+        plates kept), ``thickness_range`` (``[min, max]``, ``None`` for no
+        bound; ``None`` for a nominal thickness), ``lam`` (``None``: per
+        plate) and ``dropped`` (``None``, or the ``fraction`` of the plate
+        area left out and its median ``thickness``).
 
     Raises
     ------
     InvalidInputError
         Not a 3D array, NaN, bad ``iso``/``spacing``/``lam``/``density``, a
-        thickness that does not fit the volume.
+        thickness that does not fit the volume, a range that is not
+        ``0 < min < max``.
     EmptyShapeError
-        Empty or full volume, or nothing medial.
+        Empty or full volume, no plate in the thickness range, or nothing medial.
     InputFileError
         Unreadable or truncated file.
     Cancelled
@@ -331,7 +410,8 @@ def medial_voxel_axis(
         ``points (n, 3)``: voxel centres (index times ``spacing``); ``radii``:
         half the distance between the two nearest boundary points; extras
         ``position (n, 3)`` (sub-voxel mid-point), ``normal (n, 3)`` and
-        ``voxel_kind (n,)`` (0 surface, 1 free edge, 2 junction).
+        ``voxel_kind (n,)`` (0 surface, 1 free edge, 2 junction); metadata
+        as :func:`midsurface_medial_axis`.
 
     Examples
     --------
@@ -345,12 +425,15 @@ def medial_voxel_axis(
 
     src = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
     features = feature_transform(src)
-    thickness_value, lam_value = _thickness_and_lam(features, thickness, lam)
-    medial = medial_voxels(features, lam_value, thickness_value)
+    plates, lam_value = _thickness_and_lam(features, thickness, lam)
+    medial = medial_voxels(features, lam_value, plates)
+    dropped = _dropped(medial, plates, lam_value)
     occupied = np.zeros(features.index.shape, bool)
     occupied[tuple(medial.voxels.T)] = True
     kind = classify_voxels(occupied, medial.voxels)
-    metadata = {"method": "voxels", "domain": "volume", "iso": src.iso, "thickness": thickness_value, "lam": lam_value,
+    metadata = {"method": "voxels", "domain": "volume", "iso": src.iso, "thickness": plates.value,
+                "thickness_range": _range(plates), "lam": lam_value,
+                "dropped": dropped,
                 "spacing": src.spacing.tolist(), "image_shape": list(src.mask.shape)}
     return MedialAxis(
         features.physical(medial.voxels), medial.radius,
