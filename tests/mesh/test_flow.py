@@ -86,6 +86,43 @@ def test_torus_gives_one_cycle():
     assert np.abs(np.hypot(sk.points[:, 0], sk.points[:, 1]) - 2.0).max() < 0.1
 
 
+@pytest.mark.parametrize("sections", [(32, 32), (64, 32), (128, 48)])
+def test_torus_skeleton_lies_on_its_core_circle(sections):
+    """The flow's smoothing shrinks a curved tube; the nodes are put back on
+    the centres of their rings (major radius 3, minor 1: 0.12-0.24 inside before)."""
+    torus = trimesh.creation.torus(major_radius=3.0, minor_radius=1.0,
+                                   major_sections=sections[0], minor_sections=sections[1])
+    sk = mx.medial_axis(torus, method="flow")
+    d = np.hypot(np.hypot(sk.points[:, 0], sk.points[:, 1]) - 3.0, sk.points[:, 2])
+    assert np.percentile(d, 99) <= 0.1
+    assert sk.n_cycles == 1
+    assert np.allclose(np.median(sk.radii), 1.0, rtol=0.05)
+
+
+def test_bent_tube_skeleton_follows_its_arc():
+    """A half torus capped by spheres (a bent capsule), by marching cubes."""
+    from skimage.measure import marching_cubes
+
+    step = 0.1
+    grid = np.arange(-4.6, 4.6 + step / 2, step)
+    x, y, z = np.meshgrid(grid, grid, grid, indexing="ij")
+    angle = np.arctan2(y, x)
+    angle = np.where(angle < 0, np.where(x > 0, 0.0, np.pi), angle)  # below the arc: the nearer end
+    cx, cy = 3.0 * np.cos(angle), 3.0 * np.sin(angle)
+    sdf = np.sqrt((x - cx) ** 2 + (y - cy) ** 2 + z**2) - 1.0
+    verts, faces, _, _ = marching_cubes(sdf, 0.0, spacing=(step,) * 3)
+    sk = mx.medial_axis(trimesh.Trimesh(verts + grid[0], faces), method="flow")
+    p = sk.points
+    angle = np.arctan2(p[:, 1], p[:, 0])
+    angle = np.where(angle < 0, np.where(p[:, 0] > 0, 0.0, np.pi), angle)
+    arc = np.linalg.norm(p - np.column_stack([3.0 * np.cos(angle), 3.0 * np.sin(angle), np.zeros(len(p))]), axis=1)
+    # a curve skeleton reaches the tips: the arc goes on along its tangent into each cap
+    caps = segment_distance(p, np.array([[[3.0, 0.0, 0.0], [3.0, -1.0, 0.0]], [[-3.0, 0.0, 0.0], [-3.0, -1.0, 0.0]]]))
+    d = np.minimum(arc, caps)
+    assert np.percentile(d, 99) <= 0.1
+    assert sk.n_components == 1 and sk.n_cycles == 0 and len(sk.endpoints) == 2
+
+
 def test_two_components_give_two_skeletons():
     two = capsules_mesh([[[0, 0, 0], [2, 0, 0]], [[0, 3, 0], [2, 3, 0]]], RADIUS, pitch=0.12)
     sk = mx.medial_axis(two, method="flow")

@@ -90,6 +90,10 @@ def test_marching_cubes_torus():
     assert mesh.is_watertight and _genus(mesh) == 1
     sk = mx.medial_axis(mesh, method="flow")
     assert sk.n_components == 1 and _cycles(sk) == 1
+    # the grid starts at the array origin: the torus's centre is at 4.5
+    p = sk.points - 4.5
+    d = np.hypot(np.hypot(p[:, 0], p[:, 1]) - 3.0, p[:, 2])
+    assert np.percentile(d, 99) <= 0.1
 
 
 def test_triangle_soup_is_welded_and_says_so(tmp_path):

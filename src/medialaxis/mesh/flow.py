@@ -60,6 +60,7 @@ from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
 from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.contract_graph import skeleton_graph
+from medialaxis.mesh.flow_refine import centre_on_rings
 from medialaxis.mesh.inputs import _read, load_mesh
 
 #: Smallest total Gaussian curvature (sum of angle defects, radians) of a
@@ -444,7 +445,10 @@ def flow_skeleton(
     t_flow = time.perf_counter() - t_start
     cell = spacing if spacing is not None else 0.5 * s
     graph = skeleton_graph(p, p0, faces, cell=cell, use=use, fixed=fixed)
-    nodes, node_radii, node_edges, node_of_vertex = graph.points, graph.radii, graph.edges, graph.correspondence
+    node_edges, node_of_vertex = graph.edges, graph.correspondence
+    pinned = np.zeros(len(graph.points), dtype=bool)
+    pinned[node_of_vertex[fixed]] = True
+    nodes, node_radii = centre_on_rings(graph.points, node_edges, node_of_vertex, p0, pinned)
     if region is not None:
         slack = 1e-9 * diag
         keep = np.all((nodes >= box[0] - slack) & (nodes <= box[1] + slack), axis=1)
