@@ -400,3 +400,21 @@ def test_curvature_tips_of_a_noisy_tripod(tripod):
         assert np.linalg.norm(fixed - tip, axis=1).min() < 0.15
     assert fixed[:, 2].max() > RADIUS * 0.9  # the hub's top
     assert len(sk.endpoints) == 4 and len(sk.junctions) == 1
+
+
+@pytest.mark.parametrize("make", [lambda: trimesh.creation.box(extents=(4, 1, 0.5)),
+                                  lambda: trimesh.creation.torus(major_radius=2.0, minor_radius=0.5,
+                                                                 major_sections=12, minor_sections=6),
+                                  lambda: trimesh.creation.icosphere(subdivisions=1)])
+def test_splitting_long_edges_keeps_the_surface(make):
+    from medialaxis.mesh.refine import split_long_edges
+
+    mesh = make()
+    longest = mesh.edges_unique_length.max()
+    points, faces = split_long_edges(mesh.vertices, mesh.faces, 0.3 * longest)
+    fine = trimesh.Trimesh(points, faces, process=False)
+    assert fine.is_watertight and fine.is_winding_consistent
+    assert fine.euler_number == mesh.euler_number  # same genus, computed by trimesh
+    assert np.isclose(fine.volume, mesh.volume)  # midpoints of flat faces: the same solid
+    assert fine.edges_unique_length.max() <= 0.3 * longest + 1e-12
+    assert np.array_equal(points[: len(mesh.vertices)], mesh.vertices)  # input vertices keep their index

@@ -72,11 +72,16 @@ def test_difference_with_a_through_hole_is_accepted_and_keeps_its_genus_when_fin
     assert sk.n_components == 1 and _cycles(sk) == 1
 
 
-@pytest.mark.xfail(strict=True, reason="issue 11: the flow collapses a coarse CAD mesh (72 vertices, long thin "
-                   "triangles) to one point; it needs the surface refined first")
 def test_flow_keeps_the_genus_of_a_coarse_cad_mesh():
-    sk = mx.medial_axis(_drilled_block(), method="flow")
-    assert _cycles(sk) == 1
+    """72 vertices, long thin triangles: the surface is refined before the flow."""
+    part = _drilled_block()
+    sk = mx.medial_axis(part, method="flow")
+    assert _cycles(sk) == 1 and sk.n_components == 1
+    assert sk.metadata["refined_vertices"] > 0
+    assert len(sk.extras["correspondence"]) == len(part.vertices)
+    # the skeleton stays inside the block, round the hole
+    assert np.all(np.abs(sk.points[:, :2]) <= 2.0) and np.all(np.abs(sk.points[:, 2]) <= 0.75)
+    assert np.all(np.hypot(sk.points[:, 0], sk.points[:, 1]) >= 0.8)
 
 
 def test_marching_cubes_torus():

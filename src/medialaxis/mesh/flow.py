@@ -62,6 +62,7 @@ from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.contract_graph import skeleton_graph
 from medialaxis.mesh.flow_refine import centre_on_rings
 from medialaxis.mesh.inputs import _read, load_mesh
+from medialaxis.mesh.refine import refine_coarse
 
 #: Smallest total Gaussian curvature (sum of angle defects, radians) of a
 #: patch above ``curvature_threshold`` that counts as a tip: an eighth of a
@@ -294,7 +295,9 @@ def flow_skeleton(
         ``points`` (s, 3), ``radii`` (mean distance from each node to the
         surface points that collapsed onto it), ``edges``, no faces;
         ``extras["correspondence"]`` (n_input,) is the node of each input
-        vertex; metadata holds ``steps``, ``converged``, ``dt``, ``repairs``.
+        vertex; metadata holds ``steps``, ``converged``, ``dt``, ``repairs``,
+        ``refined_vertices`` (midpoints added to a coarse surface, see
+        :func:`~medialaxis.mesh.refine.refine_coarse`).
 
     Raises
     ------
@@ -339,8 +342,8 @@ def flow_skeleton(
         raise InvalidInputError(f"callback must be callable, got {type(callback).__name__}")
 
     clean, vertex_map, repairs = prepare_flow_mesh(mesh, repair=repair)
-    p0 = np.array(clean.vertices, dtype=np.float64)
-    faces = np.array(clean.faces, dtype=np.int64)
+    p0, faces = refine_coarse(np.array(clean.vertices, dtype=np.float64), np.array(clean.faces, dtype=np.int64))
+    refined = len(p0) - len(clean.vertices)
     n = len(p0)
     edges = ops.unique_edges(faces)
     n_input = len(vertex_map)
@@ -475,6 +478,7 @@ def flow_skeleton(
         "fixed_vertices": [int(v) for v in fixed],
         "region": None if region is None else np.asarray(region, dtype=float).tolist(),
         "repairs": list(repairs),
+        "refined_vertices": refined,
         "n_vertices": n_input,
         "flow_seconds": t_flow,
         "seconds": time.perf_counter() - t_start,
