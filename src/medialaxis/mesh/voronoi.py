@@ -39,7 +39,7 @@ from medialaxis.mesh.sampling import (
     pseudo_normals,
     sample_surface,
 )
-from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, medial_complex
+from medialaxis.mesh.voronoi_complex import THIN_SPACINGS, THIN_SPAN, TOPOLOGY_MODES, medial_complex
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
@@ -176,7 +176,7 @@ def _adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:
 
 
 def _classify_tets(
-    dt: Any, smp: Any, sd: SignedDistance, diag: float, lam: float, tolerance: float
+    dt: Any, smp: Any, sd: SignedDistance, diag: float, lam: float, tolerance: float, spacing: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Inner tetrahedra (centroid inside), and the signed distance of the circumcentres that may matter.
 
@@ -187,7 +187,9 @@ def _classify_tets(
         lying on a face of the mesh are not inner).
     centre_signed : (t,) float64 ndarray
         Signed distance of the circumcentre (negative inside) for tetrahedra
-        with an edge of at least ``lam`` and a bounded circumsphere, ``inf``
+        with a bounded circumsphere and an edge of at least ``lam`` or one
+        that may span a thin part (see
+        :func:`~medialaxis.mesh.voronoi_complex.medial_complex`), ``inf``
         for the others.
     closest : (t, 3) float64 ndarray
         Closest surface point of those circumcentres (``nan`` elsewhere).
@@ -197,7 +199,8 @@ def _classify_tets(
     n = len(dt.simplices)
     centre_signed = np.full(n, np.inf)
     closest = np.full((n, 3), np.nan)
-    long = np.flatnonzero((dt.longest >= lam) & (dt.radii < diag))
+    thin = (dt.longest >= THIN_SPAN * dt.radii) & (dt.longest >= THIN_SPACINGS * spacing[dt.simplices].min(axis=1))
+    long = np.flatnonzero(((dt.longest >= lam) | thin) & (dt.radii < diag))
     centre_signed[long], closest[long] = sd.query(dt.centres[long], near[long])
     return centroid_signed < -tolerance, centre_signed, closest
 
@@ -340,7 +343,8 @@ def voronoi_medial_axis(
 
     t0 = time.perf_counter()
     sd = SignedDistance(work, normals)
-    inner, signed, closest = _classify_tets(dt, smp, sd, diag, lam_used, 1e-6 * float(spacing.min()))
+    point_spacing = np.asarray(spacing)[smp.face]  # that of its face (a sample on an edge takes one of them)
+    inner, signed, closest = _classify_tets(dt, smp, sd, diag, lam_used, 1e-6 * float(spacing.min()), point_spacing)
     timings["inside"] = time.perf_counter() - t0
     p = dt.points[dt.simplices[inner]]
     union_volume = float(
@@ -353,7 +357,8 @@ def voronoi_medial_axis(
         )
 
     t0 = time.perf_counter()
-    cx = medial_complex(dt, inner, signed < 0, lam_used, topology)
+    # thin parts narrower than lam keep their sheets
+    cx = medial_complex(dt, inner, signed < 0, lam_used, topology, spacing=point_spacing)
     if len(cx.faces) == 0:
         raise ComputationError(
             f"no Voronoi facet with a contact set of at least lam={lam_used:.4g} lies inside the mesh; "

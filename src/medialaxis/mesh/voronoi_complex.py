@@ -30,6 +30,13 @@ from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 __all__ = ["MedialComplex", "medial_complex", "fan_triangles", "TOPOLOGY_MODES"]
 
 TOPOLOGY_MODES = ("preserve", "lambda")
+#: A facet narrower than lambda spans a thin part when its contact points
+#: are at least this many sampling spacings apart ...
+THIN_SPACINGS = 2.5
+#: ... and its Delaunay edge is at least this many times the largest
+#: circumradius of its Voronoi vertices: 2 sin(70 deg), contact points 140
+#: degrees or more apart (a plate: 180; a fin into a right-angled edge: 90).
+THIN_SPAN = 1.88
 
 
 @dataclasses.dataclass(frozen=True)
@@ -110,6 +117,7 @@ def medial_complex(
     centre_inside: np.ndarray,
     lam: float,
     topology: Literal["preserve", "lambda"] = "preserve",
+    spacing: np.ndarray | None = None,
 ) -> MedialComplex:
     """Build the medial complex from inner tetrahedra (see the module docstring).
 
@@ -124,6 +132,16 @@ def medial_complex(
     lam : float
         Smallest contact-set width (Delaunay edge length) of a kept facet.
     topology : {"preserve", "lambda"}
+    spacing : (p,) float64 ndarray, optional
+        Sampling spacing at each sample point. When given, a facet narrower
+        than ``lam`` is kept as well if it spans a thin part: its contact
+        points are at least ``THIN_SPACINGS`` spacings apart and nearly
+        opposite as seen from its Voronoi vertices (Delaunay edge at least
+        ``THIN_SPAN`` times the largest circumradius around it, an angle
+        of about 140 degrees or more). Sheets of plates thinner than
+        ``lam`` keep their balls; the spikes of the sampling noise (adjacent
+        samples) and the fins into convex edges (contacts about 90 degrees
+        apart) do not pass.
 
     Returns
     -------
@@ -141,7 +159,13 @@ def medial_complex(
     keep = _all_in_ring(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, keep)
     length = length[keep]
-    certified = (length >= lam) & _all_in_ring(ring_ptr, ring_tets, centre_inside)
+    wide = length >= lam
+    if spacing is not None:
+        pairs = edge_ij[keep]
+        local = np.maximum(spacing[pairs[:, 0]], spacing[pairs[:, 1]])
+        ball = np.maximum.reduceat(dt.radii[ring_tets], ring_ptr[:-1]) if len(ring_tets) else np.zeros(0)
+        wide |= (length >= THIN_SPACINGS * local) & (length >= THIN_SPAN * ball)
+    certified = wide & _all_in_ring(ring_ptr, ring_tets, centre_inside)
     n_curve = 0
     curve = np.empty((0, 2), np.int64)
     if topology == "preserve":
