@@ -1,6 +1,6 @@
 """Real closed triangle meshes of genus 0 to 8 for benchmarks.
 
-Ten scanned or modelled watertight, consistently oriented 2-manifolds from
+Eleven scanned or modelled watertight, consistently oriented 2-manifolds from
 public GitHub repositories, pinned to a commit and checked by SHA-256. A model
 missing from the cache is downloaded from raw.githubusercontent.com; a model
 already in the cache is used as it is. ``licence`` names the host repository's
@@ -28,6 +28,7 @@ _AVAXMAN = ("avaxman/CEA-EDF-INRIA-summer-school---Directional-Fields", "ce54a4c
 _CFWEN = ("cfwen/geometry-processing-package", "d45cc47b177be7be3c5806cdd03b5566c099a6b0")
 _LIBIGL = ("libigl/libigl-tutorial-data", "c1f9ede366d02e3531ecbaec5e3769312f31cccd")
 _COMMON = ("alecjacobson/common-3d-test-models", "8a4f8642acaf43f9cd7b67858a1502e1055ef202")
+_DIRECTIONAL = ("avaxman/Directional", "d756bc53c15e79790fe020a64350f8dc6cf30e92")
 _NO_LICENCE = "host repo has no licence file"
 
 
@@ -42,6 +43,8 @@ _ROWS = [
     ("genus3", _AVAXMAN, "data/genus3.off", 3, 6652, f"{_NO_LICENCE}; origin unstated"),
     ("fertility", _AVAXMAN, "data/fertility_input.off", 4, 6551, f"{_NO_LICENCE}; AIM@SHAPE Fertility"),
     ("botijo", _AVAXMAN, "data/botijo.off", 5, 41158, f"{_NO_LICENCE}; AIM@SHAPE Botijo"),
+    ("rolling-stage", _DIRECTIONAL, "tutorial/data/rolling_stage.obj", 7, 49988,
+     f"{_NO_LICENCE} (sources MPL-2.0); origin unstated, name of AIM@SHAPE Rolling Stage"),
     ("seahorse", _AVAXMAN, "data/seahorse2_100K.off", 8, 49986, f"{_NO_LICENCE}; origin unstated"),
 ]
 _SHA256 = {
@@ -54,6 +57,7 @@ _SHA256 = {
     "genus3": "ee287997e279ff3bd42c2f20f728b7068fadedf355c46a54c12053c7e91e4c52",
     "fertility": "b6e09afac94229dbfd9266569050f2dbc9e97e6b75a69b00cafa28a4151a4157",
     "botijo": "fc0237c71efd4b8f1dfa82fa1cc30d6dc935c52c225e91bfac5f2e5aace32441",
+    "rolling-stage": "bb8211710b3e54881b47278d0a13982dea23967cd2fe98b2884a0883d43ae84b",
     "seahorse": "f18aa67af05fdaa4698531e5564564ca2c5adffa2e791f04ab591ec70277c4c4",
 }
 MODELS = [
@@ -170,11 +174,11 @@ def main() -> None:
         paths = {m["name"]: _cached(args.cache, m) for m in MODELS if _cached(args.cache, m).exists()}
     else:
         paths = fetch_models(args.cache)
-    print(f"{'name':<11} {'vertices':>8} {'genus':>5} {'watertight':>10}  licence")
+    print(f"{'name':<13} {'vertices':>8} {'genus':>5} {'watertight':>10}  licence")
     for model in MODELS:
         if model["name"] in paths:
             d = describe(paths[model["name"]])
-            row = f"{model['name']:<11} {d['vertices']:>8} {d['genus']:>5g} {d['watertight']!s:>10}"
+            row = f"{model['name']:<13} {d['vertices']:>8} {d['genus']:>5g} {d['watertight']!s:>10}"
             print(f"{row}  {model['licence']}")
 
 

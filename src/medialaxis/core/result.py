@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core import graph as _graph
+from medialaxis.core.homology import betti_numbers
 from medialaxis.errors import InvalidInputError
 
 __all__ = ["MedialAxis", "Branch"]
@@ -189,6 +190,16 @@ class MedialAxis:
     def n_cycles(self) -> int:
         """First Betti number of the edge graph (independent cycles), curves only."""
         return _graph.cycle_rank(len(self.points), self.edges)
+
+    @cached_property
+    def betti(self) -> tuple[int, int, int]:
+        """Betti numbers ``(b0, b1, b2)`` of the whole complex (points, edges and faces), over GF(2).
+
+        For a medial axis with the solid's homotopy type: the solid's
+        components, its genus (summed over components) and 0. See
+        :func:`medialaxis.core.homology.betti_numbers`.
+        """
+        return betti_numbers(len(self.points), self.edges, self.faces)
 
     @cached_property
     def _all_edges(self) -> np.ndarray:

@@ -8,7 +8,10 @@ instead from the dual complex ``D`` of the inner Delaunay tetrahedra
 (vertices: tetrahedra whose circumcentre is inside; edges: triangles shared
 by two of them; facets: Delaunay edges all of whose tetrahedra are inside).
 ``D`` is homotopy equivalent to the union of the inner tetrahedra, which
-approximates the solid. ``D`` is then collapsed: facets narrower than lambda
+approximates the solid, when that union is a 3-manifold: flat tetrahedra on
+the surface, whose centroids fall a hair inside or outside, can pinch it
+along an edge or at a point and add cycles that the solid does not have, so
+the inner set is first made manifold there (:func:`unpinch`). ``D`` is then collapsed: facets narrower than lambda
 are removed, shortest first, only through a free side (an elementary
 collapse), then dangling curve pieces are removed. Every facet of at least
 lambda stays; the facets narrower than lambda that remain are those needed
@@ -22,12 +25,14 @@ import dataclasses
 from typing import Literal
 
 import numpy as np
+from scipy import sparse
+from scipy.sparse.csgraph import connected_components
 
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 
-__all__ = ["MedialComplex", "medial_complex", "fan_triangles", "TOPOLOGY_MODES"]
+__all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "TOPOLOGY_MODES"]
 
 TOPOLOGY_MODES = ("preserve", "lambda")
 #: A facet narrower than lambda spans a thin part when its contact points
@@ -37,6 +42,8 @@ THIN_SPACINGS = 2.5
 #: circumradius of its Voronoi vertices: 2 sin(70 deg), contact points 140
 #: degrees or more apart (a plate: 180; a fin into a right-angled edge: 90).
 THIN_SPAN = 1.88
+#: Rounds of :func:`unpinch` at most.
+UNPINCH_ROUNDS = 5
 
 
 @dataclasses.dataclass(frozen=True)
@@ -94,6 +101,149 @@ def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarr
 def _select(ring_ptr: np.ndarray, ring_tets: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     counts = np.diff(ring_ptr)
     return np.r_[0, np.cumsum(counts[keep])].astype(np.int64), ring_tets[np.repeat(keep, counts)]
+
+
+def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray, inner: np.ndarray) -> np.ndarray:
+    """Inner tetrahedra without pinched edges.
+
+    Around a Delaunay edge on the surface, flat tetrahedra whose centroids
+    lie a hair inside or outside can alternate (inner, outer, inner, ...):
+    the union of the inner ones is pinched along the edge, and its dual
+    complex, which joins tetrahedra only through shared triangles, misses
+    the facet of that edge and gains a cycle that the solid does not have.
+    Each such ring is made one run of inner tetrahedra by counting as inner
+    the outer gaps between its runs, all but the gap of largest volume (the
+    outside); repeated until no ring is pinched (a few rounds at most).
+
+    Parameters
+    ----------
+    dt : Tetrahedralisation
+    ring_ptr, ring_tets : ndarray
+        Rings of all Delaunay edges (:func:`~medialaxis.mesh.voronoi_diagram.edge_rings`).
+    inner : (t,) bool ndarray
+
+    Returns
+    -------
+    (t,) bool ndarray
+        A copy with the gaps filled.
+    """
+    inner = np.array(inner, dtype=bool, copy=True)
+    if len(ring_tets) == 0:
+        return inner
+    p = dt.points[dt.simplices]
+    volume = np.abs(np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0]))) / 6.0
+    size = np.diff(ring_ptr)
+    position = np.arange(len(ring_tets))
+    last = np.repeat(ring_ptr[1:] - 1, size)
+    following = np.where(position == last, np.repeat(ring_ptr[:-1], size), position + 1)
+    for _ in range(UNPINCH_ROUNDS):
+        flag = inner[ring_tets]
+        rises = np.add.reduceat((~flag & flag[following]).astype(np.int64), ring_ptr[:-1])
+        pinched = np.flatnonzero((rises >= 2) & (size > 0))
+        # around a point, the inner tetrahedra must be one group and the
+        # outer ones one group: drop inner strays, fill outer pockets
+        stray = _minor_groups(dt, inner, volume, hull=False)
+        inner[stray] = False
+        pocket = _minor_groups(dt, ~inner, volume, hull=True)
+        inner[pocket] = True
+        if len(pinched) == 0 and len(stray) == 0 and len(pocket) == 0:
+            break
+        for k in pinched:
+            ring = ring_tets[ring_ptr[k] : ring_ptr[k + 1]]
+            if inner[ring].all() or not inner[ring].any():  # changed by an earlier ring of this round
+                continue
+            runs = _gaps(~inner[ring])
+            largest = max(range(len(runs)), key=lambda g: volume[ring[runs[g]]].sum())
+            for g, rows in enumerate(runs):
+                if g != largest:
+                    inner[ring[rows]] = False
+    return inner
+
+
+def _star_groups(dt: Tetrahedralisation, flag: np.ndarray,
+                 hull: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Groups of flagged tetrahedra around each sample point.
+
+    Two flagged tetrahedra around a point are in one group when a chain of
+    flagged tetrahedra, each sharing a triangle through the point with the
+    next, joins them. With ``hull``, the region beyond the convex hull counts
+    as one flagged cell around each hull point (of infinite volume).
+
+    Returns
+    -------
+    tets : (k,) int64 ndarray
+        Each (tetrahedron, corner) of the flagged tetrahedra, by tetrahedron ...
+    point : (k,) int64 ndarray
+        ... and point,
+    group : (k,) int64 ndarray
+        with its group number (shared by all the nodes of one group; groups of
+        different points differ),
+    on_hull : (k,) bool ndarray
+        and whether its group reaches beyond the convex hull.
+    """
+    n_points = len(dt.points)
+    tets = np.flatnonzero(flag)
+    node = np.full((len(dt.simplices), 4), -1, np.int64)
+    node[tets] = np.arange(4 * len(tets)).reshape(-1, 4)
+    m = 4 * len(tets) + (n_points if hull else 0)  # hull nodes: one per point
+    t = np.repeat(tets, 4)
+    k = np.tile(np.arange(4), len(tets))
+    nb = dt.neighbors[t, k]
+    rows, cols = [], []
+    for j in range(1, 4):  # the three corners of the triangle opposite corner k
+        corner = (k + j) % 4
+        point = dt.simplices[t, corner]
+        inside = nb >= 0
+        pair = inside & (nb > t) & flag[np.maximum(nb, 0)]
+        other = np.argmax(dt.simplices[nb[pair]] == point[pair][:, None], axis=1)
+        rows.append(node[t[pair], corner[pair]])
+        cols.append(node[nb[pair], other])
+        if hull:
+            out = ~inside
+            rows.append(node[t[out], corner[out]])
+            cols.append(4 * len(tets) + point[out])
+    rows_all, cols_all = np.concatenate(rows), np.concatenate(cols)
+    graph = sparse.coo_matrix((np.ones(len(rows_all)), (rows_all, cols_all)), shape=(m, m))
+    _, label = connected_components(graph, directed=False)
+    point = dt.simplices[tets].ravel()
+    group = label[: 4 * len(tets)]
+    on_hull = group == label[4 * len(tets) + point] if hull else np.zeros(len(group), bool)
+    return np.repeat(tets, 4), point, group, on_hull
+
+
+def _minor_groups(dt: Tetrahedralisation, flag: np.ndarray, volume: np.ndarray, hull: bool) -> np.ndarray:
+    """Flagged tetrahedra in a group that is not the largest (by volume; a
+    hull group counts as infinite) of some point's star."""
+    tets, point, group, on_hull = _star_groups(dt, flag, hull)
+    if len(tets) == 0:
+        return tets
+    keys, group_of = np.unique(np.c_[point, group], axis=0, return_inverse=True)
+    group_of = group_of.ravel()
+    size = np.bincount(group_of, weights=volume[tets])
+    size[group_of[on_hull]] = np.inf
+    order = np.lexsort((-size, keys[:, 0]))
+    first = np.r_[True, keys[order[1:], 0] != keys[order[:-1], 0]]
+    largest = np.zeros(len(keys), bool)
+    largest[order[first]] = True
+    return np.unique(tets[~largest[group_of]])
+
+
+def _gaps(flag: np.ndarray) -> list[np.ndarray]:
+    """Maximal cyclic runs of False in ``flag`` (which holds some True), as row arrays."""
+    n = len(flag)
+    start = int(np.flatnonzero(flag)[0])
+    order = (start + np.arange(n)) % n  # begin on an inner tetrahedron: no gap wraps
+    gaps, current = [], []
+    for row in order:
+        if flag[row]:
+            if current:
+                gaps.append(np.array(current))
+            current = []
+        else:
+            current.append(row)
+    if current:
+        gaps.append(np.array(current))
+    return gaps
 
 
 def _all_in_ring(ring_ptr: np.ndarray, ring_tets: np.ndarray, flag: np.ndarray) -> np.ndarray:
@@ -155,6 +305,7 @@ def medial_complex(
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, tets, lam)
     else:
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
+        inner = unpinch(dt, ring_ptr, ring_tets, inner)
     member = centre_inside if topology == "lambda" else inner
     keep = _all_in_ring(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, keep)
