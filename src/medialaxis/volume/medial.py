@@ -117,9 +117,8 @@ class PlateThickness:
         (``upper`` may be ``inf``).
     boundary : (b,) float64 ndarray or None
         Local mode: thickness of the plate each boundary sample belongs to
-        (the thinnest plate whose two faces it is one of; samples on no
-        plate face, such as end faces, take their nearest labelled
-        sample's). ``None``: one thickness, ``value``, for the whole part.
+        (see :func:`plate_thickness`). ``None``: one thickness, ``value``,
+        for the whole part.
     ranged : bool
         True when the thickness was not given as one number (the plates
         outside ``[lower, upper]`` are left out); False for a nominal
@@ -216,7 +215,9 @@ def plate_thickness(features: Features, lower: float | None = None, upper: float
     (antipodal nearest boundary points) labels both boundary points with
     their distance, the plate's local thickness; a boundary point keeps the
     smallest label it gets (where a thin rib meets a thick wall, the corner
-    belongs to the rib), then the median of the labels around it.
+    belongs to the rib), then the median of the labels around it, which is
+    snapped to the nearest of the part's nominal thicknesses (the peaks of
+    the histogram of the labels) when within 15% below or 25% above it.
     Boundary points that no such pair reaches (end faces, convex edges)
     take the label of the nearest labelled point.
 

@@ -109,7 +109,10 @@ def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[Pl
     lam_value = None if lam is None else check_number(lam, "lam", positive=True)
     if thickness is None or isinstance(thickness, (tuple, list, np.ndarray)):
         lower, upper = (None, np.inf) if thickness is None else _check_range(thickness)
-        return plate_thickness(features, lower, upper), lam_value
+        plates = plate_thickness(features, lower, upper)
+        if lam_value is None and not plates.local:  # one plate thickness: lam as for a nominal one
+            lam_value = DEFAULT_LAM_RATIO * plates.value
+        return plates, lam_value
     thickness_value = check_number(thickness, "thickness", positive=True)
     if thickness_value > 2.0 * deepest:
         raise InvalidInputError(
