@@ -217,12 +217,14 @@ def _minor_groups(dt: Tetrahedralisation, flag: np.ndarray, volume: np.ndarray, 
     tets, point, group, on_hull = _star_groups(dt, flag, hull)
     if len(tets) == 0:
         return tets
-    keys, group_of = np.unique(np.c_[point, group], axis=0, return_inverse=True)
+    span = int(group.max()) + 1
+    keys, group_of = np.unique(point * span + group, return_inverse=True)
     group_of = group_of.ravel()
+    key_point = keys // span
     size = np.bincount(group_of, weights=volume[tets])
     size[group_of[on_hull]] = np.inf
-    order = np.lexsort((-size, keys[:, 0]))
-    first = np.r_[True, keys[order[1:], 0] != keys[order[:-1], 0]]
+    order = np.lexsort((-size, key_point))
+    first = np.r_[True, key_point[order[1:]] != key_point[order[:-1]]]
     largest = np.zeros(len(keys), bool)
     largest[order[first]] = True
     return np.unique(tets[~largest[group_of]])
