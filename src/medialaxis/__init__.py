@@ -7,7 +7,9 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+# typing.TYPE_CHECKING without importing typing: the console script's
+# start-up, before its Ctrl-C handler, stays as short as it can be
+TYPE_CHECKING = False
 
 from medialaxis._version import __version__
 from medialaxis.errors import (

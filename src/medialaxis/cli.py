@@ -265,6 +265,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         logging.disable(previous)
 
 
+def _was_interrupted() -> bool:
+    """Whether the console script's Ctrl-C handler has fired (not imported here:
+    the library's callers keep Python's handler)."""
+    return bool(getattr(sys.modules.get("medialaxis._entry"), "interrupted", False))
+
+
 def _warning_line(message: Warning | str, *args: Any, **kwargs: Any) -> None:
     print(f"medialaxis: warning: {message}", file=sys.stderr)
 
@@ -293,6 +299,9 @@ def _main(argv: Sequence[str] | None, debug: bool) -> int:
     except MedialAxisError as exc:
         if debug:
             raise
+        if _was_interrupted():  # a Ctrl-C turned into this error (an import it broke)
+            print("medialaxis: interrupted", file=sys.stderr)
+            return EXIT_INTERRUPTED
         _fail(str(exc))
         return 1
     except MemoryError:
