@@ -28,7 +28,7 @@ from scipy.spatial import cKDTree
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from real_models import MODELS, default_cache, fetch_models  # noqa: E402
+from real_models import MODELS, default_cache, fetch_models
 
 
 def interior_grid(vertices: np.ndarray, faces: np.ndarray, n: int) -> np.ndarray:
@@ -43,7 +43,7 @@ def interior_grid(vertices: np.ndarray, faces: np.ndarray, n: int) -> np.ndarray
     volume_box = float(np.prod(hi - lo))
     h = (volume_box / (2.0 * n)) ** (1.0 / 3.0)  # the solid fills about half of its box
     shift = h * np.array([0.318309886, 0.271828183])
-    nx, ny = (np.ceil((hi[:2] - lo[:2]) / h).astype(int) + 1)
+    ny = int(np.ceil((hi[1] - lo[1]) / h)) + 1  # columns are numbered i * ny + j
     tri = vertices[faces]
     # grid cells covered by each triangle's bounding box in xy
     i0 = np.ceil((tri[:, :, 0].min(axis=1) - lo[0] - shift[0]) / h).astype(np.int64)
