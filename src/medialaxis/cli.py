@@ -100,7 +100,7 @@ def _add_compute(sub: Any) -> None:
     p.add_argument("input", type=Path,
                    help="image, SVG/GeoJSON/WKT, mesh or volume file (or folder), or a saved result (.json/.npz)")
     p.add_argument("-o", "--output", type=Path, action="append", default=[],
-                   help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj .vtk); repeatable")
+                   help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj .vtk .vtu .swc); repeatable")
     p.add_argument("--method", default=None, metavar="METHOD",
                    help="method within the input's domain: " + "; ".join(
                        f"{domain} {', '.join(methods)} (default {DEFAULT_METHOD[domain]})" for domain, methods in METHODS.items()))

@@ -3,9 +3,11 @@
 Lossless: ``.json`` and ``.npz`` (read back by :func:`load`, including the
 unpruned axis so :meth:`MedialAxis.prune` still works). Exports: ``.graphml``,
 ``.geojson``, ``.svg`` (axis over the shape), ``.png`` (plot coloured by
-radius), ``.ply`` (vertices with radius, edges, faces), ``.obj``, ``.vtk``
-(legacy polydata with radius, thickness and per-vertex extras as point data)
-and ``.html`` (interactive 3D view, :mod:`medialaxis.core.html`).
+radius), ``.graphml`` (nodes with position and radius, edges with length and
+radius), ``.obj`` (``v``, ``l``, ``f``), ``.ply``, ``.vtk``, ``.vtu`` and
+``.swc`` (:mod:`medialaxis.core.mesh_files`: files that meshio, trimesh,
+pyvista and neuron tools open) and ``.html`` (interactive 3D view,
+:mod:`medialaxis.core.html`).
 Every file is written to a temporary name in the target folder, then renamed,
 so a failure never leaves a half-written file.
 """
@@ -25,6 +27,7 @@ from typing import IO, Any
 
 import numpy as np
 
+from medialaxis.core import mesh_files
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
 
@@ -373,8 +376,10 @@ def _write_graphml(ma: MedialAxis, path: Path) -> None:
     names = "xyz"
     for i, (p, r) in enumerate(zip(ma.points.tolist(), ma.radii.tolist())):
         g.add_node(i, radius=float(r), **{names[k]: float(c) for k, c in enumerate(p)})
+    radii = np.asarray(ma.radii, np.float64)
     for a, b in ma._all_edges.tolist():
-        g.add_edge(int(a), int(b))
+        length = float(np.linalg.norm(ma.points[a] - ma.points[b]))
+        g.add_edge(int(a), int(b), length=length, radius=0.5 * float(radii[a] + radii[b]))
     with atomic_write(path, "wb") as fh:
         nx.write_graphml(g, fh)
 
@@ -467,34 +472,14 @@ def _write_png(ma: MedialAxis, path: Path) -> None:
         plt.close(fig)
 
 
-def _write_ply(ma: MedialAxis, path: Path) -> None:
-    n, d = ma.points.shape
-    pts = ma.points if d == 3 else np.c_[ma.points, np.zeros(n)]
-    header = [
-        "ply",
-        "format binary_little_endian 1.0",
-        "comment medialaxis result",
-        f"element vertex {n}",
-        "property double x",
-        "property double y",
-        "property double z",
-        "property double radius",
-        f"element edge {len(ma.edges)}",
-        "property int vertex1",
-        "property int vertex2",
-        f"element face {len(ma.faces)}",
-        "property list uchar int vertex_indices",
-        "end_header",
-    ]
-    vert = np.empty(n, dtype=[("x", "<f8"), ("y", "<f8"), ("z", "<f8"), ("r", "<f8")])
-    vert["x"], vert["y"], vert["z"], vert["r"] = pts[:, 0], pts[:, 1], pts[:, 2], ma.radii
-    face = np.empty(len(ma.faces), dtype=[("k", "u1"), ("v", "<i4", (3,))])
-    face["k"], face["v"] = 3, ma.faces
-    with atomic_write(path, "wb") as fh:
-        fh.write(("\n".join(header) + "\n").encode("ascii"))
-        fh.write(vert.tobytes())
-        fh.write(ma.edges.astype("<i4").tobytes())
-        fh.write(face.tobytes())
+def _through(write: Callable[[MedialAxis, Any], None], mode: str) -> Callable[[MedialAxis, Path], None]:
+    """A writer of :mod:`medialaxis.core.mesh_files`, through an atomic file."""
+
+    def run(ma: MedialAxis, path: Path) -> None:
+        with atomic_write(path, mode) as fh:
+            write(ma, fh)
+
+    return run
 
 
 def _write_obj(ma: MedialAxis, path: Path) -> None:
@@ -507,32 +492,6 @@ def _write_obj(ma: MedialAxis, path: Path) -> None:
             np.savetxt(fh, ma.edges + 1, fmt="l %d %d")
         if len(ma.faces):
             np.savetxt(fh, ma.faces + 1, fmt="f %d %d %d")
-
-
-def _write_vtk(ma: MedialAxis, path: Path) -> None:
-    """Legacy VTK polydata: triangles (or lines), with ``radius``, ``thickness``
-    (twice the radius) and every per-vertex extra as point data."""
-    n, d = ma.points.shape
-    pts = ma.points if d == 3 else np.c_[ma.points, np.zeros(n)]
-    with atomic_write(path, "w") as fh:
-        fh.write("# vtk DataFile Version 3.0\nmedialaxis result\nASCII\nDATASET POLYDATA\n")
-        fh.write(f"POINTS {n} double\n")
-        np.savetxt(fh, pts, fmt="%.10g")
-        if len(ma.faces):
-            fh.write(f"POLYGONS {len(ma.faces)} {4 * len(ma.faces)}\n")
-            np.savetxt(fh, np.c_[np.full(len(ma.faces), 3), ma.faces], fmt="%d")
-        elif len(ma.edges):
-            fh.write(f"LINES {len(ma.edges)} {3 * len(ma.edges)}\n")
-            np.savetxt(fh, np.c_[np.full(len(ma.edges), 2), ma.edges], fmt="%d")
-        else:
-            fh.write(f"VERTICES {n} {2 * n}\n")
-            np.savetxt(fh, np.c_[np.ones(n, int), np.arange(n)], fmt="%d")
-        fields = {"radius": ma.radii, "thickness": 2.0 * ma.radii}
-        fields.update({k: v for k, v in ma.extras.items() if v.shape == (n,) and k not in fields})
-        fh.write(f"POINT_DATA {n}\n")
-        for name, values in fields.items():
-            fh.write(f"SCALARS {name} double 1\nLOOKUP_TABLE default\n")
-            np.savetxt(fh, np.asarray(values, np.float64), fmt="%.10g")
 
 
 def _write_html(ma: MedialAxis, path: Path) -> None:
@@ -548,9 +507,11 @@ WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
     ".geojson": _write_geojson,
     ".svg": _write_svg,
     ".png": _write_png,
-    ".ply": _write_ply,
+    ".ply": _through(mesh_files.write_ply, "wb"),
     ".obj": _write_obj,
-    ".vtk": _write_vtk,
+    ".vtk": _through(mesh_files.write_vtk, "w"),
+    ".vtu": _through(mesh_files.write_vtu, "w"),
+    ".swc": _through(mesh_files.write_swc, "w"),
     ".html": _write_html,
 }
 LOSSLESS = (".json", ".npz")

@@ -1,0 +1,180 @@
+"""Mesh and curve files that other tools open: PLY, legacy VTK, VTU, SWC.
+
+Each file holds the result's points with ``radius`` (and every per-point
+extra) as point data, its triangles, and its curve edges (edges on no
+triangle) as line cells where the format has them:
+
+========  ==========================================  =====================================
+format    cells                                       read by (tested)
+========  ==========================================  =====================================
+``.ply``  triangles; a curve result's edges as        meshio, trimesh, pyvista (triangles);
+          two-point faces (meshio's convention)       meshio (lines)
+``.vtk``  legacy ``UNSTRUCTURED_GRID``: triangles     meshio, pyvista, trimesh (triangles)
+          and lines
+``.vtu``  XML ``UnstructuredGrid``: the same          meshio, pyvista, trimesh (triangles)
+``.swc``  curve results: one tree per component       any SWC reader (neuron morphology);
+          (edges closing cycles as comment lines)     parsed back in the tests
+========  ==========================================  =====================================
+
+2D results are written with ``z = 0``.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from scipy import sparse
+from scipy.sparse import csgraph
+
+from medialaxis.errors import UnsupportedFormatError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from medialaxis.core.result import MedialAxis
+
+__all__ = ["curve_edges", "point_fields", "write_ply", "write_swc", "write_vtk", "write_vtu"]
+
+#: VTK cell types.
+VTK_VERTEX, VTK_LINE, VTK_TRIANGLE = 1, 3, 5
+
+
+def _xyz(ma: MedialAxis) -> np.ndarray:
+    n, d = ma.points.shape
+    return np.asarray(ma.points, np.float64) if d == 3 else np.c_[ma.points, np.zeros(n)]
+
+
+def curve_edges(ma: MedialAxis) -> np.ndarray:
+    """(c, 2) edges of ``ma`` that are not an edge of any of its faces."""
+    edges = np.sort(np.asarray(ma.edges, np.int64).reshape(-1, 2), axis=1)
+    if len(ma.faces) == 0 or len(edges) == 0:
+        return edges
+    f = np.asarray(ma.faces, np.int64)
+    n = len(ma.points)
+    on_face = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+    return edges[~np.isin(edges[:, 0] * n + edges[:, 1], on_face[:, 0] * n + on_face[:, 1])]
+
+
+def point_fields(ma: MedialAxis) -> dict[str, np.ndarray]:
+    """Per-point scalars to write: ``radius``, ``thickness`` (twice it) and every per-point extra."""
+    n = len(ma.points)
+    fields = {"radius": np.asarray(ma.radii, np.float64), "thickness": 2.0 * np.asarray(ma.radii, np.float64)}
+    for key, value in ma.extras.items():
+        value = np.asarray(value)
+        if value.shape == (n,) and key not in fields and np.issubdtype(value.dtype, np.number):
+            fields[key] = value.astype(np.float64)
+    return fields
+
+
+def _cells(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray]:
+    """Connectivity rows and VTK types: triangles, then curve lines; lone points when neither."""
+    tri = np.asarray(ma.faces, np.int64).reshape(-1, 3)
+    lines = curve_edges(ma)
+    if len(tri) == 0 and len(lines) == 0:
+        lone = np.arange(len(ma.points), dtype=np.int64)[:, None]
+        return [lone], np.full(len(lone), VTK_VERTEX)  # type: ignore[return-value]
+    types = np.r_[np.full(len(tri), VTK_TRIANGLE), np.full(len(lines), VTK_LINE)]
+    return [tri, lines], types  # type: ignore[return-value]
+
+
+def write_ply(ma: MedialAxis, fh: object) -> None:
+    """Binary PLY: ``vertex`` (x, y, z and the point fields), ``face`` (triangles,
+    or a curve result's edges as two-point faces)."""
+    fields = point_fields(ma)
+    xyz = _xyz(ma)
+    faces = np.asarray(ma.faces, np.int64).reshape(-1, 3)
+    polys = faces if len(faces) else curve_edges(ma)
+    if len(polys) == 0:  # points only
+        polys = faces
+    k = polys.shape[1]
+    header = ["ply", "format binary_little_endian 1.0", "comment medialaxis result", f"element vertex {len(xyz)}",
+              "property double x", "property double y", "property double z"]
+    header += [f"property double {name}" for name in fields]
+    header += [f"element face {len(polys)}", "property list uchar int vertex_indices", "end_header"]
+    vert = np.empty(len(xyz), dtype=[(name, "<f8") for name in ("x", "y", "z", *fields)])
+    for j, axis in enumerate("xyz"):
+        vert[axis] = xyz[:, j]
+    for name, values in fields.items():
+        vert[name] = values
+    face = np.empty(len(polys), dtype=[("k", "u1"), ("v", "<i4", (k,))])
+    face["k"], face["v"] = k, polys
+    fh.write(("\n".join(header) + "\n").encode("ascii"))  # type: ignore[attr-defined]
+    fh.write(vert.tobytes())  # type: ignore[attr-defined]
+    fh.write(face.tobytes())  # type: ignore[attr-defined]
+
+
+def write_vtk(ma: MedialAxis, fh: object) -> None:
+    """Legacy ASCII VTK ``UNSTRUCTURED_GRID`` (read by meshio, pyvista, ParaView)."""
+    xyz = _xyz(ma)
+    blocks, types = _cells(ma)
+    size = sum(len(b) * (b.shape[1] + 1) for b in blocks)
+    fh.write(f"# vtk DataFile Version 3.0\nmedialaxis result\nASCII\nDATASET UNSTRUCTURED_GRID\n"  # type: ignore[attr-defined]
+             f"POINTS {len(xyz)} double\n")
+    np.savetxt(fh, xyz, fmt="%.10g")
+    fh.write(f"CELLS {len(types)} {size}\n")  # type: ignore[attr-defined]
+    for block in blocks:
+        if len(block):
+            np.savetxt(fh, np.c_[np.full(len(block), block.shape[1]), block], fmt="%d")
+    fh.write(f"CELL_TYPES {len(types)}\n")  # type: ignore[attr-defined]
+    np.savetxt(fh, types, fmt="%d")
+    fh.write(f"POINT_DATA {len(xyz)}\n")  # type: ignore[attr-defined]
+    for name, values in point_fields(ma).items():
+        fh.write(f"SCALARS {name} double 1\nLOOKUP_TABLE default\n")  # type: ignore[attr-defined]
+        np.savetxt(fh, values, fmt="%.10g")
+
+
+def write_vtu(ma: MedialAxis, fh: object) -> None:
+    """XML VTK ``UnstructuredGrid`` (ASCII data arrays)."""
+    xyz = _xyz(ma)
+    blocks, types = _cells(ma)
+    connectivity = np.concatenate([b.ravel() for b in blocks]) if blocks else np.empty(0, np.int64)
+    offsets = np.cumsum(np.concatenate([np.full(len(b), b.shape[1]) for b in blocks]))
+
+    def array(name: str, values: np.ndarray, kind: str, components: int = 1) -> str:
+        text = " ".join(np.char.mod("%.10g" if kind == "Float64" else "%d", np.asarray(values).ravel()))
+        return (f'<DataArray type="{kind}" Name="{name}" NumberOfComponents="{components}" format="ascii">'
+                f"{text}</DataArray>\n")
+
+    fh.write('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">\n'  # type: ignore[attr-defined]
+             f'<UnstructuredGrid>\n<Piece NumberOfPoints="{len(xyz)}" NumberOfCells="{len(types)}">\n<PointData>\n')
+    for name, values in point_fields(ma).items():
+        fh.write(array(name, values, "Float64"))  # type: ignore[attr-defined]
+    fh.write("</PointData>\n<Points>\n" + array("Points", xyz, "Float64", 3) + "</Points>\n<Cells>\n")  # type: ignore[attr-defined]
+    fh.write(array("connectivity", connectivity, "Int64") + array("offsets", offsets, "Int64")  # type: ignore[attr-defined]
+             + array("types", types, "UInt8"))
+    fh.write("</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")  # type: ignore[attr-defined]
+
+
+def write_swc(ma: MedialAxis, fh: object) -> None:
+    """SWC (id, type, x, y, z, radius, parent) of a curve result: each component
+    is a tree rooted at its widest point, parents found breadth first; edges
+    that close a cycle are listed as ``# cycle a b`` comment lines."""
+    if len(ma.faces):
+        raise UnsupportedFormatError(f"SWC holds curve skeletons; this result has {len(ma.faces)} faces "
+                                     "(write .ply, .vtk or .vtu)")
+    n = len(ma.points)
+    xyz = _xyz(ma)
+    edges = np.asarray(ma.edges, np.int64).reshape(-1, 2)
+    edges = np.unique(np.sort(edges[edges[:, 0] != edges[:, 1]], axis=1), axis=0)
+    graph = sparse.coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
+    _, component = csgraph.connected_components(graph, directed=False)
+    radii = np.asarray(ma.radii, np.float64)
+    parent = np.full(n, -1, np.int64)
+    order: list[np.ndarray] = []
+    for c in np.unique(component):
+        members = np.flatnonzero(component == c)
+        root = int(members[np.argmax(radii[members])])
+        visit, pred = csgraph.breadth_first_order(graph, root, directed=False, return_predecessors=True)
+        order.append(visit)
+        parent[visit[1:]] = pred[visit[1:]]
+    sequence = np.concatenate(order) if order else np.empty(0, np.int64)
+    new_id = np.empty(n, np.int64)
+    new_id[sequence] = np.arange(1, n + 1)
+    tree = {(int(min(a, b)), int(max(a, b))) for a, b in zip(range(n), parent) if b >= 0}
+    fh.write(f"# medialaxis curve skeleton: {n} points, {len(edges)} edges\n"  # type: ignore[attr-defined]
+             "# id type x y z radius parent\n")
+    for a, b in edges.tolist():
+        if (a, b) not in tree:
+            fh.write(f"# cycle {new_id[a]} {new_id[b]}\n")  # type: ignore[attr-defined]
+    rows = np.c_[new_id[sequence], np.zeros(n, np.int64)[: len(sequence)], xyz[sequence], radii[sequence],
+                 np.where(parent[sequence] >= 0, new_id[np.maximum(parent[sequence], 0)], -1)]
+    np.savetxt(fh, rows, fmt=["%d", "%d", "%.10g", "%.10g", "%.10g", "%.10g", "%d"])
