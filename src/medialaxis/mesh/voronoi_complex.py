@@ -104,16 +104,19 @@ def _select(ring_ptr: np.ndarray, ring_tets: np.ndarray, keep: np.ndarray) -> tu
 
 
 def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray, inner: np.ndarray) -> np.ndarray:
-    """Inner tetrahedra without pinched edges.
+    """Inner tetrahedra whose union is a 3-manifold (no pinched edge or point).
 
-    Around a Delaunay edge on the surface, flat tetrahedra whose centroids
-    lie a hair inside or outside can alternate (inner, outer, inner, ...):
-    the union of the inner ones is pinched along the edge, and its dual
-    complex, which joins tetrahedra only through shared triangles, misses
-    the facet of that edge and gains a cycle that the solid does not have.
-    Each such ring is made one run of inner tetrahedra by counting as inner
-    the outer gaps between its runs, all but the gap of largest volume (the
-    outside); repeated until no ring is pinched (a few rounds at most).
+    Around a Delaunay edge or a sample point on the surface, flat
+    tetrahedra whose centroids lie a hair inside or outside can alternate:
+    the union of the inner ones is pinched there, and its dual complex,
+    which joins tetrahedra only through shared triangles, gains cycles that
+    the solid does not have. In each round: around every point, inner
+    tetrahedra outside the point's largest inner group (by volume) become
+    outer, and outer tetrahedra outside its largest outer group (the one
+    reaching beyond the convex hull) become inner; around every edge whose
+    ring holds two or more runs of inner tetrahedra, all but the run of
+    largest volume become outer. Rounds repeat until nothing changes
+    (``UNPINCH_ROUNDS`` at most).
 
     Parameters
     ----------
@@ -125,7 +128,7 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
     Returns
     -------
     (t,) bool ndarray
-        A copy with the gaps filled.
+        A corrected copy.
     """
     inner = np.array(inner, dtype=bool, copy=True)
     if len(ring_tets) == 0:
