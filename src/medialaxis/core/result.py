@@ -12,6 +12,7 @@ import numpy as np
 
 from medialaxis.core import graph as _graph
 from medialaxis.core.homology import betti_numbers
+from medialaxis.core.summary import branch_table
 from medialaxis.errors import InvalidInputError
 
 __all__ = ["MedialAxis", "Branch"]
@@ -219,6 +220,12 @@ class MedialAxis:
         """
         chains = _graph.branches(len(self.points), self.edges)
         return [Branch(c, self.points[c], self.radii[c]) for c in chains]
+
+    def summary(self) -> Any:
+        """One row per branch: ends, kind, length, Euclidean distance, radius
+        min/mean/max (a pandas DataFrame; see
+        :func:`medialaxis.core.summary.branch_table`)."""
+        return branch_table(self)
 
     def to_networkx(self) -> Any:
         """The axis as a :class:`networkx.Graph`.
