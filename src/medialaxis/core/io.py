@@ -384,13 +384,27 @@ def _write_graphml(ma: MedialAxis, path: Path) -> None:
         nx.write_graphml(g, fh)
 
 
+def _from_image(ma: MedialAxis) -> bool:
+    """A 2D result in image index order (row, column)."""
+    return ma.dim == 2 and "image_shape" in ma.metadata
+
+
 def _write_geojson(ma: MedialAxis, path: Path) -> None:
+    """Branches as LineStrings, junctions and endpoints as Points. An image's
+    axis is written with x = column and y = row (pixels times spacing, y
+    downwards as in the image), as GIS tools place a raster's pixels; the
+    document's ``properties["coordinates"]`` says which."""
+    swap = _from_image(ma)
+
+    def xy(points: np.ndarray) -> list[Any]:
+        return (points[..., ::-1] if swap else points).tolist()
+
     feats = []
     for br in ma.branches():
         feats.append(
             {
                 "type": "Feature",
-                "geometry": {"type": "LineString", "coordinates": br.points.tolist()},
+                "geometry": {"type": "LineString", "coordinates": xy(br.points)},
                 "properties": {"kind": "branch", "radii": br.radii.tolist(), "length": br.length},
             }
         )
@@ -400,11 +414,14 @@ def _write_geojson(ma: MedialAxis, path: Path) -> None:
             feats.append(
                 {
                     "type": "Feature",
-                    "geometry": {"type": "Point", "coordinates": ma.points[i].tolist()},
+                    "geometry": {"type": "Point", "coordinates": xy(ma.points[i])},
                     "properties": {"kind": kind, "radius": float(ma.radii[i]), "index": i},
                 }
             )
-    doc = {"type": "FeatureCollection", "features": feats, "properties": _jsonable(dict(ma.metadata))}
+    properties = _jsonable(dict(ma.metadata))
+    properties["coordinates"] = ("x = column, y = row (image pixels times spacing, y down)" if swap
+                                 else "the result's own coordinates")
+    doc = {"type": "FeatureCollection", "features": feats, "properties": properties}
     with atomic_write(path, "w") as fh:
         json.dump(doc, fh)
 
