@@ -93,14 +93,21 @@ def _summary(ma: Any) -> str:
 def _add_compute(sub: Any) -> None:
     p = sub.add_parser(
         "compute",
-        help="medial axis of one shape",
-        description="Compute the medial axis of an image, polygon file, mesh or volume.",
+        help="medial axis of shapes",
+        description="Compute the medial axis of images, polygon files, meshes or volumes. Several inputs (files, "
+                    "glob patterns, folders) write their outputs to --out-dir, one per --format, named after each "
+                    "input; a folder of TIFF or DICOM slices is one volume, any other folder stands for its shape "
+                    "files. A failing input is reported and the others are still done (exit 1 at the end).",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter,
     )
-    p.add_argument("input", type=Path,
-                   help="image, SVG/GeoJSON/WKT, mesh or volume file (or folder), or a saved result (.json/.npz)")
+    p.add_argument("input", type=Path, nargs="+",
+                   help="image, SVG/GeoJSON/WKT, mesh or volume file, folder or glob pattern, or a saved result "
+                        "(.json/.npz)")
     p.add_argument("-o", "--output", type=Path, action="append", default=[],
-                   help="output file; the extension picks the format (.json .npz .svg .png .graphml .geojson .ply .obj .vtk .vtu .swc); repeatable")
+                   help="output file of a single input; the extension picks the format (.json .npz .svg .png "
+                        ".graphml .geojson .ply .obj .vtk .vtu .swc); repeatable")
+    p.add_argument("--out-dir", type=Path, default=None, help="folder for the outputs of each input (created if needed)")
+    p.add_argument("--format", default="json", help="output formats with --out-dir, comma-separated (e.g. json,svg)")
     p.add_argument("--method", default=None, metavar="METHOD",
                    help="method within the input's domain: " + "; ".join(
                        f"{domain} {', '.join(methods)} (default {DEFAULT_METHOD[domain]})" for domain, methods in METHODS.items()))
@@ -125,9 +132,70 @@ def _add_compute(sub: Any) -> None:
     p.set_defaults(run=_run_compute)
 
 
+def _options(args: argparse.Namespace) -> tuple[dict[str, Any], Any]:
+    """Method options and spacing from the command line."""
+    options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
+    for name in ("tolerance", "detour", "boundary", "foreground"):
+        value = getattr(args, name)
+        if value is not None:
+            options[name] = value
+    spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
+    return options, spacing
+
+
+def _run_batch(args: argparse.Namespace, inputs: list[Path]) -> int:
+    """Each input computed and written on its own; failures reported per input."""
+    import medialaxis as mx
+    from medialaxis._progress import progress
+    from medialaxis.cli_batch import output_names
+    from medialaxis.core.io import WRITERS, output_batch
+
+    if args.output:
+        raise UsageError("-o names the output of one input; for several inputs use --out-dir DIR --format json,...")
+    if args.steps is not None or args.frames is not None:
+        raise UsageError("--steps and --frames take a single input")
+    if args.out_dir is None:
+        raise UsageError(f"{len(inputs)} inputs: give --out-dir DIR (and --format) for their outputs")
+    formats = ["." + f.strip().lower().lstrip(".") for f in args.format.split(",") if f.strip()]
+    unknown = [f for f in formats if f not in WRITERS]
+    if unknown or not formats:
+        raise UsageError(f"--format: unknown format(s) {', '.join(unknown) or '(none)'}; use some of "
+                         f"{', '.join(w.lstrip('.') for w in WRITERS)}")
+    if args.out_dir.exists() and not args.out_dir.is_dir():
+        raise UsageError(f"--out-dir needs a folder, {str(args.out_dir)!r} is a file")
+    plan = output_names(inputs, args.out_dir, formats)
+    args.out_dir.mkdir(parents=True, exist_ok=True)
+    _check_outputs(inputs, [out for outs in plan.values() for out in outs])
+    options, spacing = _options(args)
+    failed = 0
+    for path in progress(inputs, desc="inputs"):
+        try:
+            ma = mx.medial_axis(str(path), method=args.method, lam=args.lam, threshold=args.threshold,
+                                spacing=spacing, **options)
+            with output_batch():  # this input's outputs all appear, or none
+                for out in plan[path]:
+                    ma.save(out)
+        except MedialAxisError as exc:
+            failed += 1
+            _fail(f"{path}: {exc}")
+            continue
+        print(f"{path}: {_summary(ma)}")
+        for out in plan[path]:
+            print(f"wrote {out}")
+    if failed:
+        _fail(f"{failed} of {len(inputs)} inputs failed")
+        return 1
+    return 0
+
+
 def _run_compute(args: argparse.Namespace) -> int:
     import medialaxis as mx
+    from medialaxis.cli_batch import expand_inputs
 
+    inputs = expand_inputs(args.input)
+    if len(inputs) > 1 or args.out_dir is not None:
+        return _run_batch(args, inputs)
+    args.input = inputs[0]
     outputs = list(args.output) + ([args.steps] if args.steps else [])
     _check_outputs([args.input], list(args.output))
     domain = mx._dispatch.classify(str(args.input), args.method)
@@ -152,12 +220,7 @@ def _run_compute(args: argparse.Namespace) -> int:
             _check_outputs([args.input], [args.steps], formats=(".png", ".svg", ".pdf"), option="--steps")
         else:
             _check_outputs([args.input], [args.steps], option="--steps")
-    options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
-    for name in ("tolerance", "detour", "boundary", "foreground"):
-        value = getattr(args, name)
-        if value is not None:
-            options[name] = value
-    spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
+    options, spacing = _options(args)
     from medialaxis.core.io import output_batch
 
     # Every output appears at the end, or none does (a failure or Ctrl-C leaves nothing).

@@ -1,0 +1,84 @@
+"""``medialaxis compute`` over many inputs: files, globs and folders, one output per input and format."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from medialaxis.cli import main
+
+
+def _png(path, rows=(10, 30), cols=(10, 50)):
+    image = np.zeros((40, 60), np.uint8)
+    image[rows[0]:rows[1], cols[0]:cols[1]] = 255
+    Image.fromarray(image).save(path)
+    return path
+
+
+@pytest.fixture()
+def folder(tmp_path):
+    shapes = tmp_path / "shapes"
+    shapes.mkdir()
+    _png(shapes / "a.png")
+    _png(shapes / "b.png", rows=(5, 35))
+    (shapes / "broken.png").write_bytes(b"\x89PNG\r\n\x1a\n not an image")
+    (shapes / "notes.txt").write_text("not a shape")
+    return shapes
+
+
+def test_a_folder_writes_one_output_per_input_and_format_and_reports_failures(folder, tmp_path, capsys):
+    out = tmp_path / "out"
+    code = main(["compute", str(folder), "--out-dir", str(out), "--format", "json,svg"])
+    captured = capsys.readouterr()
+    assert code == 1  # one input failed, at the end
+    assert sorted(os.listdir(out)) == ["a.json", "a.svg", "b.json", "b.svg"]
+    errors = [line for line in captured.err.splitlines() if line]
+    assert len(errors) == 2 and "broken.png" in errors[0] and errors[1].endswith("1 of 3 inputs failed")
+    assert "notes.txt" not in captured.out + captured.err
+    assert json.loads((out / "a.json").read_text())["metadata"]["method"]
+
+
+def test_a_quoted_glob_and_several_files(folder, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["compute", str(folder / "[ab].png"), "--out-dir", str(out)]) == 0
+    assert sorted(os.listdir(out)) == ["a.json", "b.json"]
+    other = tmp_path / "other"
+    other.mkdir()
+    _png(other / "a.png", cols=(5, 55))
+    out2 = tmp_path / "out2"
+    assert main(["compute", str(folder / "a.png"), str(other / "a.png"), str(folder / "b.png"),
+                 "--out-dir", str(out2), "--format", "geojson"]) == 0
+    assert sorted(os.listdir(out2)) == ["a_1.geojson", "a_2.geojson", "b.geojson"]
+
+
+def test_usage_errors_exit_2_before_any_work(folder, tmp_path, capsys):
+    out = tmp_path / "out"
+    a, b = str(folder / "a.png"), str(folder / "b.png")
+    assert main(["compute", a, b, "-o", str(tmp_path / "x.json")]) == 2
+    assert main(["compute", a, b]) == 2  # no --out-dir
+    assert main(["compute", a, b, "--out-dir", str(out), "--format", "json,xyz"]) == 2
+    assert main(["compute", a, b, "--out-dir", str(out), "--steps", str(tmp_path / "s.png")]) == 2
+    assert not out.exists() or not os.listdir(out)
+    lines = [line for line in capsys.readouterr().err.splitlines() if line]
+    assert len(lines) == 4 and all(line.startswith("medialaxis: error:") for line in lines)
+
+
+def test_one_input_with_o_still_works(folder, tmp_path):
+    target = tmp_path / "one.json"
+    assert main(["compute", str(folder / "a.png"), "-o", str(target)]) == 0
+    assert target.is_file()
+
+
+def test_a_folder_of_tiff_slices_is_one_volume(tmp_path, capsys):
+    tifffile = pytest.importorskip("tifffile")
+    stack = tmp_path / "stack"
+    stack.mkdir()
+    volume = np.zeros((20, 30, 30), np.uint8)
+    volume[7:13, 4:26, 4:26] = 255
+    for k, page in enumerate(volume):
+        tifffile.imwrite(stack / f"slice_{k:03d}.tif", page)
+    out = tmp_path / "out"
+    assert main(["compute", str(stack), "--method", "voxels", "--out-dir", str(out)]) == 0
+    assert os.listdir(out) == ["stack.json"]
