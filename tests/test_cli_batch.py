@@ -82,3 +82,32 @@ def test_a_folder_of_tiff_slices_is_one_volume(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["compute", str(stack), "--method", "voxels", "--out-dir", str(out)]) == 0
     assert os.listdir(out) == ["stack.json"]
+
+
+def test_first_class_options_reach_the_methods(tmp_path, capsys):
+    from medialaxis.volume.phantoms import t_phantom
+
+    ph = t_phantom((40, 60, 60), thickness=6, margin=6)
+    raw = tmp_path / "part.raw"
+    (ph.volume > 0.5).astype(np.uint16).tofile(raw)
+    out = tmp_path / "mid.json"
+    assert main(["compute", str(raw), "--raw-shape", "40", "60", "60", "--raw-dtype", "uint16", "--threshold", "0.5",
+                 "--thickness", "2", "20", "-o", str(out)]) == 0
+    assert json.loads(out.read_text())["metadata"]["thickness_range"] == [2.0, 20.0]
+    assert main(["compute", str(raw), "--raw-shape", "40", "60", "60", "--raw-dtype", "uint16",
+                 "--thickness", "1", "2", "3"]) == 2
+    box = tmp_path / "box.off"
+    import trimesh
+
+    trimesh.creation.box().export(box)
+    simple = tmp_path / "box.json"
+    assert main(["compute", str(box), "--simplify", "20", "-o", str(simple)]) == 0
+    assert len(json.loads(simple.read_text())["points"]) <= 20
+    from medialaxis.cli import _options, build_parser
+
+    args = build_parser().parse_args(["compute", str(box), "--repair", "--thickness", "6"])
+    assert _options(args)[0] == {"repair": True, "thickness": 6.0}
+    capsys.readouterr()
+    assert main(["compute", "--help"]) == 0
+    help_text = capsys.readouterr().out
+    assert "(default: None)" not in help_text and "--raw-shape Z Y X" in help_text

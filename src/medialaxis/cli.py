@@ -30,6 +30,16 @@ class UsageError(Exception):
     """A command-line usage problem (exit code 2)."""
 
 
+class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Shows a default once: not for options without one (None, [], False) nor where the help says it."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        if action.default in (None, [], False, argparse.SUPPRESS) or "default" in text:
+            return text
+        return super()._get_help_string(action) or text
+
+
 class _Parser(argparse.ArgumentParser):
     """An argument parser whose errors are :class:`UsageError` (one line, exit 2), not a usage dump."""
 
@@ -98,7 +108,7 @@ def _add_compute(sub: Any) -> None:
                     "glob patterns, folders) write their outputs to --out-dir, one per --format, named after each "
                     "input; a folder of TIFF or DICOM slices is one volume, any other folder stands for its shape "
                     "files. A failing input is reported and the others are still done (exit 1 at the end).",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+        formatter_class=_HelpFormatter,
     )
     p.add_argument("input", type=Path, nargs="+",
                    help="image, SVG/GeoJSON/WKT, mesh or volume file, folder or glob pattern, or a saved result "
@@ -119,6 +129,15 @@ def _add_compute(sub: Any) -> None:
     p.add_argument("--tolerance", type=float, default=None, help="planar accuracy parameter (output units)")
     p.add_argument("--detour", type=float, default=None, help="planar pruning detour ratio")
     p.add_argument("--boundary", choices=["contour", "canny"], default=None, help="planar boundary extraction")
+    p.add_argument("--simplify", type=int, default=None, metavar="N",
+                   help="meshes (voronoi): simplify the medial mesh to N spheres (Q-MAT)")
+    p.add_argument("--thickness", type=float, nargs="+", default=None, metavar="T",
+                   help="volumes: plate thickness; one value (nominal), or MIN MAX (plates in that range); "
+                        "default: every plate, each with its own thickness")
+    p.add_argument("--repair", action="store_true", help="meshes: repair small defects (reported in the metadata)")
+    p.add_argument("--raw-shape", type=int, nargs=3, default=None, metavar=("Z", "Y", "X"),
+                   help="volumes: array shape of a .raw file")
+    p.add_argument("--raw-dtype", default=None, help="volumes: data type of a .raw file (e.g. uint16)")
     p.add_argument("--foreground", choices=["auto", "bright", "dark"], default=None,
                    help="images: which side of the threshold is the shape; auto (the default) takes the side "
                         "that does not own most of the image border, so a dark shape on light paper works")
@@ -135,10 +154,16 @@ def _add_compute(sub: Any) -> None:
 def _options(args: argparse.Namespace) -> tuple[dict[str, Any], Any]:
     """Method options and spacing from the command line."""
     options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
-    for name in ("tolerance", "detour", "boundary", "foreground"):
+    for name in ("tolerance", "detour", "boundary", "foreground", "simplify", "raw_shape", "raw_dtype"):
         value = getattr(args, name)
         if value is not None:
             options[name] = value
+    if args.thickness is not None:
+        if len(args.thickness) > 2:
+            raise UsageError(f"--thickness takes one value or MIN MAX, got {len(args.thickness)} values")
+        options["thickness"] = args.thickness[0] if len(args.thickness) == 1 else tuple(args.thickness)
+    if args.repair:
+        options["repair"] = True
     spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
     return options, spacing
 
@@ -263,7 +288,7 @@ def _add_demo(sub: Any) -> None:
         "demo",
         help="run on the bundled sample shapes",
         description="Compute the medial axis of every bundled sample shape and write results and plots to a folder.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+        formatter_class=_HelpFormatter,
     )
     p.add_argument("outdir", type=Path, nargs="?", default=Path("medialaxis-demo"), help="output folder")
     p.set_defaults(run=_run_demo)
