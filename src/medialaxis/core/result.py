@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core import graph as _graph
+from medialaxis.core import interop
 from medialaxis.core.homology import betti_numbers
 from medialaxis.core.summary import branch_table
 from medialaxis.errors import InvalidInputError
@@ -226,6 +227,14 @@ class MedialAxis:
         min/mean/max (a pandas DataFrame; see
         :func:`medialaxis.core.summary.branch_table`)."""
         return branch_table(self)
+
+    def to_pyvista(self) -> Any:
+        """The result as a :class:`pyvista.PolyData` (see :func:`medialaxis.core.interop.to_pyvista`)."""
+        return interop.to_pyvista(self)
+
+    def to_napari(self) -> list[tuple[Any, dict[str, Any], str]]:
+        """napari layer-data tuples (see :func:`medialaxis.core.interop.to_napari`)."""
+        return interop.to_napari(self)
 
     def to_networkx(self) -> Any:
         """The axis as a :class:`networkx.Graph`.
