@@ -31,6 +31,7 @@ __all__ = [
     "shape_distance",
     "distance_matrix",
     "deform",
+    "centerlines",
     "load",
     "reconstruction_error",
     "MedialAxis",
@@ -52,6 +53,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.api import medial_axis
     from medialaxis.compare import distance_matrix, shape_distance
     from medialaxis.core.io import load
+    from medialaxis.gis import centerlines
     from medialaxis.core.result import Branch, MedialAxis
     from medialaxis.mesh.deform import deform
     from medialaxis.metrics import reconstruction_error
@@ -68,6 +70,7 @@ _LAZY = {
     "shape_distance": "medialaxis.compare",
     "distance_matrix": "medialaxis.compare",
     "deform": "medialaxis.mesh.deform",
+    "centerlines": "medialaxis.gis",
 }
 
 

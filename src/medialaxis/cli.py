@@ -282,6 +282,57 @@ def _run_compute(args: argparse.Namespace) -> int:
     return 0
 
 
+# -------------------------------------------------------- centerlines
+#: Output layer formats of ``centerlines`` (GDAL driver per extension).
+LAYER_DRIVERS = {".gpkg": "GPKG", ".geojson": "GeoJSON", ".shp": "ESRI Shapefile", ".fgb": "FlatGeobuf"}
+
+
+def _add_centerlines(sub: Any) -> None:
+    p = sub.add_parser(
+        "centerlines",
+        help="centerlines of a polygon layer, feature by feature",
+        description="Medial axis of every polygon feature of a GIS layer, with its attributes, index and CRS "
+                    "and the columns width_min, width_mean, width_max (twice the radius).",
+        formatter_class=_HelpFormatter,
+    )
+    p.add_argument("input", type=Path, help="polygon layer: any file geopandas reads (GeoPackage, GeoJSON, "
+                                            "Shapefile, FlatGeobuf, ...)")
+    p.add_argument("-o", "--output", type=Path, required=True,
+                   help=f"output layer ({' '.join(LAYER_DRIVERS)})")
+    p.add_argument("--lam", type=float, default=None, help="lambda: smallest contact-set diameter kept (layer units)")
+    p.add_argument("--tolerance", type=float, default=None, help="accuracy (layer units)")
+    p.add_argument("--detour", type=float, default=None, help="pruning detour ratio")
+    p.set_defaults(run=_run_centerlines)
+
+
+def _run_centerlines(args: argparse.Namespace) -> int:
+    import shutil
+    import tempfile
+
+    import medialaxis as mx
+    from medialaxis.core.io import check_writable
+
+    _check_outputs([args.input], [args.output], formats=tuple(LAYER_DRIVERS))
+    options = {k: getattr(args, k) for k in ("lam", "tolerance", "detour") if getattr(args, k) is not None}
+    out = mx.centerlines(str(args.input), **options)
+    check_writable(args.output)
+    # a layer can be several files (a shapefile's .shx, .dbf, .prj): all are
+    # written in a hidden folder beside the output, then moved in place
+    folder = Path(tempfile.mkdtemp(prefix=".medialaxis-", dir=args.output.parent))
+    try:
+        try:
+            out.to_file(folder / args.output.name, driver=LAYER_DRIVERS[args.output.suffix.lower()])
+        except (OSError, ValueError, RuntimeError) as exc:
+            raise mx.InputFileError(f"cannot write {str(args.output)!r}: {exc}") from exc
+        for part in sorted(folder.iterdir()):
+            part.replace(args.output.parent / part.name)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    print(f"{args.input}: {len(out)} features, {int(out.geometry.notna().sum())} centerlines")
+    print(f"wrote {args.output}")
+    return 0
+
+
 # --------------------------------------------------------------- demo
 def _add_demo(sub: Any) -> None:
     p = sub.add_parser(
@@ -303,7 +354,7 @@ def _run_demo(args: argparse.Namespace) -> int:
 
 
 #: Subcommand builders; each adds a parser whose ``run`` default handles it.
-SUBCOMMANDS: list[Callable[[Any], None]] = [_add_compute, _add_demo]
+SUBCOMMANDS: list[Callable[[Any], None]] = [_add_compute, _add_centerlines, _add_demo]
 
 from medialaxis.compare.cli import add_compare, add_search  # noqa: E402
 

@@ -1,0 +1,77 @@
+"""Centerlines of GIS layers: one axis per feature, the layer's index, columns and CRS kept."""
+
+import numpy as np
+import pytest
+import shapely
+
+import medialaxis as mx
+
+gpd = pytest.importorskip("geopandas")
+
+
+@pytest.fixture()
+def layer():
+    # a road-like strip, a lake with an island, and two parcels in one feature (projected metres)
+    x0, y0 = 500_000.0, 4_649_000.0
+    road = shapely.Polygon([(x0, y0), (x0 + 300, y0), (x0 + 300, y0 + 12), (x0, y0 + 12)])
+    lake = shapely.Point(x0 + 600, y0 + 100).buffer(80).difference(shapely.Point(x0 + 600, y0 + 100).buffer(20))
+    parcels = shapely.MultiPolygon([shapely.box(x0, y0 + 300, x0 + 40, y0 + 360),
+                                    shapely.box(x0 + 100, y0 + 300, x0 + 160, y0 + 330)])
+    return gpd.GeoDataFrame({"name": ["road", "lake", "parcels"], "lanes": [2, 0, 0]},
+                            geometry=[road, lake, parcels], index=[10, 20, 30], crs="EPSG:32633")
+
+
+def test_one_axis_per_feature_with_attributes_crs_and_widths(layer):
+    out = mx.centerlines(layer)
+    assert list(out.index) == [10, 20, 30] and out.crs == layer.crs
+    assert list(out["name"]) == ["road", "lake", "parcels"] and list(out["lanes"]) == [2, 0, 0]
+    for geom, polygon in zip(out.geometry, layer.geometry):
+        assert geom.geom_type == "MultiLineString" and polygon.buffer(1e-6).contains(geom)
+    road = out.loc[10]
+    assert np.isclose(road["width_mean"], 12.0, rtol=0.05) and road["width_max"] <= 12.0 + 1e-6
+    lake = out.loc[20].geometry
+    # the axis of an annulus of radii 20 and 80 is the circle of radius 50: one closed loop
+    distances = np.hypot(*(np.asarray(shapely.get_coordinates(lake)) - [500_600.0, 4_649_100.0]).T)
+    assert np.allclose(distances, 50.0, atol=0.5)
+    assert np.isclose(out.loc[20, "width_mean"], 60.0, rtol=0.02)
+    assert len(out.loc[30].geometry.geoms) >= 2  # both parcels
+    assert layer.geometry.geom_type.tolist() == ["Polygon", "Polygon", "MultiPolygon"]  # input untouched
+
+
+def test_a_geoseries_and_a_file(layer, tmp_path):
+    out = mx.centerlines(layer.geometry)
+    assert out.crs == layer.crs and len(out) == 3 and set(out.columns) >= {"width_min", "width_mean", "width_max"}
+    path = tmp_path / "layer.gpkg"
+    layer.to_file(path)
+    again = mx.centerlines(path)
+    assert list(again["name"]) == ["road", "lake", "parcels"] and again.crs == layer.crs
+
+
+def test_empty_and_wrong_geometries(layer):
+    holes = layer.copy()
+    holes.loc[30, "geometry"] = None
+    out = mx.centerlines(holes)
+    assert out.loc[30].geometry is None and np.isnan(out.loc[30, "width_mean"])
+    lines = layer.copy()
+    lines.loc[20, "geometry"] = shapely.LineString([(0, 0), (1, 1)])
+    with pytest.raises(mx.InvalidInputError, match="feature 20 is a LineString"):
+        mx.centerlines(lines)
+
+
+def test_cli_writes_a_layer_other_tools_read(layer, tmp_path, capsys):
+    from medialaxis.cli import main
+
+    source = tmp_path / "parcels.gpkg"
+    layer.to_file(source)
+    for ext in (".gpkg", ".shp", ".geojson"):
+        target = tmp_path / f"centerlines{ext}"
+        assert main(["centerlines", str(source), "-o", str(target)]) == 0
+        back = gpd.read_file(target)
+        assert len(back) == 3 and back.crs == layer.crs and list(back["name"]) == ["road", "lake", "parcels"]
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".medialaxis-")]
+    (tmp_path / "bad.gpkg").write_bytes(b"not a geopackage")
+    capsys.readouterr()
+    assert main(["centerlines", str(tmp_path / "bad.gpkg"), "-o", str(tmp_path / "x.gpkg")]) == 1
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and "cannot read the layer" in err
+    assert main(["centerlines", str(source), "-o", str(tmp_path / "x.txt")]) == 2
