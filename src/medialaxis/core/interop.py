@@ -12,17 +12,12 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from medialaxis import _optional
-from medialaxis.core.mesh_files import curve_edges, point_fields
+from medialaxis.core.mesh_files import curve_edges, point_fields, points_3d
 
 if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.core.result import MedialAxis
 
 __all__ = ["to_napari", "to_pyvista"]
-
-
-def _xyz(ma: MedialAxis) -> np.ndarray:
-    n, d = ma.points.shape
-    return np.asarray(ma.points, np.float64) if d == 3 else np.c_[ma.points, np.zeros(n)]
 
 
 def to_pyvista(ma: MedialAxis) -> Any:
@@ -39,7 +34,7 @@ def to_pyvista(ma: MedialAxis) -> Any:
     faces = np.asarray(ma.faces, np.int64).reshape(-1, 3)
     lines = curve_edges(ma)
     mesh = pv.PolyData(
-        _xyz(ma),
+        points_3d(ma),
         faces=np.c_[np.full(len(faces), 3), faces].ravel() if len(faces) else None,
         lines=np.c_[np.full(len(lines), 2), lines].ravel() if len(lines) else None,
     )

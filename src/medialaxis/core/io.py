@@ -500,8 +500,7 @@ def _through(write: Callable[[MedialAxis, Any], None], mode: str) -> Callable[[M
 
 
 def _write_obj(ma: MedialAxis, path: Path) -> None:
-    n, d = ma.points.shape
-    pts = ma.points if d == 3 else np.c_[ma.points, np.zeros(n)]
+    pts = mesh_files.points_3d(ma)
     with atomic_write(path, "w") as fh:
         fh.write("# medialaxis result; radius per vertex in the 'vr' comment lines are not standard OBJ\n")
         np.savetxt(fh, pts, fmt="v %.10g %.10g %.10g")

@@ -32,13 +32,14 @@ from medialaxis.errors import UnsupportedFormatError
 if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.core.result import MedialAxis
 
-__all__ = ["curve_edges", "point_fields", "write_ply", "write_swc", "write_vtk", "write_vtu"]
+__all__ = ["curve_edges", "point_fields", "points_3d", "write_ply", "write_swc", "write_vtk", "write_vtu"]
 
 #: VTK cell types.
 VTK_VERTEX, VTK_LINE, VTK_TRIANGLE = 1, 3, 5
 
 
-def _xyz(ma: MedialAxis) -> np.ndarray:
+def points_3d(ma: MedialAxis) -> np.ndarray:
+    """(n, 3) points of ``ma``; a 2D result gets ``z = 0``."""
     n, d = ma.points.shape
     return np.asarray(ma.points, np.float64) if d == 3 else np.c_[ma.points, np.zeros(n)]
 
@@ -80,7 +81,7 @@ def write_ply(ma: MedialAxis, fh: object) -> None:
     """Binary PLY: ``vertex`` (x, y, z and the point fields), ``face`` (triangles,
     or a curve result's edges as two-point faces)."""
     fields = point_fields(ma)
-    xyz = _xyz(ma)
+    xyz = points_3d(ma)
     faces = np.asarray(ma.faces, np.int64).reshape(-1, 3)
     polys = faces if len(faces) else curve_edges(ma)
     if len(polys) == 0:  # points only
@@ -104,7 +105,7 @@ def write_ply(ma: MedialAxis, fh: object) -> None:
 
 def write_vtk(ma: MedialAxis, fh: object) -> None:
     """Legacy ASCII VTK ``UNSTRUCTURED_GRID`` (read by meshio, pyvista, ParaView)."""
-    xyz = _xyz(ma)
+    xyz = points_3d(ma)
     blocks, types = _cells(ma)
     size = sum(len(b) * (b.shape[1] + 1) for b in blocks)
     fh.write(f"# vtk DataFile Version 3.0\nmedialaxis result\nASCII\nDATASET UNSTRUCTURED_GRID\n"  # type: ignore[attr-defined]
@@ -124,7 +125,7 @@ def write_vtk(ma: MedialAxis, fh: object) -> None:
 
 def write_vtu(ma: MedialAxis, fh: object) -> None:
     """XML VTK ``UnstructuredGrid`` (ASCII data arrays)."""
-    xyz = _xyz(ma)
+    xyz = points_3d(ma)
     blocks, types = _cells(ma)
     connectivity = np.concatenate([b.ravel() for b in blocks]) if blocks else np.empty(0, np.int64)
     offsets = np.cumsum(np.concatenate([np.full(len(b), b.shape[1]) for b in blocks]))
@@ -152,7 +153,7 @@ def write_swc(ma: MedialAxis, fh: object) -> None:
         raise UnsupportedFormatError(f"SWC holds curve skeletons; this result has {len(ma.faces)} faces "
                                      "(write .ply, .vtk or .vtu)")
     n = len(ma.points)
-    xyz = _xyz(ma)
+    xyz = points_3d(ma)
     edges = np.asarray(ma.edges, np.int64).reshape(-1, 2)
     edges = np.unique(np.sort(edges[edges[:, 0] != edges[:, 1]], axis=1), axis=0)
     graph = sparse.coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
