@@ -54,16 +54,7 @@ def plot_axis(ma: Any, ax: Any = None) -> Any:
     import matplotlib.pyplot as plt
 
     if ma.dim == 3:
-        fig = plt.figure(figsize=(6, 6))
-        ax3 = fig.add_subplot(projection="3d")
-        p = ma.points
-        if len(ma.faces):
-            ax3.plot_trisurf(p[:, 0], p[:, 1], p[:, 2], triangles=ma.faces, color="#c0392b", alpha=0.6)
-        for a, b in ma.edges[:20000]:
-            ax3.plot(*p[[a, b]].T, color="#555", lw=0.6)
-        sc = ax3.scatter(p[:, 0], p[:, 1], p[:, 2], c=ma.radii, s=4, cmap="viridis")
-        fig.colorbar(sc, ax=ax3, shrink=0.6, label="radius")
-        return fig
+        return _plot_3d(ma)
     fig = ax.figure if ax is not None else plt.figure(figsize=(6, 6))
     ax = ax if ax is not None else fig.add_subplot()
     if ma.shape is not None:
@@ -81,4 +72,51 @@ def plot_axis(ma: Any, ax: Any = None) -> Any:
     if "image_shape" in ma.metadata:
         ax.invert_yaxis()
     ax.set_title(f"{ma.metadata.get('method', '')}: {len(ma.points)} points, {len(ma.branches())} branches")
+    return fig
+
+
+def _plot_3d(ma: Any, *, max_faces: int = 40000, max_shell_faces: int = 8000, max_spheres: int = 400) -> Any:
+    """3D picture: input shell, medial faces and curves coloured by radius, spheres, one scale on all axes."""
+    import matplotlib.pyplot as plt
+    from matplotlib import colormaps
+    from matplotlib.colors import Normalize
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+
+    from medialaxis.core import scene3d
+
+    fig = plt.figure(figsize=(7, 6))
+    ax = fig.add_subplot(projection="3d")
+    p, r = ma.points, ma.radii
+    norm = Normalize(float(r.min()) if len(r) else 0.0, float(r.max()) if len(r) and r.max() > r.min() else 1.0)
+    cmap = colormaps["viridis"]
+    drawn = [p]
+    shell = scene3d.shell_of(ma)
+    if shell is not None:
+        sv, sf = scene3d.cluster_decimate(*shell, max_shell_faces)
+        ax.add_collection3d(Poly3DCollection(sv[sf], facecolor=(0.6, 0.6, 0.6, 0.06), edgecolor="none"))
+        drawn.append(sv)
+    faces = ma.faces
+    if len(faces) > max_faces:
+        faces = faces[np.random.default_rng(0).choice(len(faces), max_faces, replace=False)]
+    if len(faces):
+        ax.add_collection3d(Poly3DCollection(p[faces], facecolor=cmap(norm(r[faces].mean(axis=1))), edgecolor="none"))
+    curves = scene3d.curve_edges(ma)
+    if len(curves):
+        ax.add_collection3d(Line3DCollection(p[curves], colors=cmap(norm(r[curves].mean(axis=1))), linewidths=1.2))
+    lone = ma.degree == 0
+    if lone.any():
+        ax.scatter(*p[lone].T, c=cmap(norm(r[lone])), s=2, depthshade=False)
+    if ma.metadata.get("simplified") and len(p):
+        order = np.argsort(-r, kind="stable")[:max_spheres]
+        bv, bf, br = scene3d.sphere_meshes(p[order], r[order])
+        colours = cmap(norm(br[bf[:, 0]]))
+        colours[:, 3] = 0.15
+        ax.add_collection3d(Poly3DCollection(bv[bf], facecolor=colours, edgecolor="none"))
+        drawn.append(bv)
+    ranges, ratio = scene3d.equal_ranges(*drawn)
+    ax.set(xlim=ranges[0], ylim=ranges[1], zlim=ranges[2], xlabel="x", ylabel="y", zlabel="z")
+    ax.set_box_aspect(ratio)
+    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.6, pad=0.1, label="radius")
+    kind = "spheres" if ma.metadata.get("simplified") else "points"
+    ax.set_title(f"{ma.metadata.get('method', '')}: {len(p)} {kind}, {len(ma.faces)} faces, {len(curves)} curve edges")
     return fig

@@ -93,8 +93,10 @@ class MedialAxis:
         ``spacing`` and, for raster inputs, ``image_shape``.
     shape : object, optional
         The input region the axis belongs to, when the method keeps it: a
-        shapely geometry for planar inputs. Used by :meth:`reconstruct` and
-        the plots.
+        shapely geometry for planar inputs, the input mesh (trimesh) for the
+        mesh methods, the isosurface (:class:`~medialaxis.core.scene3d.Surface`)
+        for the volume methods. Used by :meth:`reconstruct` and the pictures;
+        only the planar geometry is saved with the result.
     raw : MedialAxis, optional
         The unpruned axis the result was pruned from, which :meth:`prune`
         re-prunes without recomputing.

@@ -483,4 +483,6 @@ def flow_skeleton(
         "flow_seconds": t_flow,
         "seconds": time.perf_counter() - t_start,
     }
-    return MedialAxis(nodes, node_radii, node_edges, extras={"correspondence": correspondence}, metadata=metadata)
+    return MedialAxis(
+        nodes, node_radii, node_edges, extras={"correspondence": correspondence}, metadata=metadata, shape=clean
+    )

@@ -26,8 +26,9 @@ class FrameWriter:
     outdir : path
         Folder (created if missing) receiving ``step_0001.ply``... (frozen
         vertices coloured red, moving ones grey) and, on :meth:`finish`,
-        ``flow.html`` (a plotly animation of the vertices, at most
-        ``max_points`` per frame).
+        ``flow.html`` (an offline animation of the vertices, at most
+        ``max_points`` per frame, over the input mesh, with a slider over the
+        steps; the viewer library is written beside it).
     max_points : int
         Vertices drawn per animation frame (a random subset beyond that).
     rng : int or numpy.random.Generator, optional
@@ -56,6 +57,7 @@ class FrameWriter:
         self.paths: list[Path] = []
         self._frames: list[tuple[np.ndarray, np.ndarray]] = []
         self._subset: np.ndarray | None = None
+        self._first_mesh: tuple[np.ndarray, np.ndarray] = (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
 
     def __call__(self, state: Any) -> None:
         trimesh = require("trimesh", "medialaxis[mesh]")
@@ -67,32 +69,49 @@ class FrameWriter:
             fh.write(data)
         self.paths.append(path)
         if self._subset is None:
+            self._first_mesh = (np.array(state.positions, float), np.array(state.faces, np.int64))
             n = len(state.positions)
             self._subset = np.sort(self.rng.choice(n, self.max_points, replace=False)) if n > self.max_points else np.arange(n)
         self._frames.append((np.array(state.positions[self._subset]), np.array(state.frozen[self._subset])))
 
     def finish(self) -> list[Path]:
-        """Write ``flow.html`` and return every file written."""
+        """Write ``flow.html`` (and the viewer library beside it) and return every file written."""
         if not self._frames:
             return list(self.paths)
-        go = require("plotly.graph_objects", "medialaxis[mesh]")
+        from medialaxis.core.html import Page, write_page
+        from medialaxis.core.scene3d import cluster_decimate, equal_ranges
 
-        def scatter(points: np.ndarray, frozen: np.ndarray) -> Any:
-            return go.Scatter3d(
-                x=points[:, 0], y=points[:, 1], z=points[:, 2], mode="markers",
-                marker={"size": 2, "color": np.where(frozen, "#dc2828", "#999999")},
-            )
+        page = Page("diffusion flow: red points are skeletal (frozen), grey ones still move")
+        first = self._first_mesh
+        shell_v, shell_f = cluster_decimate(first[0], first[1], 30000)
+        x, y, z = shell_v.T
+        page.data.append({"type": "mesh3d", "x": page.array(x), "y": page.array(y), "z": page.array(z),
+                          "i": page.array(shell_f[:, 0], "i4d"), "j": page.array(shell_f[:, 1], "i4d"),
+                          "k": page.array(shell_f[:, 2], "i4d"), "color": "lightgrey", "opacity": 0.12,
+                          "name": "input surface", "showlegend": True, "hoverinfo": "skip"})
 
-        frames = [go.Frame(data=[scatter(p, f)], name=str(k + 1)) for k, (p, f) in enumerate(self._frames)]
-        fig = go.Figure(data=[scatter(*self._frames[0])], frames=frames)
-        fig.update_layout(
-            title="diffusion flow (red: skeletal points)",
-            scene={"aspectmode": "data"},
-            updatemenus=[{"type": "buttons", "buttons": [{"label": "play", "method": "animate", "args": [None]}]}],
-            sliders=[{"steps": [{"label": fr.name, "method": "animate", "args": [[fr.name]]} for fr in frames]}],
+        def points(positions: np.ndarray, frozen: np.ndarray) -> dict[str, Any]:
+            px, py, pz = positions.T
+            return {"type": "scatter3d", "mode": "markers", "name": "vertices", "showlegend": True,
+                    "x": page.array(px), "y": page.array(py), "z": page.array(pz), "hoverinfo": "skip",
+                    "marker": {"size": 2, "color": page.array(frozen, "u1"), "cmin": 0, "cmax": 1,
+                               "colorscale": [[0, "#999999"], [1, "#dc2828"]]}}
+
+        page.data.append(points(*self._frames[0]))
+        names = [str(k + 1) for k in range(len(self._frames))]
+        page.frames = [{"name": name, "data": [points(*frame)], "traces": [1]} for name, frame in zip(names, self._frames)]
+        ranges, ratio = equal_ranges(first[0])
+        still = {"mode": "immediate", "frame": {"duration": 0, "redraw": True}, "transition": {"duration": 0}}
+        page.layout.update(
+            scene={"aspectmode": "manual", "aspectratio": dict(zip("xyz", ratio.tolist())),
+                   **{f"{a}axis": {"range": ranges[k].tolist()} for k, a in enumerate("xyz")}},
+            legend={"x": 0.01, "y": 0.99},
+            margin={"l": 0, "r": 0, "t": 40, "b": 0},
+            updatemenus=[{"type": "buttons", "x": 0.01, "y": 0.02, "xanchor": "left", "buttons": [
+                {"label": "play", "method": "animate",
+                 "args": [None, {"frame": {"duration": 300, "redraw": True}, "fromcurrent": True}]},
+                {"label": "pause", "method": "animate", "args": [[None], still]}]}],
+            sliders=[{"x": 0.15, "len": 0.8, "y": 0.02, "currentvalue": {"prefix": "step "},
+                      "steps": [{"label": name, "method": "animate", "args": [[name], still]} for name in names]}],
         )
-        path = self.outdir / "flow.html"
-        html = fig.to_html(include_plotlyjs="cdn")
-        with atomic_write(path, "w") as fh:
-            fh.write(html)
-        return [*self.paths, path]
+        return [*self.paths, *write_page(page, self.outdir / "flow.html")]

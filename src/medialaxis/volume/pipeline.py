@@ -35,6 +35,7 @@ from medialaxis.volume.medial import (
 from medialaxis.volume.polygonize import (
     BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, Polygonization, polygonize,
 )
+from medialaxis.volume.shell import isosurface_shell
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
 
@@ -264,19 +265,22 @@ def volume_stages(
         "remove_dents": bool(remove_dents),
         "density": density,
     }
+    t0 = time.perf_counter()
+    shell = isosurface_shell(src)
+    timings["shell"] = time.perf_counter() - t0
     result = MedialAxis(
         state["points"], state["radii"], edges, faces,
         extras={"thickness": 2.0 * state["radii"], "vertex_kind": state["kind"]},
-        metadata=metadata,
+        metadata=metadata, shape=shell,
     )
     mesh, medial, features = state["mesh"], state["medial"], state["features"]
     voxel_meta = dict(metadata, method="voxels")
     steps = {
-        "medial_voxels": MedialAxis(features.physical(medial.voxels), medial.radius, metadata=voxel_meta),
+        "medial_voxels": MedialAxis(features.physical(medial.voxels), medial.radius, metadata=voxel_meta, shape=shell),
         "polygonized": MedialAxis(mesh.points, mesh.radii, faces=mesh.faces, metadata=metadata,
-                                  extras={"vertex_kind": mesh.kind}),
+                                  extras={"vertex_kind": mesh.kind}, shape=shell),
         "dents_removed": MedialAxis(state["dented_points"], mesh.radii, faces=mesh.faces, metadata=metadata,
-                                    extras={"vertex_kind": mesh.kind}),
+                                    extras={"vertex_kind": mesh.kind}, shape=shell),
         "extended": result,
     }
     return VolumeStages(src, features, state["thickness"], state["lam"], medial, mesh, result, timings, steps)
@@ -441,5 +445,5 @@ def medial_voxel_axis(
     return MedialAxis(
         features.physical(medial.voxels), medial.radius,
         extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},
-        metadata=metadata,
+        metadata=metadata, shape=isosurface_shell(src),
     )
