@@ -43,8 +43,8 @@ class FrameWriter:
     ...     writer = FrameWriter(tmp)
     ...     sk = mx.medial_axis(capsules_mesh([[[0, 0, 0], [2, 0, 0]]], 0.5, pitch=0.15), method="flow", callback=writer)
     ...     paths = writer.finish()
-    ...     len(paths) == sk.metadata["steps"] + 1
-    True
+    ...     len(writer.paths) == sk.metadata["steps"], paths[-1].name
+    (True, 'flow.html')
     """
 
     def __init__(self, outdir: Any, *, max_points: int = 20000, rng: Any = None) -> None:
