@@ -75,3 +75,52 @@ def test_cli_writes_a_layer_other_tools_read(layer, tmp_path, capsys):
     err = capsys.readouterr().err
     assert len(err.splitlines()) == 1 and "cannot read the layer" in err
     assert main(["centerlines", str(source), "-o", str(tmp_path / "x.txt")]) == 2
+
+
+# ------------------------------------------------------------------ a real layer
+LAKES = __import__("pathlib").Path(__file__).parent / "data" / "osm_lakes.geojson"
+
+
+@pytest.fixture(scope="module")
+def lakes():
+    return gpd.read_file(LAKES).to_crs("EPSG:3857")  # 30 OpenStreetMap lakes, WGS84 as distributed
+
+
+@pytest.fixture(scope="module")
+def lake_lines(lakes):
+    return mx.centerlines(lakes)
+
+
+def test_real_lakes_keep_rows_and_lines_stay_inside(lakes, lake_lines):
+    assert len(lake_lines) == len(lakes) == 30 and lake_lines.crs == lakes.crs
+    assert (lake_lines["islands"] == lakes["islands"]).all()
+    for k, (line, lake) in enumerate(zip(lake_lines.geometry, lakes.geometry)):
+        outside = shapely.get_coordinates(line.difference(lake))
+        depth = shapely.distance(shapely.points(outside), lake.boundary).max() if len(outside) else 0.0
+        assert depth <= 1e-6 * np.sqrt(lake.area), k
+
+
+def test_real_lakes_one_loop_per_island(lakes, lake_lines):
+    # truth: the polygon's own count of interior rings (shapely), not our metadata
+    for k, (line, lake) in enumerate(zip(lake_lines.geometry, lakes.geometry)):
+        merged = shapely.unary_union(line)
+        parts = shapely.get_parts(shapely.polygonize(shapely.get_parts(merged)))
+        assert len(parts) == shapely.get_num_interior_rings(lake), k
+
+
+def test_real_lakes_widest_place_matches_the_largest_inscribed_circle(lakes, lake_lines):
+    # truth: shapely's maximum inscribed circle (GEOS, an independent algorithm)
+    for k, (row, lake) in enumerate(zip(lake_lines.itertuples(), lakes.geometry)):
+        radius = shapely.maximum_inscribed_circle(lake, tolerance=1e-4 * np.sqrt(lake.area)).length
+        assert row.width_max == pytest.approx(2.0 * radius, rel=0.01), k
+
+
+def test_centerlines_cli_writes_a_layer_other_tools_read(tmp_path, lakes):
+    from medialaxis.cli import main
+
+    source = tmp_path / "lakes.gpkg"
+    lakes.to_file(source, driver="GPKG")
+    out = tmp_path / "lines.fgb"
+    assert main(["centerlines", str(source), "-o", str(out)]) == 0
+    back = gpd.read_file(out)
+    assert len(back) == 30 and back.crs.to_epsg() == 3857 and {"width_min", "width_mean", "width_max"} <= set(back.columns)

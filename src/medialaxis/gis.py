@@ -18,11 +18,21 @@ from medialaxis._progress import progress
 from medialaxis.api import medial_axis
 from medialaxis.errors import InputFileError, InvalidInputError
 
-__all__ = ["centerlines", "WIDTH_COLUMNS"]
+__all__ = ["centerlines", "DETOUR", "WIDTH_COLUMNS"]
 
 #: Columns added to the layer: twice the smallest, mean (over the axis
 #: length) and largest radius along each feature's axis.
 WIDTH_COLUMNS = ("width_min", "width_mean", "width_max")
+
+#: Default ``detour`` of the pruning for layers: a branch stays when the shore
+#: between its contacts is at least twice as long as the gap between them (an
+#: arm, a bay), not for every bend of a digitized shore line. Measured on 200
+#: OSM lakes (``benchmarks/bench_centerlines.py``): the polygon default 0.028
+#: keeps 31 terminal branches per lake, 0.5 keeps 17, 1.0 keeps 12 with 1.2
+#: spurious ones and 95% of each lake covered by the discs of its line, where
+#: pruning by ``lam`` at the mean width instead (1.3 spurious) cuts whole narrow
+#: arms (83% covered, as pygeoops.centerline's defaults).
+DETOUR = 1.0
 
 
 def _widths(ma: Any) -> tuple[float, float, float]:
@@ -47,7 +57,10 @@ def centerlines(layer: Any, *, show_progress: bool | None = None, **options: Any
         Progress bar over the features (default: when stderr is a terminal).
     **options
         Passed to :func:`medialaxis.medial_axis` for each feature (``lam``,
-        ``tolerance``, ``detour``, ...), in the layer's units.
+        ``tolerance``, ``detour``, ...), in the layer's units. ``detour``
+        defaults to :data:`DETOUR` (1.0, not the 0.028 of single polygons), so
+        a lake or a road gets its centre line and its real arms, not a branch
+        to every bend of the shore.
 
     Returns
     -------
@@ -96,7 +109,7 @@ def centerlines(layer: Any, *, show_progress: bool | None = None, **options: Any
             continue
         if geom.geom_type not in ("Polygon", "MultiPolygon"):
             raise InvalidInputError(f"feature {index!r} is a {geom.geom_type}; centerlines needs polygons")
-        ma = medial_axis(geom, **options)
+        ma = medial_axis(geom, **{"detour": DETOUR, **options})
         lines = [shapely.LineString(branch.points) for branch in ma.branches() if len(branch.points) >= 2]
         geometries.append(shapely.MultiLineString(lines) if lines else None)
         widths.append(_widths(ma))
