@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis.core import scene3d
+from medialaxis.core import mesh_files, scene3d
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError, MissingDependencyError
 
@@ -248,7 +248,7 @@ def medial_page(
         page.data.append(_mesh_trace(page, p, ma.faces, r, name="medial surface",
                                      showlegend=True, hovertemplate="radius %{intensity:.4g}<extra></extra>", **colour))
         bar_used = True
-    e = scene3d.curve_edges(ma)
+    e = mesh_files.curve_edges(ma)
     if len(e):
         xyz = np.full((3 * len(e), 3), np.nan)
         xyz[0::3], xyz[1::3] = p[e[:, 0]], p[e[:, 1]]

@@ -4,10 +4,11 @@ Lossless: ``.json`` and ``.npz`` (read back by :func:`load`, including the
 unpruned axis so :meth:`MedialAxis.prune` still works). Exports: ``.graphml``,
 ``.geojson``, ``.svg`` (axis over the shape), ``.png`` (plot coloured by
 radius), ``.graphml`` (nodes with position and radius, edges with length and
-radius), ``.obj`` (``v``, ``l``, ``f``), ``.ply``, ``.vtk``, ``.vtu`` and
+radius), ``.obj`` (``v``, ``l`` for curve edges, ``f``; VTK reads the curves,
+meshio's and trimesh's OBJ readers only the faces), ``.ply``, ``.vtk``, ``.vtu`` and
 ``.swc`` (:mod:`medialaxis.core.mesh_files`: files that meshio, trimesh,
-pyvista and neuron tools open) and ``.html`` (interactive 3D view,
-:mod:`medialaxis.core.html`).
+pyvista and neuron tools open) and ``.html`` (interactive offline 3D view,
+:mod:`medialaxis.core.html`; the viewer library is written beside it once).
 Every file is written to a temporary name in the target folder, then renamed,
 so a failure never leaves a half-written file.
 """
@@ -502,10 +503,11 @@ def _through(write: Callable[[MedialAxis, Any], None], mode: str) -> Callable[[M
 def _write_obj(ma: MedialAxis, path: Path) -> None:
     pts = mesh_files.points_3d(ma)
     with atomic_write(path, "w") as fh:
-        fh.write("# medialaxis result; radius per vertex in the 'vr' comment lines are not standard OBJ\n")
+        fh.write("# medialaxis result: vertices, curve edges (l) and faces (f); radii are in .ply .vtk .vtu .swc\n")
         np.savetxt(fh, pts, fmt="v %.10g %.10g %.10g")
-        if len(ma.edges):
-            np.savetxt(fh, ma.edges + 1, fmt="l %d %d")
+        curves = mesh_files.curve_edges(ma)
+        if len(curves):
+            np.savetxt(fh, curves + 1, fmt="l %d %d")
         if len(ma.faces):
             np.savetxt(fh, ma.faces + 1, fmt="f %d %d %d")
 

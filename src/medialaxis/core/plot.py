@@ -82,7 +82,7 @@ def _plot_3d(ma: Any, *, max_faces: int = 40000, max_shell_faces: int = 8000, ma
     from matplotlib.colors import Normalize
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
-    from medialaxis.core import scene3d
+    from medialaxis.core import mesh_files, scene3d
 
     fig = plt.figure(figsize=(7, 6))
     ax = fig.add_subplot(projection="3d")
@@ -100,7 +100,7 @@ def _plot_3d(ma: Any, *, max_faces: int = 40000, max_shell_faces: int = 8000, ma
         faces = faces[np.random.default_rng(0).choice(len(faces), max_faces, replace=False)]
     if len(faces):
         ax.add_collection3d(Poly3DCollection(p[faces], facecolor=cmap(norm(r[faces].mean(axis=1))), edgecolor="none"))
-    curves = scene3d.curve_edges(ma)
+    curves = mesh_files.curve_edges(ma)
     if len(curves):
         ax.add_collection3d(Line3DCollection(p[curves], colors=cmap(norm(r[curves].mean(axis=1))), linewidths=1.2))
     lone = ma.degree == 0

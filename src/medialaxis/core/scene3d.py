@@ -12,7 +12,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-__all__ = ["Surface", "cluster_decimate", "curve_edges", "equal_ranges", "shell_of", "sphere_meshes"]
+__all__ = ["Surface", "cluster_decimate", "equal_ranges", "shell_of", "sphere_meshes"]
 
 
 class Surface(NamedTuple):
@@ -33,17 +33,6 @@ def shell_of(ma: Any, surface: Any = None) -> tuple[np.ndarray, np.ndarray] | No
     v = np.asarray(shell.vertices, np.float64).reshape(-1, 3)
     f = np.asarray(shell.faces, np.int64).reshape(-1, 3)
     return (v, f) if len(f) else None
-
-
-def curve_edges(ma: Any) -> np.ndarray:
-    """The edges of ``ma`` that are not a side of one of its faces (those are drawn with the face)."""
-    e = np.sort(ma.edges, axis=1)
-    if not len(ma.faces) or not len(e):
-        return e
-    f = ma.faces
-    sides = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
-    n = len(ma.points)
-    return e[~np.isin(e[:, 0] * n + e[:, 1], sides[:, 0] * n + sides[:, 1])]
 
 
 def cluster_decimate(vertices: np.ndarray, faces: np.ndarray, max_faces: int) -> tuple[np.ndarray, np.ndarray]:
