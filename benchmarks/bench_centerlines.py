@@ -27,7 +27,7 @@ three on their output, with shapely only:
 
 Usage::
 
-    python benchmarks/bench_centerlines.py [--count 3000] [--min-vertices 40]
+    python benchmarks/bench_centerlines.py [--count 3000] [--min-vertices 12]
 
 pygeoops (BSD-3) and centerline (MIT) come with the ``bench`` extra.
 """
@@ -168,7 +168,7 @@ def run_tool(name, compute, lakes) -> dict:
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--count", type=int, default=3000)
-    ap.add_argument("--min-vertices", type=int, default=40)
+    ap.add_argument("--min-vertices", type=int, default=12)
     args = ap.parse_args(argv)
     lakes = lake_polygons(args.count, args.min_vertices)
     n_vertices = shapely.get_num_coordinates(lakes.values)
