@@ -166,7 +166,7 @@ def sample_surface(
     edge_counts = np.maximum(np.round(edge_len / edge_h), 1.0)
     tri = v[f]
     area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
-    planned = float(edge_counts.sum()) + float(np.floor(_LATTICE * area / spacing**2).sum()) + len(v)
+    planned = float((edge_counts - 1.0).sum()) + float(np.floor(_LATTICE * area / spacing**2).sum()) + len(v)
     if not planned <= min(limit, MAX_SURFACE_SAMPLES):
         raise ResourceLimitError(
             f"sampling the surface at this spacing needs {planned:.3g} points (at most {min(limit, MAX_SURFACE_SAMPLES):,}): "
