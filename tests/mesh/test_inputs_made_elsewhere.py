@@ -138,3 +138,25 @@ def test_open_and_non_manifold_meshes_are_refused_with_counts():
     pinched = trimesh.Trimesh(vertices, np.vstack([tet.faces, second]), process=False)
     with pytest.raises(mx.InvalidInputError, match="edges shared by more than two faces"):
         load_mesh(pinched)
+
+
+def _hand():
+    """A unit ball with four thin fingers, as one boolean union (co-spherical samples on every part)."""
+    parts = [trimesh.creation.icosphere(subdivisions=4, radius=1.0)]
+    for d in ([0, 0, 1], [1, 0, 0], [0, 1, 0], [-1, 0, 0]):
+        finger = trimesh.creation.capsule(height=2.0, radius=0.1, count=[24, 24])
+        finger.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], d))
+        finger.apply_translation(1.7 * np.asarray(d, float))
+        parts.append(finger)
+    return trimesh.boolean.union(parts, engine="manifold")
+
+
+@pytest.mark.slow
+def test_every_medial_ball_of_a_union_lies_inside_it():
+    # A faster Delaunay setting once signed a far circumcentre of a near-flat tetrahedron
+    # inside: a 'medial ball' of radius 213 on this 6-unit shape.
+    hand = _hand()
+    ma = mx.medial_axis(hand, method="voronoi")
+    assert ma.radii.max() <= 1.0 + 1e-3  # the body ball is the largest inside (truth: the construction)
+    assert hand.contains(ma.points).all()  # trimesh's own inside test
+    assert ma.betti == (1, _genus(hand), 0) == (1, 0, 0)

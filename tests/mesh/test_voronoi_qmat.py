@@ -6,6 +6,8 @@ import numpy as np
 import pytest
 import trimesh
 
+import medialaxis as mx
+
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh.qmat import _initial_quadrics, simplify_medial_mesh
 from medialaxis.mesh.voronoi import voronoi_medial_axis
@@ -55,3 +57,37 @@ def test_simplify_by_error_bound_and_through_the_pipeline(box_mesh):
 def test_rejects_bad_simplify(bad, box_ma):
     with pytest.raises(InvalidInputError):
         simplify_medial_mesh(box_ma, bad)
+
+
+def _surface_gap(points, s):
+    """Distance from surface points to the union of the simplified mesh's spheres (vertices and
+    edge/triangle interpolations at eighths), computed here by brute force."""
+    c, r = s.points, s.radii
+    parts = [(c, r)]
+    for a, b in np.concatenate([s.edges, s.faces[:, [0, 1]], s.faces[:, [1, 2]], s.faces[:, [2, 0]]]):
+        t = np.linspace(0, 1, 9)[1:-1, None]
+        parts.append(((1 - t) * c[a] + t * c[b], (1 - t[:, 0]) * r[a] + t[:, 0] * r[b]))
+    cc = np.concatenate([p[0] for p in parts])
+    rr = np.concatenate([p[1] for p in parts])
+    return np.array([(np.linalg.norm(cc - p, axis=1) - rr).min() for p in points])
+
+
+def test_every_finger_keeps_a_sphere_near_its_tip():
+    # a ball with four thin fingers, made by manifold3d's boolean union (another tool's mesh)
+    pytest.importorskip("manifold3d")
+    parts = [trimesh.creation.icosphere(subdivisions=4, radius=1.0)]
+    directions = np.array([[0, 0, 1], [1, 0, 0], [0, 1, 0], [-1, 0, 0]], float)
+    for d in directions:
+        finger = trimesh.creation.capsule(height=2.0, radius=0.1, count=[24, 24])
+        finger.apply_transform(trimesh.geometry.align_vectors([0, 0, 1], d))
+        finger.apply_translation(1.7 * d)
+        parts.append(finger)
+    hand = trimesh.boolean.union(parts, engine="manifold")
+    s = mx.medial_axis(hand, method="voronoi", simplify=20)
+    assert len(s.points) == 20 and s.betti == (1, 0, 0)
+    tips = directions * (1.7 + 1.0 + 0.1)  # the far ends of the fingers, on the surface
+    diag = np.linalg.norm(np.ptp(hand.vertices, axis=0))
+    # without the spheres added at the farthest surface points, one tip was 1.8% of the diagonal away
+    assert np.abs(_surface_gap(tips, s)).max() < 0.012 * diag
+    samples, _ = trimesh.sample.sample_surface_even(hand, 3000, seed=0)
+    assert np.abs(_surface_gap(samples, s)).max() < 0.03 * diag

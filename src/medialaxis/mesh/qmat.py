@@ -33,6 +33,11 @@ __all__ = ["simplify_medial_mesh", "check_simplify", "hausdorff_to_surface", "RE
 #: the two it replaces; keeps the 4x4 systems well posed on flat sheets.
 REGULARISATION = 1e-3
 
+#: Share of the spheres of ``simplify=n`` added after the collapses, each at
+#: the medial ball touching the surface point farthest from the simplified
+#: mesh's spheres, joined to the sphere it overlaps most (:func:`_cover_repair`).
+REPAIR_SHARE = 0.1
+
 
 def check_simplify(simplify: Any) -> None:
     """Validate ``simplify``: an int >= 1 (spheres to keep) or a float in (0, 1) (error bound)."""
@@ -71,7 +76,12 @@ def _optimum(qa, qb, qc, s1, s2, reg):  # type: ignore[no-untyped-def]
     a = qa + reg * np.eye(4)
     b = qb + reg * mid
     s = np.linalg.solve(a, b)
-    if s[3] <= 0 or not np.all(np.isfinite(s)):
+    # The merged sphere stays near the two it replaces: on thin parts the quadric barely
+    # constrains the radius along the axis, and an unchecked optimum balloons out of the shape.
+    r_max = max(s1[3], s2[3])
+    half = 0.5 * np.sqrt(np.sum((s1[:3] - s2[:3]) ** 2))
+    off = np.sqrt(np.sum((s[:3] - mid[:3]) ** 2))
+    if s[3] <= 0 or not np.all(np.isfinite(s)) or s[3] > 1.1 * r_max or off > half + 0.1 * r_max:
         s = mid
     cost = s @ qa @ s - 2.0 * (qb @ s) + qc
     return s, max(cost, 0.0)
@@ -134,6 +144,9 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     if surface is not None and hasattr(surface, "vertices"):
         diag = float(np.linalg.norm(np.ptp(np.asarray(surface.vertices), axis=0)))
     target = int(simplify) if isinstance(simplify, (int, np.integer)) else 1
+    # a tenth of the spheres go where the collapsed mesh leaves the surface farthest (tips, limbs)
+    repair = int(REPAIR_SHARE * target) if isinstance(simplify, (int, np.integer)) and target >= 20 else 0
+    target -= repair
     bound = None if isinstance(simplify, (int, np.integer)) else float(simplify) * diag
 
     faces = [set() for _ in range(n)]
@@ -202,13 +215,78 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     face_edges = {tuple(sorted(e)) for f in out_faces.tolist() for e in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
     curve = sorted({(min(new[i], new[j]), max(new[i], new[j])) for i in keep for j in nbr[i]} - face_edges)
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
-    metadata = dict(ma.metadata, simplified=True, n_spheres=int(len(keep)), diagonal=diag)
+    curve = np.array(curve, np.int64).reshape(-1, 2)
+    if repair and surface is not None and hasattr(surface, "vertices"):
+        centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, surface, repair)
+    metadata = dict(ma.metadata, simplified=True, n_spheres=int(len(centres)), diagonal=diag)
     if surface is not None and hasattr(surface, "vertices"):
-        h_sm, h_ms = hausdorff_to_surface(centres, radii, out_faces, np.array(curve, np.int64).reshape(-1, 2), surface)
+        h_sm, h_ms = hausdorff_to_surface(centres, radii, out_faces, curve, surface)
         metadata.update(hausdorff=max(h_sm, h_ms), hausdorff_surface_to_mat=h_sm, hausdorff_mat_to_surface=h_ms)
-    return MedialAxis(
-        centres, radii, np.array(curve, np.int64).reshape(-1, 2), out_faces, metadata=metadata, shape=ma.shape, raw=ma
-    )
+    return MedialAxis(centres, radii, curve, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
+
+
+def _medial_ball(p: np.ndarray, n: np.ndarray, tree: cKDTree, samples: np.ndarray, start: float) -> tuple[np.ndarray, float]:
+    """The largest ball inside touching the surface at ``p`` (normal ``n``): shrinking ball (Ma et al. 2012)."""
+    r = start
+    for _ in range(60):
+        c = p - r * n
+        d, q = tree.query(c, k=2)
+        q = q[1] if np.allclose(samples[q[0]], p) else q[0]
+        if np.linalg.norm(samples[q] - c) >= r * (1.0 - 1e-6):
+            break
+        v = p - samples[q]
+        cos = float(v @ n)
+        r_new = float(v @ v) / (2.0 * cos) if cos > 1e-12 else 0.0
+        if r_new >= r or r_new <= 0.0:
+            r = max(min(r_new, r), 0.0)
+            break
+        r = r_new
+    return p - r * n, r
+
+
+def _cover_repair(
+    centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, surface: Any, extra: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Add ``extra`` spheres where the surface is farthest outside the interpolated spheres.
+
+    Each new sphere is the medial ball touching that surface point (a
+    shrinking ball among 20,000 surface samples, so it reaches tips the
+    lambda pruning cut), joined by an edge to the sphere with the least power
+    distance to its centre (the one it overlaps most): a hanging edge, so the
+    topology stays the collapsed mesh's.
+    """
+    from medialaxis.mesh.sampling import sample_surface
+
+    area = np.asarray(surface.area_faces, np.float64)
+    smp = sample_surface(surface, np.full(len(area), np.sqrt(area.sum() / 20_000)))
+    x, normals = smp.points, smp.normals
+    sample_tree = cKDTree(x)
+    sph = _interpolated_spheres(centres, radii, faces, curve)
+    _, near = cKDTree(sph[:, :3]).query(x, k=min(32, len(sph)), workers=-1)
+    near = near.reshape(len(x), -1)
+    gap = (np.linalg.norm(x[:, None] - sph[near, :3], axis=2) - sph[near, 3]).min(axis=1)
+    c_list, r_list, e_list = [centres], [radii], [curve]
+    n = len(centres)
+    start = float(radii.max()) * 2.0 if len(radii) else 1.0
+    for _ in range(extra):
+        w = int(np.argmax(gap))
+        if gap[w] <= 0:
+            break
+        c, r = _medial_ball(x[w], normals[w], sample_tree, x, start)
+        if r <= 0.0:
+            gap[w] = 0.0
+            continue
+        all_c, all_r = np.concatenate(c_list), np.concatenate(r_list)
+        link = int(np.argmin(((all_c - c) ** 2).sum(axis=1) - all_r**2))
+        c_list.append(c[None])
+        r_list.append(np.array([r]))
+        e_list.append(np.array([[link, n]]))
+        t = np.linspace(0.0, 1.0, 9)[:, None]
+        new_c = (1 - t) * all_c[link] + t * c
+        new_r = (1 - t[:, 0]) * all_r[link] + t[:, 0] * r
+        gap = np.minimum(gap, (np.linalg.norm(x[:, None] - new_c[None], axis=2) - new_r).min(axis=1))
+        n += 1
+    return np.concatenate(c_list), np.concatenate(r_list), np.concatenate(e_list).astype(np.int64)
 
 
 def _interpolated_spheres(centres: np.ndarray, radii: np.ndarray, faces: np.ndarray, edges: np.ndarray) -> np.ndarray:
