@@ -9,10 +9,14 @@ surface there; the signed distance of sphere ``s`` to that plane is
 spherical quadric error metric, SQEM). Each vertex starts with the quadric
 of its contacts (the four samples on its Delaunay sphere, normals taken
 along the radius). Edges are collapsed cheapest first; the merged sphere
-minimises the sum of the two quadrics, and the quadrics add. The result is
-judged by the two-sided Hausdorff distance between the input surface and
-the boundary of the union of the spheres interpolated over the simplified
-mesh (vertices, edges and triangles), as Q-MAT does.
+minimises the sum of the two quadrics (kept near the two it replaces), and
+the quadrics add. Collapses alone leave the tips of limbs and fins without a
+sphere, so for ``simplify=n`` a tenth of the spheres is kept back and then
+placed where the surface is farthest from the interpolated spheres
+(:func:`_cover_repair`). The result is judged by the two-sided Hausdorff
+distance between the input surface and the boundary of the union of the
+spheres interpolated over the simplified mesh (vertices, edges and
+triangles), as Q-MAT does.
 """
 
 from __future__ import annotations

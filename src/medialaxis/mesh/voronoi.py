@@ -240,9 +240,10 @@ def voronoi_medial_axis(
     simplify : int or float, optional
         Reduce the medial mesh by quadric error minimisation on spheres
         (:func:`medialaxis.mesh.qmat.simplify_medial_mesh`): an ``int`` is the
-        number of spheres to keep, a ``float`` in (0, 1) an error bound as a
-        fraction of the bounding-box diagonal. The unsimplified result is
-        ``ma.raw``.
+        number of spheres to keep (a tenth of them placed last where the
+        surface is farthest from the others: tips of limbs), a ``float`` in
+        (0, 1) an error bound as a fraction of the bounding-box diagonal.
+        The unsimplified result is ``ma.raw``.
     topology : {"preserve", "lambda"}
         ``"preserve"`` (default): keep every facet of at least ``lam`` plus
         the narrower facets and curve pieces needed for the complex to have
