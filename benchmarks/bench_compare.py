@@ -12,6 +12,15 @@ repeated, so the pairwise step is real; signatures are per-shape work,
 measured separately).
 
     PYTHONPATH=src python benchmarks/bench_compare.py [--data DIR] [--collection 1400] [--jobs 2] [--variants]
+    PYTHONPATH=src python benchmarks/bench_compare.py --mpeg7 ../shared/data/mpeg7_dev [--no-shape-context]
+
+``--mpeg7 DIR`` instead computes the MPEG-7 bull's-eye (each shape queries the
+whole set; same-class shapes among its 40 nearest, as a share of the most
+possible) on any folder of ``<class>-<k>.gif`` silhouettes: the default
+distance, its diffusion re-ranking (collection-level, a second row), the
+previous default and invariant shape contexts, with a 5-fold split of the
+classes (queries of every fifth class in sorted order against the whole set)
+and the published figures for reference.
 
 ``--variants`` also prints the row of each variant evaluated for issue 6:
 for the tour term, the gap cost and the pruning (signature pruning levels,
@@ -222,13 +231,72 @@ def _fmt(row: np.ndarray) -> str:
     return " ".join(f"{v:3d}" for v in row) + f"   (sum {int(row.sum())})"
 
 
+#: Published MPEG-7 bull's-eye scores (pairwise, no re-ranking), as quoted in issue 15.
+MPEG7_LITERATURE = {"IDSC (Ling and Jacobs 2007)": 85.40, "shape tree (Felzenszwalb and Schwartz 2007)": 87.70,
+                    "height functions (Wang et al. 2012)": 90.35}
+
+
+def bulls_eye(D: np.ndarray, labels: np.ndarray, queries: np.ndarray | None = None) -> float:
+    """MPEG-7 bull's-eye: same-class shapes among each query's 40 nearest (itself included), in %."""
+    queries = np.arange(len(D)) if queries is None else queries
+    per_class = np.bincount(np.unique(labels, return_inverse=True)[1])
+    hits = 0
+    for q in queries:
+        top = np.argsort(D[q], kind="stable")[:40]
+        hits += int((labels[top] == labels[q]).sum())
+    best = sum(min(40, int(per_class[np.unique(labels, return_inverse=True)[1][q]])) for q in queries)
+    return 100.0 * hits / best
+
+
+def mpeg7(folder: Path, jobs: int | None, with_shape_context: bool) -> None:
+    """Bull's-eye of the default distance, its re-ranked form, the previous default and shape contexts."""
+    files = sorted(folder.glob("*-*.gif"), key=lambda p: (p.stem.rsplit("-", 1)[0], int(p.stem.rsplit("-", 1)[1])))
+    if not files:
+        raise SystemExit(f"no <class>-<k>.gif files in {folder}")
+    names = [p.stem.rsplit("-", 1)[0] for p in files]
+    classes = sorted(set(names))
+    labels = np.array([classes.index(n) for n in names])
+    masks = [_mask(p) for p in files]
+    print(f"MPEG-7 style set {folder}: {len(files)} shapes, {len(classes)} classes")
+    mx.distance_matrix([masks[0], masks[1]], n_jobs=1)  # compile before timing
+    t0 = time.perf_counter()
+    sigs = [shape_signature(m) for m in masks]
+    t_sig = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    D = mx.distance_matrix(sigs, n_jobs=jobs)
+    t_pairs = time.perf_counter() - t0
+    rows = [("ours (axis tour, the default)", D), ("ours + diffusion re-ranking (collection-level)", diffusion_rerank(D))]
+    t0 = time.perf_counter()
+    rows.append(("before: paths + axis context", mx.distance_matrix(sigs, n_jobs=jobs, tour=0, paths=1, context=0.6)))
+    t_before = time.perf_counter() - t0
+    if with_shape_context:
+        t0 = time.perf_counter()
+        rows.append(("shape context + Hungarian, invariant", shape_context_matrix(masks, invariant=True)[0]))
+        t_sc = time.perf_counter() - t0
+    folds = [np.flatnonzero(labels % 5 == k) for k in range(5)]  # classes in sorted order, every 5th
+    print(f"\n{'distance':48s} bull's-eye   5-fold class split (queries of each fold against all)")
+    for name, M in rows:
+        split = " ".join(f"{bulls_eye(M, labels, f):5.1f}" for f in folds)
+        print(f"{name:48s} {bulls_eye(M, labels):8.2f}%   {split}")
+    for name, value in MPEG7_LITERATURE.items():
+        print(f"{name + ' (literature, all 70 classes)':48s} {value:8.2f}%")
+    print(f"\ntimes: signatures {t_sig:.1f} s ({1e3 * t_sig / len(sigs):.1f} ms per shape), pairwise {t_pairs:.1f} s "
+          f"(jobs={jobs or 'all CPUs'}); previous default {t_before:.1f} s"
+          + (f"; shape context {t_sc:.1f} s" if with_shape_context else ""))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--data", type=Path, default=None, help="Kimia-99 folder (class<C>_<K>.png)")
+    parser.add_argument("--mpeg7", type=Path, default=None, help="folder of MPEG-7 style <class>-<k>.gif: bull's-eye only")
+    parser.add_argument("--no-shape-context", action="store_true", help="with --mpeg7: skip the slow shape-context row")
     parser.add_argument("--collection", type=int, default=1400, help="shapes in the timing collection (0: skip)")
     parser.add_argument("--jobs", type=int, default=None, help="threads for distance_matrix (default: all CPUs)")
     parser.add_argument("--variants", action="store_true", help="also print the rows of the variants tried")
     args = parser.parse_args()
+    if args.mpeg7 is not None:
+        mpeg7(args.mpeg7, args.jobs, not args.no_shape_context)
+        return
     data = args.data or _default_data()
     files = sorted(data.glob("class*_*.png"))
     labels = np.array([int(p.stem.split("_")[0][5:]) for p in files])
