@@ -111,3 +111,7 @@ def test_first_class_options_reach_the_methods(tmp_path, capsys):
     assert main(["compute", "--help"]) == 0
     help_text = capsys.readouterr().out
     assert "(default: None)" not in help_text and "--raw-shape Z Y X" in help_text
+    for command in ("compare", "search", "centerlines"):
+        assert main([command, "--help"]) == 0
+        text = capsys.readouterr().out
+        assert "(default: None)" not in text and ") (default:" not in text, command

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any, NoReturn
 
 from medialaxis._dispatch import DEFAULT_METHOD, METHODS
+from medialaxis._help import HelpFormatter
 from medialaxis._version import __version__
 from medialaxis.errors import Cancelled, MedialAxisError, MedialAxisWarning, UnsupportedFormatError
 
@@ -28,16 +29,6 @@ __all__ = ["main", "SUBCOMMANDS"]
 
 class UsageError(Exception):
     """A command-line usage problem (exit code 2)."""
-
-
-class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
-    """Shows a default once: not for options without one (None, [], False) nor where the help says it."""
-
-    def _get_help_string(self, action: argparse.Action) -> str:
-        text = action.help or ""
-        if action.default in (None, [], False, argparse.SUPPRESS) or "default" in text:
-            return text
-        return super()._get_help_string(action) or text
 
 
 class _Parser(argparse.ArgumentParser):
@@ -108,7 +99,7 @@ def _add_compute(sub: Any) -> None:
                     "glob patterns, folders) write their outputs to --out-dir, one per --format, named after each "
                     "input; a folder of TIFF or DICOM slices is one volume, any other folder stands for its shape "
                     "files. A failing input is reported and the others are still done (exit 1 at the end).",
-        formatter_class=_HelpFormatter,
+        formatter_class=HelpFormatter,
     )
     p.add_argument("input", type=Path, nargs="+",
                    help="image, SVG/GeoJSON/WKT, mesh or volume file, folder or glob pattern, or a saved result "
@@ -293,7 +284,7 @@ def _add_centerlines(sub: Any) -> None:
         help="centerlines of a polygon layer, feature by feature",
         description="Medial axis of every polygon feature of a GIS layer, with its attributes, index and CRS "
                     "and the columns width_min, width_mean, width_max (twice the radius).",
-        formatter_class=_HelpFormatter,
+        formatter_class=HelpFormatter,
     )
     p.add_argument("input", type=Path, help="polygon layer: any file geopandas reads (GeoPackage, GeoJSON, "
                                             "Shapefile, FlatGeobuf, ...)")
@@ -339,7 +330,7 @@ def _add_demo(sub: Any) -> None:
         "demo",
         help="run on the bundled sample shapes",
         description="Compute the medial axis of every bundled sample shape and write results and plots to a folder.",
-        formatter_class=_HelpFormatter,
+        formatter_class=HelpFormatter,
     )
     p.add_argument("outdir", type=Path, nargs="?", default=Path("medialaxis-demo"), help="output folder")
     p.set_defaults(run=_run_demo)

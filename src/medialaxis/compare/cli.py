@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis._help import HelpFormatter
+
 __all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture"]
 
 #: File types ``search`` ranks inside a folder.
@@ -43,7 +45,7 @@ def add_compare(sub: Any) -> None:
         help="distance between two shapes through their medial axes",
         description="Print the medial-axis distance between two planar shapes (0: same shape) "
         "and optionally draw the matched parts of their axes side by side.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+        formatter_class=HelpFormatter,
     )
     p.add_argument("first", type=Path, help="image, SVG, GeoJSON or WKT file, or a saved axis (.json/.npz)")
     p.add_argument("second", type=Path, help="the other shape")
@@ -143,7 +145,7 @@ def add_search(sub: Any) -> None:
         "search",
         help="rank the shapes of a folder by distance to a query",
         description="Rank the planar shape files of a folder by their medial-axis distance to a query shape.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+        formatter_class=HelpFormatter,
     )
     p.add_argument("query", type=Path, help="query shape file")
     p.add_argument("folder", type=Path, help="folder of shape files (" + " ".join(PLANAR_SUFFIXES) + ")")
