@@ -5,6 +5,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from medialaxis.volume import _kernels as K
+from medialaxis.volume.voxel_table import voxel_table
 
 
 def _random_sheet(seed: int, shape=(9, 10, 11), p=0.35) -> np.ndarray:
@@ -18,7 +19,7 @@ def _random_sheet(seed: int, shape=(9, 10, 11), p=0.35) -> np.ndarray:
 def test_topology_class_matches_reference(seed, p):
     occ = _random_sheet(seed, p=p)
     vox = np.argwhere(occ)
-    fast = K.topology_class(occ, vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE)
+    fast = K.topology_class(*voxel_table(np.argwhere(occ), occ.shape), vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE)
     assert np.array_equal(fast, K.topology_class_reference(occ, vox))
 
 
@@ -27,7 +28,7 @@ def test_topology_class_of_plane_edge_and_junction():
     occ[2, 1:8, 1:6] = True  # a sheet normal to axis 0
     occ[3:6, 4, 1:6] = True  # a sheet hanging from its middle: a T
     vox = np.array([[2, 2, 3], [2, 1, 3], [2, 4, 3], [4, 4, 3]])
-    got = K.topology_class(occ, vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE).tolist()
+    got = K.topology_class(*voxel_table(np.argwhere(occ), occ.shape), vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE).tolist()
     assert got == [2, 1, 3, 2]  # surface, free edge, junction, surface
 
 
@@ -35,13 +36,12 @@ def test_topology_class_of_plane_edge_and_junction():
 def test_greedy_subsample_matches_reference(seed, r):
     occ = _random_sheet(seed, p=0.5)
     vox = np.argwhere(occ)
-    index = np.full(occ.shape, -1, np.int32)
-    index[tuple(vox.T)] = np.arange(len(vox))
+    table = voxel_table(vox, occ.shape)
     rng = np.random.default_rng(seed)
     order = rng.permutation(len(vox))
     radius = rng.uniform(0.5, r, len(vox))
     spacing = np.array([1.0, 1.5, 0.75])
-    fast = K.greedy_subsample(index, vox, order, radius, spacing)
+    fast = K.greedy_subsample(*table, vox, order, radius, spacing)
     ref = K.greedy_subsample_reference(vox, order, radius, spacing)
     assert np.array_equal(fast, ref)
     # picks are farther apart than the radius of the earlier pick
@@ -55,13 +55,12 @@ def test_greedy_subsample_matches_reference(seed, r):
 def test_single_sheet_labels_are_plain_geodesic_voronoi(seed, nseeds):
     occ = _random_sheet(seed, p=0.6)
     vox = np.argwhere(occ)
-    index = np.full(occ.shape, -1, np.int32)
-    index[tuple(vox.T)] = np.arange(len(vox))
+    table = voxel_table(vox, occ.shape)
     seeds = np.random.default_rng(seed).choice(len(vox), size=min(nseeds, len(vox)), replace=False)
     spacing = np.array([1.0, 1.0, 2.0])
     labels = np.arange(len(seeds), dtype=np.int64)
     sheet = np.zeros(len(vox), np.int64)
-    fast = K.sheet_labels(index, vox, seeds, labels, sheet, K.OFFSETS_26, spacing)
+    fast = K.sheet_labels(*table, vox, seeds, labels, sheet, K.OFFSETS_26, spacing)
     assert np.array_equal(fast, K.sheet_labels_reference(vox, seeds, labels, sheet, spacing))
     assert np.array_equal(fast[seeds], np.arange(len(seeds)))
 
@@ -70,8 +69,7 @@ def test_single_sheet_labels_are_plain_geodesic_voronoi(seed, nseeds):
 def test_sheet_labels_match_reference(seed, nseeds):
     occ = _random_sheet(seed, p=0.6)
     vox = np.argwhere(occ)
-    index = np.full(occ.shape, -1, np.int32)
-    index[tuple(vox.T)] = np.arange(len(vox))
+    table = voxel_table(vox, occ.shape)
     rng = np.random.default_rng(seed)
     sheet = rng.integers(-1, 3, len(vox))  # -1: junction voxels (all seeds), else 3 sheets
     junction = np.flatnonzero(sheet < 0)
@@ -79,7 +77,7 @@ def test_sheet_labels_match_reference(seed, nseeds):
     seeds = np.concatenate([junction, others]).astype(np.int64)
     seed_label = np.concatenate([rng.integers(0, 2, len(junction)), 2 + np.arange(len(others))]).astype(np.int64)
     spacing = np.array([1.0, 1.0, 2.0])
-    fast = K.sheet_labels(index, vox, seeds, seed_label, sheet, K.OFFSETS_26, spacing)
+    fast = K.sheet_labels(*table, vox, seeds, seed_label, sheet, K.OFFSETS_26, spacing)
     assert np.array_equal(fast, K.sheet_labels_reference(vox, seeds, seed_label, sheet, spacing))
     assert np.array_equal(fast[seeds], seed_label)
     # a region never holds voxels of two sheets

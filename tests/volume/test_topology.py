@@ -11,6 +11,7 @@ import pytest
 
 import medialaxis as mx
 from medialaxis.volume import _kernels
+from medialaxis.volume.voxel_table import voxel_table
 from medialaxis.volume.phantoms import member_phantom, t_phantom
 from medialaxis.volume.polygonize import (
     JUNCTION,
@@ -74,10 +75,9 @@ def test_sheet_ids_split_a_voxel_t_at_its_junction():
     occ[5, 3:27, 2:10] = True  # flange
     occ[6:17, 15, 2:10] = True  # stem
     voxels = np.argwhere(occ).astype(np.int64)
-    index = np.full(occ.shape, -1, np.int32)
-    index[tuple(voxels.T)] = np.arange(len(voxels))
+    table = voxel_table(voxels, occ.shape)
     junction = (voxels[:, 0] == 5) & (voxels[:, 1] == 15)
-    sheet = sheet_ids(index, voxels, junction, np.ones(3))
+    sheet = sheet_ids(table, voxels, junction, np.ones(3))
     assert np.all(sheet[junction] == -1)
     left = sheet[(voxels[:, 0] == 5) & (voxels[:, 1] < 15)]
     right = sheet[(voxels[:, 0] == 5) & (voxels[:, 1] > 15)]
@@ -88,7 +88,7 @@ def test_sheet_ids_split_a_voxel_t_at_its_junction():
     stem_row = np.flatnonzero(voxels[:, 0] == 12)
     seeds = np.r_[np.flatnonzero(junction), stem_row].astype(np.int64)
     seed_label = np.r_[np.zeros(junction.sum()), np.ones(len(stem_row))].astype(np.int64)
-    labels = _kernels.sheet_labels(index, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, np.ones(3))
+    labels = _kernels.sheet_labels(*table, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, np.ones(3))
     assert np.all(labels[voxels[:, 0] == 5] == 0)  # the flange has no pick of its own
     assert np.all(labels[voxels[:, 0] >= 9] == 1)
 

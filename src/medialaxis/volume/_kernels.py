@@ -19,6 +19,7 @@ import numpy as np
 import heapq
 
 from medialaxis._jit import njit
+from medialaxis.volume.voxel_table import table_find
 
 __all__ = [
     "topology_class",
@@ -52,14 +53,15 @@ OFFSETS_26 = np.array([(a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c i
 
 
 @njit(cache=True, nogil=True)
-def topology_class(occupied: np.ndarray, voxels: np.ndarray, offs: np.ndarray, adj: np.ndarray,
-                   face: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+def topology_class(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: np.ndarray, offs: np.ndarray,
+                   adj: np.ndarray, face: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Number of 6-connected background components in the 26-neighbourhood
     of each voxel (Malandain's count of background components: 2 inside a
     thin sheet, 1 on its free edge, 3 or more at a junction of sheets).
 
-    ``occupied`` must be False on its outer layer; ``voxels`` (n, 3) are
-    indices of occupied voxels not on that layer.
+    The sheet is the voxel table ``(keys, rows, shape)``
+    (:class:`~medialaxis.volume.voxel_table.VoxelTable`; outside ``shape`` is
+    background); ``voxels`` (n, 3) are indices of sheet voxels.
     """
     n = voxels.shape[0]
     m = offs.shape[0]
@@ -70,7 +72,7 @@ def topology_class(occupied: np.ndarray, voxels: np.ndarray, offs: np.ndarray, a
     for i in range(n):
         z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
         for j in range(m):
-            bg[j] = not occupied[z + offs[j, 0], y + offs[j, 1], x + offs[j, 2]]
+            bg[j] = table_find(keys, rows, shape, z + offs[j, 0], y + offs[j, 1], x + offs[j, 2]) < 0
             seen[j] = False
         count = 0
         for j in range(m):
@@ -107,16 +109,17 @@ def topology_class_reference(occupied: np.ndarray, voxels: np.ndarray) -> np.nda
 
 
 @njit(cache=True, nogil=True)
-def greedy_subsample(index: np.ndarray, voxels: np.ndarray, order: np.ndarray, radius: np.ndarray,
-                     spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+def greedy_subsample(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: np.ndarray, order: np.ndarray,
+                     radius: np.ndarray, spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Pick ``voxels[order[k]]`` unless removed; each pick removes every
-    voxel within ``radius[pick]`` (physical units). ``index`` maps grid
-    positions to rows (-1 elsewhere). Returns picked rows in pick order."""
+    voxel within ``radius[pick]`` (physical units). The voxel table
+    ``(keys, rows, shape)`` maps grid positions to rows. Returns picked rows
+    in pick order."""
     n = voxels.shape[0]
     removed = np.zeros(n, np.bool_)
     picks = np.empty(n, np.int64)
     npick = 0
-    Z, Y, X = index.shape
+    Z, Y, X = shape[0], shape[1], shape[2]
     for k in range(n):
         i = order[k]
         if removed[i]:
@@ -135,7 +138,7 @@ def greedy_subsample(index: np.ndarray, voxels: np.ndarray, order: np.ndarray, r
             for b in range(max(y - hy, 0), min(y + hy + 1, Y)):
                 db = (b - y) * spacing[1]
                 for c in range(max(x - hx, 0), min(x + hx + 1, X)):
-                    j = index[a, b, c]
+                    j = table_find(keys, rows, shape, a, b, c)
                     if j >= 0 and not removed[j]:
                         dc = (c - x) * spacing[2]
                         if da * da + db * db + dc * dc <= r2:
@@ -158,14 +161,15 @@ def greedy_subsample_reference(voxels: np.ndarray, order: np.ndarray, radius: np
 
 
 @njit(cache=True, nogil=True)
-def sheet_labels(index: np.ndarray, voxels: np.ndarray, seeds: np.ndarray, seed_label: np.ndarray,
-                 sheet: np.ndarray, offs: np.ndarray, spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+def sheet_labels(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: np.ndarray, seeds: np.ndarray,
+                 seed_label: np.ndarray, sheet: np.ndarray, offs: np.ndarray,
+                 spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Discrete geodesic Voronoi regions of ``seeds`` that stay inside sheets.
 
     Regions grow in order of the Euclidean distance from a voxel to the seed
     of the neighbour it is reached from (vector propagation with a heap), so
     region borders are near the Euclidean bisectors; ties go to the lower
-    seed. ``index`` maps grid positions to rows (-1 elsewhere). Seed ``s``
+    seed. The voxel table ``(keys, rows, shape)`` maps grid positions to rows. Seed ``s``
     gives its region the label ``seed_label[s]`` (several seeds may share
     one), and a region grows from
     voxel ``i`` to voxel ``j`` only when ``sheet[j] >= 0`` and ``sheet[i]``
@@ -183,7 +187,6 @@ def sheet_labels(index: np.ndarray, voxels: np.ndarray, seeds: np.ndarray, seed_
         owner[seeds[s]] = s
         heapq.heappush(heap, (0.0, np.int64(s), np.int64(seeds[s])))
     done = np.zeros(n, np.bool_)
-    Z, Y, X = index.shape
     while len(heap) > 0:
         d, s, i = heapq.heappop(heap)
         if done[i] or owner[i] != s:
@@ -193,17 +196,16 @@ def sheet_labels(index: np.ndarray, voxels: np.ndarray, seeds: np.ndarray, seed_
         src = seeds[s]
         for t in range(offs.shape[0]):
             a, b, c = voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1], voxels[i, 2] + offs[t, 2]
-            if 0 <= a < Z and 0 <= b < Y and 0 <= c < X:
-                j = index[a, b, c]
-                if j >= 0 and not done[j] and sheet[j] >= 0 and (sheet[i] < 0 or sheet[i] == sheet[j]):
-                    dz = (a - voxels[src, 0]) * spacing[0]
-                    dy = (b - voxels[src, 1]) * spacing[1]
-                    dx = (c - voxels[src, 2]) * spacing[2]
-                    dj = np.sqrt(dz * dz + dy * dy + dx * dx)
-                    if dj < best[j] or (dj == best[j] and s < owner[j]):
-                        best[j] = dj
-                        owner[j] = s
-                        heapq.heappush(heap, (dj, np.int64(s), np.int64(j)))
+            j = table_find(keys, rows, shape, a, b, c)
+            if j >= 0 and not done[j] and sheet[j] >= 0 and (sheet[i] < 0 or sheet[i] == sheet[j]):
+                dz = (a - voxels[src, 0]) * spacing[0]
+                dy = (b - voxels[src, 1]) * spacing[1]
+                dx = (c - voxels[src, 2]) * spacing[2]
+                dj = np.sqrt(dz * dz + dy * dy + dx * dx)
+                if dj < best[j] or (dj == best[j] and s < owner[j]):
+                    best[j] = dj
+                    owner[j] = s
+                    heapq.heappush(heap, (dj, np.int64(s), np.int64(j)))
     return label
 
 

@@ -15,7 +15,8 @@ import numpy as np
 
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["Rect", "Phantom", "t_phantom", "x_phantom", "member_phantom"]
+__all__ = ["Rect", "Phantom", "t_phantom", "x_phantom", "member_phantom", "ribbed_panel", "ribbed_panel_slab",
+           "ribbed_panel_truth"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -228,3 +229,112 @@ def member_phantom(
         _rect([zt, yr, xl], [0, Y - m - 0.5 - yr, 0], [0, 0, xw]),  # flange
     ]
     return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e), (float(e),) * 5)
+
+
+def _panel_layout(shape: tuple[int, int, int], thickness: int, margin: int) -> tuple[list[tuple[tuple[int, ...], tuple[int, ...]]], list[Rect]]:
+    """Boxes ``(lo, hi)`` of the ribbed panel and its true mid-surface."""
+    Z, Y, X = _check(shape, thickness, 32)
+    m, e = margin, thickness
+    if Z - 2 * m < 3 * e or Y - 2 * m < 8 * e or X - 2 * m < 4 * e:
+        raise InvalidInputError(f"shape {shape} is too small for a ribbed panel of {e}-voxel plates with margin {m}")
+    base = ((m, m, m), (m + e, Y - m, X - m))
+    webs = [m + k * (Y - 2 * m) // 4 - e // 2 for k in (1, 2, 3)]
+    xc = X // 2 - e // 2
+    rib_top = m + e + (Z - 2 * m - e) // 2
+    boxes = [base] + [((m + e, y, m), (Z - m, y + e, X - m)) for y in webs] + [((m + e, m, xc), (rib_top, Y - m, xc + e))]
+    h = (e - 1) / 2
+    lo = m - 0.5
+    zb = m + h
+    rects = [_rect([zb, lo, lo], [0, Y - 2 * m, 0], [0, 0, X - 2 * m])]
+    rects += [_rect([zb, y + h, lo], [Z - m - 0.5 - zb, 0, 0], [0, 0, X - 2 * m]) for y in webs]
+    rects += [_rect([zb, lo, xc + h], [rib_top - 0.5 - zb, 0, 0], [0, Y - 2 * m, 0])]
+    return boxes, rects
+
+
+def ribbed_panel_truth(shape: tuple[int, int, int], *, thickness: int = 8, margin: int = 8) -> list[Rect]:
+    """The exact mid-surface of :func:`ribbed_panel` (voxel index coordinates)."""
+    return _panel_layout(tuple(shape), int(thickness), int(margin))[1]  # type: ignore[arg-type]
+
+
+def ribbed_panel_slab(
+    shape: tuple[int, int, int],
+    start: int,
+    stop: int,
+    *,
+    thickness: int = 8,
+    margin: int = 8,
+    blur: float = 1.0,
+    noise: float = 0.05,
+    rng: int = 0,
+    levels: tuple[float, float] = (0.0, 1.0),
+    dtype: object = np.float32,
+) -> np.ndarray:
+    """Rows ``start:stop`` (along axis 0) of the grey values of :func:`ribbed_panel`.
+
+    Every slab is rendered on its own (the blur sees ``4 * blur`` rows past
+    each end, the noise of row ``z`` is drawn from ``(rng, z)``), so a volume
+    written slab by slab equals the one rendered whole, at any slab size.
+    ``levels`` are the background and material grey values (e.g. ``(1000,
+    3000)`` for a 16-bit scan; the noise is a fraction of their difference).
+    """
+    from scipy import ndimage
+
+    shape = tuple(int(s) for s in shape)  # type: ignore[assignment]
+    boxes, _ = _panel_layout(shape, int(thickness), int(margin))
+    Z, Y, X = shape
+    if not 0 <= start < stop <= Z:
+        raise InvalidInputError(f"slab {start}:{stop} is outside 0:{Z}")
+    pad = int(4.0 * blur + 0.5) if blur > 0 else 0
+    lo, hi = max(start - pad, 0), min(stop + pad, Z)
+    mask = np.zeros((hi - lo, Y, X), np.float32)
+    for (z0, y0, x0), (z1, y1, x1) in boxes:
+        a, b = max(z0, lo), min(z1, hi)
+        if a < b:
+            mask[a - lo : b - lo, y0:y1, x0:x1] = 1.0
+    grey = ndimage.gaussian_filter(mask, blur, mode="constant") if blur > 0 else mask
+    grey = grey[start - lo : stop - lo]
+    if noise > 0:
+        for k in range(stop - start):
+            gen = np.random.default_rng([int(rng), start + k])
+            grey[k] += gen.normal(0.0, noise, (Y, X)).astype(np.float32)
+    low, high = (float(v) for v in levels)
+    grey = low + (high - low) * grey
+    if np.issubdtype(np.dtype(dtype), np.integer):
+        info = np.iinfo(np.dtype(dtype))
+        grey = np.clip(np.rint(grey), info.min, info.max)
+    return grey.astype(dtype)
+
+
+def ribbed_panel(
+    shape: tuple[int, int, int] = (96, 128, 128),
+    *,
+    thickness: int = 8,
+    margin: int = 8,
+    blur: float = 1.0,
+    noise: float = 0.05,
+    rng: int = 0,
+) -> Phantom:
+    """A stiffened panel: a base plate (normal to axis 0), three webs (normal
+    to axis 1) standing on it, and a half-height cross rib (normal to axis 2)
+    through the webs: T junctions along the base, X junctions where the rib
+    crosses a web, free edges at the tops and plate ends.
+
+    The plates are ``thickness`` voxels thick at every size (a larger shape is
+    a larger part at the same resolution), as for the large-scan benchmark.
+    The same volume is produced slab by slab by :func:`ribbed_panel_slab`.
+
+    Parameters and returns as :func:`t_phantom`.
+
+    Examples
+    --------
+    >>> ph = ribbed_panel((48, 96, 64), margin=4)
+    >>> ph.volume.shape, len(ph.midsurface)
+    ((48, 96, 64), 5)
+    """
+    shape = tuple(int(s) for s in shape)  # type: ignore[assignment]
+    boxes, rects = _panel_layout(shape, int(thickness), int(margin))
+    mask = np.zeros(shape, bool)
+    for lo, hi in boxes:
+        _box(mask, lo, hi)  # type: ignore[arg-type]
+    grey = ribbed_panel_slab(shape, 0, shape[0], thickness=thickness, margin=margin, blur=blur, noise=noise, rng=rng)
+    return Phantom(grey, mask, rects, float(thickness), (float(thickness),) * len(rects))

@@ -429,15 +429,14 @@ def medial_voxel_axis(
     (0, [9.0])
     """
     from medialaxis.volume.polygonize import classify_voxels
+    from medialaxis.volume.voxel_table import voxel_table
 
     src = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
     features = feature_transform(src)
     plates, lam_value = _thickness_and_lam(features, thickness, lam)
     medial = medial_voxels(features, lam_value, plates)
     dropped = _dropped(medial, plates, lam_value)
-    occupied = np.zeros(features.index.shape, bool)
-    occupied[tuple(medial.voxels.T)] = True
-    kind = classify_voxels(occupied, medial.voxels)
+    kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
     metadata = {"method": "voxels", "domain": "volume", "iso": src.iso, "thickness": plates.value,
                 "thickness_range": _range(plates), "lam": lam_value,
                 "dropped": dropped,

@@ -32,6 +32,7 @@ import numpy as np
 from medialaxis.volume import _kernels
 from medialaxis.volume.distance import Features
 from medialaxis.volume.medial import MedialVoxels
+from medialaxis.volume.voxel_table import VoxelTable, table_lookup, voxel_table
 
 __all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "Polygonization", "classify_voxels", "polygonize"]
 
@@ -71,13 +72,13 @@ class Polygonization:
     voxel_label: np.ndarray
 
 
-def classify_voxels(occupied: np.ndarray, voxels: np.ndarray) -> np.ndarray:
+def classify_voxels(table: VoxelTable, voxels: np.ndarray) -> np.ndarray:
     """Junction / boundary / surface class of each voxel of a thin sheet.
 
     Parameters
     ----------
-    occupied : (z, y, x) bool ndarray
-        The sheet; False on the outer layer.
+    table : VoxelTable
+        The sheet (:func:`~medialaxis.volume.voxel_table.voxel_table`).
     voxels : (n, 3) int64 ndarray
         Indices of the sheet voxels.
 
@@ -87,7 +88,7 @@ def classify_voxels(occupied: np.ndarray, voxels: np.ndarray) -> np.ndarray:
         ``JUNCTION`` (three or more background components around the voxel),
         ``BOUNDARY`` (at most one) or ``SURFACE`` (two).
     """
-    count = _kernels.topology_class(occupied, np.ascontiguousarray(voxels, np.int64), _kernels.N26_OFFSETS,
+    count = _kernels.topology_class(*table, np.ascontiguousarray(voxels, np.int64), _kernels.N26_OFFSETS,
                                     _kernels.N26_ADJ, _kernels.N26_FACE)
     kind = np.full(len(voxels), SURFACE, np.int8)
     kind[count <= 1] = BOUNDARY
@@ -105,21 +106,24 @@ def _pair_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
     return lo.astype(np.int64) * n + hi
 
 
-def _region_edges(label_grid: np.ndarray, n: int, sheet_grid: np.ndarray | None = None) -> np.ndarray:
+def _region_edges(table: VoxelTable, voxels: np.ndarray, label: np.ndarray, n: int,
+                  sheet: np.ndarray | None = None) -> np.ndarray:
     """Sorted unique keys of label pairs that are 6-adjacent (share a voxel face) somewhere.
 
-    With ``sheet_grid`` (sheet of each voxel, -1 junction), only pairs in one
+    With ``sheet`` (sheet of each voxel, -1 junction), only pairs in one
     sheet, or with a junction voxel, count.
     """
     keys = []
     for axis in range(3):
-        lo = [slice(None)] * 3
-        hi = [slice(None)] * 3
-        lo[axis], hi[axis] = slice(None, -1), slice(1, None)
-        a, b = label_grid[tuple(lo)], label_grid[tuple(hi)]
+        step = np.zeros(3, np.int64)
+        step[axis] = 1
+        j = table_lookup(table, voxels + step)
+        i = np.flatnonzero(j >= 0)
+        j = j[i]
+        a, b = label[i], label[j]
         touch = (a >= 0) & (b >= 0) & (a != b)
-        if sheet_grid is not None:
-            sa, sb = sheet_grid[tuple(lo)], sheet_grid[tuple(hi)]
+        if sheet is not None:
+            sa, sb = sheet[i], sheet[j]
             touch &= (sa == sb) | (sa == -1) | (sb == -1)
         keys.append(_pair_keys(a[touch], b[touch], n))
     return np.unique(np.concatenate(keys))
@@ -131,33 +135,36 @@ def _has(keys: np.ndarray, query: np.ndarray) -> np.ndarray:
     return keys[pos] == query if len(keys) else np.zeros(len(query), bool)
 
 
-def _block_labels(label_grid: np.ndarray, voxels: np.ndarray, sheet_grid: np.ndarray | None = None) -> np.ndarray:
+def _block_labels(table: VoxelTable, voxels: np.ndarray, label: np.ndarray,
+                  sheet: np.ndarray | None = None) -> np.ndarray:
     """Sorted labels (-1 padded) of every 2x2x2 block that holds a medial voxel.
 
-    With ``sheet_grid`` (sheet of each voxel, -1 junction, -2 empty), a block
-    gives one row per sheet in it, with the labels of that sheet's voxels and
-    of the junction voxels; blocks of junction voxels only give none. Regions
-    of two sheets thus never form a triangle.
+    With ``sheet`` (sheet of each voxel, -1 junction), a block gives one row
+    per sheet in it, with the labels of that sheet's voxels and of the
+    junction voxels; blocks of junction voxels only give none. Regions of
+    two sheets thus never form a triangle.
     """
     corners = np.array(list(itertools.product((0, 1), repeat=3)), np.int64)
     origins = (voxels[:, None, :] - corners[None, :, :]).reshape(-1, 3)
-    shape = np.array(label_grid.shape)
+    shape = table.shape
     origins = origins[np.all((origins >= 0) & (origins < shape - 1), axis=1)]
-    flat = np.unique(np.ravel_multi_index(origins.T, label_grid.shape))
-    origins = np.stack(np.unravel_index(flat, label_grid.shape), axis=1)
+    flat = np.unique(np.ravel_multi_index(origins.T, tuple(shape)))
+    origins = np.stack(np.unravel_index(flat, tuple(shape)), axis=1)
     cells = origins[:, None, :] + corners[None, :, :]
-    labels = label_grid[cells[..., 0], cells[..., 1], cells[..., 2]]
-    if sheet_grid is not None:
-        sheets = sheet_grid[cells[..., 0], cells[..., 1], cells[..., 2]]
+    rows = table_lookup(table, cells.reshape(-1, 3)).reshape(-1, 8)
+    present = rows >= 0
+    labels = np.where(present, label[rows], -1)
+    if sheet is not None:
+        sheets = np.where(present, sheet[rows], -2)
         real = sheets >= 0
         top = np.where(real, sheets, -1).max(axis=1)
         bottom = np.where(real, sheets, np.iinfo(sheets.dtype).max).min(axis=1)
-        rows = [labels[(top >= 0) & (top == bottom)]]
+        out = [labels[(top >= 0) & (top == bottom)]]
         for b in np.flatnonzero((top >= 0) & (top != bottom)):
-            for sheet in np.unique(sheets[b][real[b]]):
-                keep = (sheets[b] == sheet) | (sheets[b] == -1)
-                rows.append(np.where(keep, labels[b], -1)[None, :])
-        labels = np.concatenate(rows)
+            for one in np.unique(sheets[b][real[b]]):
+                keep = (sheets[b] == one) | (sheets[b] == -1)
+                out.append(np.where(keep, labels[b], -1)[None, :])
+        labels = np.concatenate(out)
     labels.sort(axis=1)
     # blank repeated labels so each row lists its distinct labels
     labels[:, 1:][labels[:, 1:] == labels[:, :-1]] = -1
@@ -192,11 +199,11 @@ def _split_quad(labs: np.ndarray, points: np.ndarray, edges: np.ndarray, n: int)
     return [(la, lb, lc), (la, lb, ld)]
 
 
-def _triangles(label_grid: np.ndarray, voxels: np.ndarray, points: np.ndarray,
-               sheet_grid: np.ndarray | None = None) -> np.ndarray:
+def _triangles(table: VoxelTable, voxels: np.ndarray, label: np.ndarray, points: np.ndarray,
+               sheet: np.ndarray | None = None) -> np.ndarray:
     n = len(points)
-    edges = _region_edges(label_grid, n, sheet_grid)
-    blocks = _block_labels(label_grid, voxels, sheet_grid)
+    edges = _region_edges(table, voxels, label, n, sheet)
+    blocks = _block_labels(table, voxels, label, sheet)
     distinct = (blocks >= 0).sum(axis=1)
     faces = [blocks[distinct == 3][:, -3:].astype(np.int64)]
     extra: list[tuple[int, int, int]] = []
@@ -551,23 +558,18 @@ SHEET_SEPARATION = 3.0
 MIN_SHEET_VOXELS = 20
 
 
-def _neighbour_pairs(index: np.ndarray, voxels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _neighbour_pairs(table: VoxelTable, voxels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Rows (i, j) of 26-adjacent medial voxels, each pair once."""
-    half = _kernels.OFFSETS_26[:13]
-    shape = np.array(index.shape)
     rows_i, rows_j = [], []
-    for off in half:
-        nb = voxels + off
-        ok = np.all((nb >= 0) & (nb < shape), axis=1)
-        j = np.full(len(voxels), -1, np.int64)
-        j[ok] = index[nb[ok, 0], nb[ok, 1], nb[ok, 2]]
+    for off in _kernels.OFFSETS_26[:13]:
+        j = table_lookup(table, voxels + off)
         has = j >= 0
         rows_i.append(np.flatnonzero(has))
         rows_j.append(j[has])
     return np.concatenate(rows_i), np.concatenate(rows_j)
 
 
-def sheet_ids(index: np.ndarray, voxels: np.ndarray, junction: np.ndarray, spacing: np.ndarray) -> np.ndarray:
+def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spacing: np.ndarray) -> np.ndarray:
     """Split the medial voxels into sheets that meet at junction voxels.
 
     Voxels farther than ``SHEET_SEPARATION`` voxels from every junction voxel
@@ -577,8 +579,8 @@ def sheet_ids(index: np.ndarray, voxels: np.ndarray, junction: np.ndarray, spaci
 
     Parameters
     ----------
-    index : (Z, Y, X) int ndarray
-        Row of each medial voxel, -1 elsewhere.
+    table : VoxelTable
+        Row of each medial voxel.
     voxels : (n, 3) int64 ndarray
     junction : (n,) bool ndarray
     spacing : (3,) float64 ndarray
@@ -598,7 +600,7 @@ def sheet_ids(index: np.ndarray, voxels: np.ndarray, junction: np.ndarray, spaci
     else:
         near, _ = cKDTree(voxels[junction]).query(voxels, k=1, distance_upper_bound=SHEET_SEPARATION + 1e-9)
         free = ~np.isfinite(near) | (near > SHEET_SEPARATION)
-    i, j = _neighbour_pairs(index, voxels)
+    i, j = _neighbour_pairs(table, voxels)
     keep = free[i] & free[j]
     graph = coo_matrix((np.ones(int(keep.sum())), (i[keep], j[keep])), shape=(n, n))
     _, comp = connected_components(graph, directed=False)
@@ -609,13 +611,13 @@ def sheet_ids(index: np.ndarray, voxels: np.ndarray, junction: np.ndarray, spaci
     _, sheet = np.unique(comp[core], return_inverse=True)
     seeds = np.flatnonzero(core)
     grow = np.where(junction, -1, 0).astype(np.int64)
-    out = _kernels.sheet_labels(index, voxels, seeds, sheet.astype(np.int64), grow, _kernels.OFFSETS_26, spacing)
+    out = _kernels.sheet_labels(*table, voxels, seeds, sheet.astype(np.int64), grow, _kernels.OFFSETS_26, spacing)
     out[junction] = -1
     out[(out < 0) & ~junction] = 0 if len(seeds) else -1  # cut off from every sheet: rare specks
     return out
 
 
-def _labels(index: np.ndarray, voxels: np.ndarray, picks: np.ndarray, junction: np.ndarray, sheet: np.ndarray,
+def _labels(table: VoxelTable, voxels: np.ndarray, picks: np.ndarray, junction: np.ndarray, sheet: np.ndarray,
             spacing: np.ndarray) -> np.ndarray:
     """Vertex (pick number) of every medial voxel: Voronoi regions kept inside sheets.
 
@@ -629,7 +631,7 @@ def _labels(index: np.ndarray, voxels: np.ndarray, picks: np.ndarray, junction: 
     on_line = np.where(junction, 0, -1).astype(np.int64)
     vertex = np.arange(len(picks), dtype=np.int64)
     at_junction = junction[picks]
-    jlabel = _kernels.sheet_labels(index, voxels, picks[at_junction], vertex[at_junction], on_line,
+    jlabel = _kernels.sheet_labels(*table, voxels, picks[at_junction], vertex[at_junction], on_line,
                                    _kernels.OFFSETS_26, spacing)
     lost = junction & (jlabel < 0)
     if lost.any() and at_junction.any():  # junction voxels cut off from every junction pick
@@ -638,7 +640,7 @@ def _labels(index: np.ndarray, voxels: np.ndarray, picks: np.ndarray, junction: 
     rows = np.flatnonzero(junction & (jlabel >= 0))
     seeds = np.concatenate([rows, picks[~at_junction]]).astype(np.int64)
     seed_label = np.concatenate([jlabel[rows], vertex[~at_junction]]).astype(np.int64)
-    return _kernels.sheet_labels(index, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, spacing)
+    return _kernels.sheet_labels(*table, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, spacing)
 
 
 def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0) -> Polygonization:
@@ -659,15 +661,10 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     -------
     Polygonization
     """
-    shape = features.index.shape
     voxels = np.ascontiguousarray(medial.voxels, np.int64)
     n = len(voxels)
-    occupied = np.zeros(shape, bool)
-    occupied[tuple(voxels.T)] = True
-    kind = classify_voxels(occupied, voxels)
-    del occupied
-    index = np.full(shape, -1, np.int32)
-    index[tuple(voxels.T)] = np.arange(n, dtype=np.int32)
+    table = voxel_table(voxels, features.index.shape)
+    kind = classify_voxels(table, voxels)
     # creases (a sheet bending sharply, pairs in two directions) come right
     # after junctions so that vertices sit on the crease line
     crease = (kind == SURFACE) & (medial.coherence < CREASE_COHERENCE)
@@ -677,18 +674,13 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     order = np.lexsort((np.random.default_rng(rng).permutation(n), priority))
     radius = np.maximum(density * medial.radius, 1.5 * float(features.spacing.max()))
     radius[kind == JUNCTION] *= JUNCTION_SPACING
-    picks = _kernels.greedy_subsample(index, voxels, order, radius, features.spacing)
+    picks = _kernels.greedy_subsample(*table, voxels, order, radius, features.spacing)
     junction = kind == JUNCTION
-    sheet = sheet_ids(index, voxels, junction, features.spacing)
-    label = _labels(index, voxels, picks, junction, sheet, features.spacing)
-    del index
-    label_grid = np.full(shape, -1, np.int32)
-    label_grid[tuple(voxels.T)] = label
-    sheet_grid = np.full(shape, -2, np.int32)
-    sheet_grid[tuple(voxels.T)] = sheet
+    sheet = sheet_ids(table, voxels, junction, features.spacing)
+    label = _labels(table, voxels, picks, junction, sheet, features.spacing)
     points = medial.position[picks]
     vertex_junction = kind[picks] == JUNCTION
-    faces = _triangles(label_grid, voxels, points, sheet_grid)
+    faces = _triangles(table, voxels, label, points, sheet)
     faces = faces[~vertex_junction[faces].all(axis=1)]  # junction lines carry no faces of their own
     faces = repair_faces(faces, vertex_junction, points, medial.normal[picks], free=kind[picks] == BOUNDARY)
     return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label)
