@@ -20,7 +20,7 @@ from scipy.spatial import cKDTree
 
 from medialaxis.volume.inputs import VolumeInput
 
-__all__ = ["Features", "boundary_points", "feature_transform"]
+__all__ = ["Features", "boundary_points", "nearest_boundary", "feature_transform"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,7 +76,7 @@ def _crop(vol: VolumeInput) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return lo, mask, grey
 
 
-def boundary_points(mask: np.ndarray, grey: np.ndarray, iso: float) -> np.ndarray:
+def boundary_points(mask: np.ndarray, grey: np.ndarray, iso: float, offset: np.ndarray | None = None) -> np.ndarray:
     """Iso-crossings on every edge between a foreground and a background voxel.
 
     Parameters
@@ -86,12 +86,18 @@ def boundary_points(mask: np.ndarray, grey: np.ndarray, iso: float) -> np.ndarra
     grey : (z, y, x) float32 ndarray
         Grey values; NaN (outside the input) counts as a crossing half-way.
     iso : float
+    offset : (3,) int ndarray, optional
+        Index of ``mask[0, 0, 0]`` in the volume: the points are returned in
+        volume index coordinates, computed as the integer voxel index plus
+        the crossing's fraction, so that any block of the volume gives
+        bit-identical points.
 
     Returns
     -------
     (b, 3) float64 ndarray
-        Crossing points in crop index coordinates.
+        Crossing points in crop index coordinates (volume coordinates with ``offset``).
     """
+    shift = np.zeros(3, np.int64) if offset is None else np.asarray(offset, np.int64)
     out = []
     for axis in range(3):
         lo = [slice(None)] * 3
@@ -108,10 +114,42 @@ def boundary_points(mask: np.ndarray, grey: np.ndarray, iso: float) -> np.ndarra
         with np.errstate(invalid="ignore", divide="ignore"):
             t = (g_fg - iso) / (g_fg - g_bg)
         t = np.clip(np.nan_to_num(t, nan=0.5), 0.0, 1.0)
-        pos = idx.astype(np.float64)
+        pos = (idx + shift).astype(np.float64)
         pos[:, axis] += np.where(fg_low, t, 1.0 - t)
         out.append(pos)
     return np.concatenate(out)
+
+
+def nearest_boundary(tree: cKDTree, points: np.ndarray, *, workers: int = -1) -> tuple[np.ndarray, np.ndarray]:
+    """Distance and row of the nearest point of ``tree`` to each of ``points``,
+    ties broken by the smallest coordinates (lexicographic in index order).
+
+    A k-d tree returns any one of several equidistant points, depending on
+    how the tree was built; choosing by coordinates makes the answer depend
+    on the points alone, so a block of a volume finds the same nearest
+    boundary point as the whole volume (the two sides of an odd-thickness
+    plate are equidistant from its middle voxels).
+    """
+    if len(points) == 0:
+        return np.zeros(0), np.zeros(0, np.int64)
+    k = min(2, tree.n)
+    distance, nearest = tree.query(points, k=k, workers=workers)
+    if k == 1:
+        return distance, nearest.astype(np.int64)
+    tied = np.flatnonzero(distance[:, 1] == distance[:, 0])
+    distance, nearest = distance[:, 0].copy(), nearest[:, 0].astype(np.int64)
+    k = 8
+    while len(tied):
+        k = min(k, tree.n)
+        d, rows = tree.query(points[tied], k=k, workers=workers)
+        candidates = np.where(d == d[:, :1], rows, tree.n)  # tree.n: not tied
+        coords = np.vstack([tree.data, np.full((1, 3), np.inf)])[candidates]  # (t, k, 3)
+        order = np.lexsort((coords[..., 2], coords[..., 1], coords[..., 0]), axis=-1)[:, 0]
+        nearest[tied] = candidates[np.arange(len(tied)), order]
+        done = (d[:, -1] != d[:, 0]) | (k == tree.n)
+        tied = tied[~done]  # all k tied: look further
+        k *= 4
+    return distance, nearest
 
 
 def feature_transform(vol: VolumeInput, *, workers: int = -1) -> Features:
@@ -138,11 +176,10 @@ def feature_transform(vol: VolumeInput, *, workers: int = -1) -> Features:
     """
     offset, mask, grey = _crop(vol)
     spacing = vol.spacing
-    bpts = boundary_points(mask, grey, vol.iso)
+    bphys = boundary_points(mask, grey, vol.iso, offset) * spacing
     voxels = np.argwhere(mask)
     index = np.full(mask.shape, -1, np.int32)
     index[tuple(voxels.T)] = np.arange(len(voxels), dtype=np.int32)
-    bphys = (bpts + offset) * spacing
     tree = cKDTree(bphys)
-    distance, nearest = tree.query((voxels + offset) * spacing, k=1, workers=workers)
-    return Features(offset, index, voxels, distance, bphys[nearest], bphys, spacing, nearest.astype(np.int64))
+    distance, nearest = nearest_boundary(tree, (voxels + offset) * spacing, workers=workers)
+    return Features(offset, index, voxels, distance, bphys[nearest], bphys, spacing, nearest)
