@@ -39,6 +39,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis._progress import progress
+from medialaxis.core.parallel import check_jobs, check_scheduler, dask_client
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.compare import _kernels
@@ -370,24 +371,6 @@ def _score_block(packed: dict[str, Any], rows: np.ndarray, cols: np.ndarray, par
     return out
 
 
-def _check_scheduler(scheduler: Any) -> None:
-    if scheduler in (None, "threads", "synchronous"):
-        return
-    if isinstance(scheduler, str) and "://" in scheduler:
-        return
-    if not isinstance(scheduler, str) and hasattr(scheduler, "submit") and hasattr(scheduler, "scatter"):
-        return
-    raise InvalidInputError(
-        f"scheduler must be None, 'threads', 'synchronous', a dask Client or an address like "
-        f"'tcp://host:8786', got {scheduler!r}"
-    )
-
-
-def _check_jobs(n_jobs: Any) -> None:
-    if n_jobs is not None and (isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs < 1):
-        raise InvalidInputError(f"n_jobs must be a positive integer or None, got {n_jobs!r}")
-
-
 def query_distances(
     query: Any,
     shapes: Sequence[Any],
@@ -412,8 +395,8 @@ def query_distances(
     [True, True]
     """
     params, axis_options = _options(options)
-    _check_jobs(n_jobs)
-    _check_scheduler(scheduler)
+    check_jobs(n_jobs)
+    check_scheduler(scheduler)
     shapes = list(shapes)
     sigs = [shape_signature(query, n_samples=n_samples, prune=prune, **axis_options)] + [
         shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
@@ -425,15 +408,6 @@ def query_distances(
     cols = np.arange(1, len(sigs))
     rows = np.zeros_like(cols)
     return _score_pairs(sigs, rows, cols, params, n_jobs=n_jobs, scheduler=scheduler, show_progress=show_progress)
-
-
-def _dask_client(scheduler: Any) -> Any:
-    from medialaxis._optional import require
-
-    distributed = require("distributed", "medialaxis[dask]")
-    if isinstance(scheduler, distributed.Client):
-        return scheduler, False
-    return distributed.Client(scheduler), True
 
 
 def _score_pairs(
@@ -464,7 +438,7 @@ def _score_pairs(
                 for blk, fut in progress(futures, desc="pairs", total=len(futures), show=show_progress):
                     values[blk] = fut.result()
     else:
-        client, owned = _dask_client(scheduler)
+        client, owned = dask_client(scheduler)
         try:
             shared = client.scatter(packed, broadcast=True)
             futures = [client.submit(_score_block, shared, rows[blk], cols[blk], params, pure=False) for blk in blocks]
@@ -536,8 +510,8 @@ def distance_matrix(
     n = len(shapes)
     if n == 0:
         raise InvalidInputError("distance_matrix needs at least one shape, got an empty collection")
-    _check_jobs(n_jobs)
-    _check_scheduler(scheduler)
+    check_jobs(n_jobs)
+    check_scheduler(scheduler)
     sigs = [
         shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
         for s in progress(shapes, desc="signatures", total=n, show=show_progress)

@@ -20,7 +20,7 @@ from scipy.spatial import cKDTree
 
 from medialaxis.volume.inputs import VolumeInput
 
-__all__ = ["Features", "boundary_points", "nearest_boundary", "feature_transform"]
+__all__ = ["Features", "Grid", "boundary_points", "nearest_boundary", "feature_transform"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -55,6 +55,32 @@ class Features:
     boundary: np.ndarray
     spacing: np.ndarray
     feature_index: np.ndarray
+
+    def physical(self, crop_index: np.ndarray) -> np.ndarray:
+        """Physical coordinates of crop indices (array of shape (..., 3))."""
+        return (np.asarray(crop_index, np.float64) + self.offset) * self.spacing
+
+    @property
+    def shape(self) -> tuple[int, int, int]:
+        """Shape of the crop."""
+        return self.index.shape  # type: ignore[return-value]
+
+
+@dataclasses.dataclass(frozen=True)
+class Grid:
+    """The crop of a volume without its per-voxel arrays (what polygonization needs).
+
+    Attributes
+    ----------
+    offset : (3,) int64 ndarray
+        Volume index of the crop's voxel ``(0, 0, 0)``.
+    shape : tuple of 3 int
+    spacing : (3,) float64 ndarray
+    """
+
+    offset: np.ndarray
+    shape: tuple[int, int, int]
+    spacing: np.ndarray
 
     def physical(self, crop_index: np.ndarray) -> np.ndarray:
         """Physical coordinates of crop indices (array of shape (..., 3))."""

@@ -13,10 +13,12 @@ vertices. The cost is one short ray per boundary vertex.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from scipy import ndimage
 
-__all__ = ["boundary_edges", "outward_directions", "march_to_iso", "extend_mesh"]
+__all__ = ["boundary_edges", "outward_directions", "march_to_iso", "extend_mesh", "sample_grey"]
 
 
 def boundary_edges(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -63,6 +65,23 @@ def outward_directions(points: np.ndarray, edges: np.ndarray, opposite: np.ndarr
     return vertices, np.divide(acc, norm, out=np.zeros_like(acc), where=norm > 1e-9)
 
 
+def _minimum(grey: Any) -> float:
+    if hasattr(grey, "sample"):
+        return float(grey.minimum)
+    return float(np.min(grey)) if grey.size else 0.0
+
+
+def sample_grey(grey: Any, coords: np.ndarray, cval: float) -> np.ndarray:
+    """Trilinear grey values at ``coords`` ((3, k) index coordinates), ``cval`` outside.
+
+    ``grey`` is an array, or an object with ``sample(coords, cval)`` and
+    ``minimum`` (a volume read block by block).
+    """
+    if hasattr(grey, "sample"):
+        return np.asarray(grey.sample(coords, cval))
+    return ndimage.map_coordinates(grey, coords, order=1, mode="constant", cval=cval)
+
+
 def march_to_iso(grey: np.ndarray, iso: float, spacing: np.ndarray, start: np.ndarray, direction: np.ndarray,
                  max_length: float, step: float) -> np.ndarray:
     """Distance along each ray to the first iso-crossing (NaN when none).
@@ -83,8 +102,7 @@ def march_to_iso(grey: np.ndarray, iso: float, spacing: np.ndarray, start: np.nd
     ts = np.arange(0.0, max_length + step, step)
     pts = start[:, None, :] + ts[None, :, None] * direction[:, None, :]
     idx = (pts / spacing).reshape(-1, 3).T
-    lo_val = float(np.min(grey)) if grey.size else 0.0
-    vals = ndimage.map_coordinates(grey, idx, order=1, mode="constant", cval=min(lo_val, iso - 1.0)).reshape(len(start), -1)
+    vals = sample_grey(grey, idx, min(_minimum(grey), iso - 1.0)).reshape(len(start), -1)
     inside = vals > iso
     out = np.full(len(start), np.nan)
     first_out = np.argmax(~inside, axis=1)
@@ -300,7 +318,7 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
                 use = is_normal[good][:, k] & grow & ~along_line & (probes[vertices] > 0)
                 for sign in (1.0, -1.0):
                     probe_point = (inner + sign * probes[vertices][:, None] * n) / spacing
-                    val = ndimage.map_coordinates(grey, probe_point.T, order=1, mode="constant", cval=iso - 1.0)
+                    val = sample_grey(grey, probe_point.T, iso - 1.0)
                     grow &= ~(use & (val > iso))
     vertices, directions, length = vertices[grow], directions[grow], length[grow]
     new_index = np.full(len(points), -1, np.int64)

@@ -28,6 +28,7 @@ from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.distance import Features
 
 __all__ = ["MedialVoxels", "PlateThickness", "medial_voxels", "plate_thickness", "estimate_thickness",
+           "plate_pairs", "plate_summary", "plate_labels", "nominal_thicknesses", "label_shortest",
            "DEFAULT_LAM_RATIO", "DEFAULT_MIN_THICKNESS"]
 
 #: Default ``lam`` as a fraction of the thickness: keeps every sheet (contact
@@ -166,7 +167,7 @@ def _cosines(features: Features, p: np.ndarray, q: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", up, uq) / np.maximum(np.linalg.norm(up, axis=1) * np.linalg.norm(uq, axis=1), 1e-12)
 
 
-def _sheet_pairs(features: Features, shortest: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def plate_pairs(features: Features, shortest: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Adjacent voxel pairs that see the two faces of a plate (antipodal contacts), longer than ``shortest``."""
     out_p, out_q, out_gap = [], [], []
     for p, q, gap in _pair_gaps(features):
@@ -202,7 +203,7 @@ def estimate_thickness(features: Features) -> float:
     EmptyShapeError
         If the part has no interior (no straddling pair).
     """
-    gaps = _sheet_pairs(features, 2.0 * float(features.spacing.max()))[2]
+    gaps = plate_pairs(features, 2.0 * float(features.spacing.max()))[2]
     if len(gaps) == 0:
         raise EmptyShapeError("the part is too thin to have medial voxels (thinner than ~2 voxels)")
     return float(np.median(gaps))
@@ -245,22 +246,51 @@ def plate_thickness(features: Features, lower: float | None = None, upper: float
     """
     unit = float(features.spacing.min())
     lower = DEFAULT_MIN_THICKNESS * unit if lower is None else float(lower)
-    p, q, gap = _sheet_pairs(features, min(0.75 * lower, 1.5 * unit))
+    p, q, gap = plate_pairs(features, label_shortest(lower, unit))
+    plates = plate_summary(gap, lower, upper, unit)
+    nominal = nominal_thicknesses(gap, lower, unit)
+    if len(nominal) <= 1:
+        # one plate thickness (or a thickness that varies smoothly): the
+        # whole part is judged by it, as with a nominal thickness
+        return plates
+    return dataclasses.replace(plates, boundary=plate_labels(features, p, q, gap, nominal))
+
+
+def label_shortest(lower: float, unit: float) -> float:
+    """Shortest pair that labels a plate (pairs a little thinner than ``lower`` still say where plates are)."""
+    return min(0.75 * lower, 1.5 * unit)
+
+
+def plate_summary(gap: np.ndarray, lower: float, upper: float, unit: float) -> PlateThickness:
+    """The part-wide figures of :func:`plate_thickness` from the lengths of all its plate-crossing pairs.
+
+    Returns a :class:`PlateThickness` without boundary labels; whether the
+    part needs them (several nominal thicknesses) is ``len(nominal_thicknesses(...)) > 1``.
+    """
     inside = (gap >= lower) & (gap <= upper)
     if not inside.any():
         found = f"; the plates found are {np.min(gap):.3g} to {np.max(gap):.3g} thick" if len(gap) else ""
         raise EmptyShapeError(f"no plate of the part is between {lower:g} and {upper:g} thick{found}")
+    return PlateThickness(float(np.median(gap[inside])), lower, float(upper), None, ranged=True)
+
+
+def nominal_thicknesses(gap: np.ndarray, lower: float, unit: float) -> np.ndarray:
+    """The part's nominal plate thicknesses from its plate-crossing pair lengths (see :func:`plate_thickness`)."""
+    return _nominal(gap[gap >= lower], unit)
+
+
+def plate_labels(features: Features, p: np.ndarray, q: np.ndarray, gap: np.ndarray, nominal: np.ndarray) -> np.ndarray:
+    """Plate thickness at every boundary point of ``features`` from its plate-crossing pairs ``(p, q, gap)``.
+
+    Each point keeps the smallest length of the pairs whose voxels it is
+    nearest to, then the median of the labels around it, snapped to the
+    nearest ``nominal`` thickness (see :func:`plate_thickness`).
+    """
     label = np.full(len(features.boundary), np.inf)
     np.minimum.at(label, features.feature_index[p], gap)
     np.minimum.at(label, features.feature_index[q], gap)
-    nominal = _nominal(gap[gap >= lower], unit)
-    value = float(np.median(gap[inside]))
-    if len(nominal) <= 1:
-        # one plate thickness (or a thickness that varies smoothly): the
-        # whole part is judged by it, as with a nominal thickness
-        return PlateThickness(value, lower, float(upper), None, ranged=True)
     label = _smooth_labels(features.boundary, label, LABEL_RADIUS * float(features.spacing.max()))
-    return PlateThickness(value, lower, float(upper), _snap(label, nominal), ranged=True)
+    return _snap(label, nominal)
 
 
 def _nominal(gap: np.ndarray, unit: float) -> np.ndarray:
@@ -311,13 +341,14 @@ def _smooth_labels(points: np.ndarray, label: np.ndarray, radius: float, block: 
             warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN rows
             median[lo:lo + block] = np.nanmedian(near, axis=1)
     known = np.isfinite(median)
-    if not known.all():
+    if not known.all() and known.any():
         _, nearest = cKDTree(points[known]).query(points[~known], k=1)
         median[~known] = median[known][nearest]
     return median
 
 
-def medial_voxels(features: Features, lam: float | None, thickness: float | PlateThickness | None = None) -> MedialVoxels:
+def medial_voxels(features: Features, lam: float | None, thickness: float | PlateThickness | None = None,
+                  counted: np.ndarray | None = None) -> MedialVoxels:
     """Medial voxels whose contact points are more than ``lam`` apart.
 
     Parameters
@@ -332,6 +363,9 @@ def medial_voxels(features: Features, lam: float | None, thickness: float | Plat
         Nominal thickness, or the thickness of each plate: pairs narrower
         than 0.9 of it must also pass the separation-angle test, and in
         local mode pairs on plates outside its bounds are left out.
+    counted : (n,) bool ndarray, optional
+        Voxels whose pairs (as the lower voxel) count in ``sheet_pairs`` and
+        ``dropped_gaps`` (a block of a volume counts the pairs it owns).
 
     Returns
     -------
@@ -388,6 +422,8 @@ def medial_voxels(features: Features, lam: float | None, thickness: float | Plat
             keep = gap > float(lam)  # type: ignore[arg-type]
         keep &= (cos < SEPARATION_COS) | (gap >= FULL_GAP * local)
         sheet = (cos < -ANTIPODAL_COS) & (gap > 1.5 * unit)
+        if counted is not None:
+            sheet &= counted[p]
         sheet_pairs += int(sheet.sum())
         dropped.append(gap[sheet & ~keep])
         p, q, gap, fp, fq = p[keep], q[keep], gap[keep], fp[keep], fq[keep]

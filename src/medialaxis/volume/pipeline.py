@@ -24,6 +24,7 @@ from medialaxis._progress import check_cancel, progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError, MedialAxisWarning
+from medialaxis.volume.chunked import chunked_midsurface, chunked_voxels, use_chunks
 from medialaxis.volume.dents import bent_vertices
 from medialaxis.volume.dents import remove_dents as _remove_dents
 from medialaxis.volume.distance import Features, feature_transform
@@ -198,48 +199,92 @@ def volume_stages(
             state["medial"] = medial_voxels(state["features"], state["lam"], state["plates"])
             state["dropped"] = _dropped(state["medial"], state["plates"], state["lam"])
         elif stage == "polygonize":
-            mesh = polygonize(state["features"], state["medial"], density=density, rng=rng)
-            state["mesh"] = mesh
-            state["points"], state["faces"] = mesh.points, mesh.faces
-            state["radii"], state["kind"] = mesh.radii, mesh.kind
+            state["grid"] = state["features"]
+            polygonize_stage(state, density, rng)
         elif stage == "dents":
-            kind = state["kind"]
-            special = (kind == JUNCTION) | (kind == BOUNDARY)
-            # free-edge vertices mix in boundary points of the end face: put them
-            # on the planes of the interior faces next to them (eq. 1 as well)
-            moved = state["points"]
-            for _ in range(FREE_EDGE_PASSES):
-                moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
-            if remove_dents:
-                moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
-                # creases (a sheet bending sharply) are rounded like dents: put
-                # them on the planes of the faces on either side
-                crease = (kind == SURFACE) & (state["medial"].coherence[state["mesh"].picks] < CREASE_COHERENCE)
-                crease |= (kind == SURFACE) & bent_vertices(moved, state["faces"])
-                for _ in range(CREASE_PASSES):
-                    moved = _remove_dents(moved, state["faces"], crease, special | crease, rings=2)
-            state["points"] = moved
-            state["dented_points"] = moved
+            dents_stage(state, remove_dents)
         elif stage == "extension" and extend:
             src = state["source"]
-            if state["plates"].local:
-                # each free edge reaches as far as its own plate's thickness allows
-                plate = 2.0 * state["radii"]
-                sample_radius = density * state["radii"]
-            else:
-                plate = state["thickness"]
-                sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
-            points, faces, source = extend_mesh(
-                state["points"], state["faces"], src.grey, src.iso, src.spacing,
-                max_length=1.5 * plate + 2.0 * sample_radius,
-                free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
-                probe=0.5 * plate + 2.0 * float(src.spacing.max()),
-            )
-            state["points"], state["faces"] = points, faces
-            state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
-            state["kind"] = np.concatenate([state["kind"], np.full(len(source), EXTENSION, np.int8)])
+            extension_stage(state, src.grey, src.iso, src.spacing, density)
         timings[stage] = time.perf_counter() - t0
     src = state["source"]
+    metadata = _metadata(src.iso, state, src.spacing, src.mask.shape)
+    metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density})
+    t0 = time.perf_counter()
+    shell = isosurface_shell(src)
+    timings["shell"] = time.perf_counter() - t0
+    result, steps = assemble(state, metadata, shell)
+    return VolumeStages(src, state["features"], state["thickness"], state["lam"], state["medial"], state["mesh"], result,
+                        timings, steps)
+
+
+def _metadata(iso: float, state: dict[str, Any], spacing: np.ndarray, shape: tuple[int, ...]) -> dict[str, Any]:
+    return {
+        "method": "midsurface",
+        "domain": "volume",
+        "iso": iso,
+        "thickness": state["thickness"],
+        "thickness_range": _range(state["plates"]),
+        "lam": state["lam"],
+        "dropped": state["dropped"],
+        "spacing": np.asarray(spacing).tolist(),
+        "image_shape": list(shape),
+    }
+
+
+def polygonize_stage(state: dict[str, Any], density: float, rng: Any) -> None:
+    """Sub-sampling polygonization of ``state["medial"]`` on ``state["grid"]``."""
+    mesh = polygonize(state["grid"], state["medial"], density=density, rng=rng)
+    state["mesh"] = mesh
+    state["points"], state["faces"] = mesh.points, mesh.faces
+    state["radii"], state["kind"] = mesh.radii, mesh.kind
+
+
+def dents_stage(state: dict[str, Any], remove_dents: bool) -> None:
+    """Free edges, dents at junctions and creases put on the planes of the faces beside them (eq. 1)."""
+    kind = state["kind"]
+    special = (kind == JUNCTION) | (kind == BOUNDARY)
+    # free-edge vertices mix in boundary points of the end face: put them
+    # on the planes of the interior faces next to them (eq. 1 as well)
+    moved = state["points"]
+    for _ in range(FREE_EDGE_PASSES):
+        moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
+    if remove_dents:
+        moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
+        # creases (a sheet bending sharply) are rounded like dents: put
+        # them on the planes of the faces on either side
+        crease = (kind == SURFACE) & (state["medial"].coherence[state["mesh"].picks] < CREASE_COHERENCE)
+        crease |= (kind == SURFACE) & bent_vertices(moved, state["faces"])
+        for _ in range(CREASE_PASSES):
+            moved = _remove_dents(moved, state["faces"], crease, special | crease, rings=2)
+    state["points"] = moved
+    state["dented_points"] = moved
+
+
+def extension_stage(state: dict[str, Any], grey: Any, iso: float, spacing: np.ndarray, density: float) -> None:
+    """Free edges extended to the isosurface (``grey``: an array, or a sampler with ``sample`` and ``minimum``)."""
+    if state["plates"].local:
+        # each free edge reaches as far as its own plate's thickness allows
+        plate = 2.0 * state["radii"]
+    else:
+        plate = state["thickness"]
+    if state["plates"].local:
+        sample_radius = density * state["radii"]
+    else:
+        sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
+    points, faces, source = extend_mesh(
+        state["points"], state["faces"], grey, iso, spacing,
+        max_length=1.5 * plate + 2.0 * sample_radius,
+        free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
+        probe=0.5 * plate + 2.0 * float(spacing.max()),
+    )
+    state["points"], state["faces"] = points, faces
+    state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
+    state["kind"] = np.concatenate([state["kind"], np.full(len(source), EXTENSION, np.int8)])
+
+
+def assemble(state: dict[str, Any], metadata: dict[str, Any], shell: Any) -> tuple[MedialAxis, dict[str, MedialAxis]]:
+    """The result and the axis after each stage (``VolumeStages.steps``)."""
     if len(state["faces"]):
         # a lone medial voxel (a noisy corner) is a vertex without a face: not part of the mid-surface
         used = np.zeros(len(state["points"]), bool)
@@ -251,39 +296,22 @@ def volume_stages(
                 state[key] = state[key][used]
     faces = state["faces"]
     edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
-    metadata = {
-        "method": "midsurface",
-        "domain": "volume",
-        "iso": src.iso,
-        "thickness": state["thickness"],
-        "thickness_range": _range(state["plates"]),
-        "lam": state["lam"],
-        "dropped": state["dropped"],
-        "spacing": src.spacing.tolist(),
-        "image_shape": list(src.mask.shape),
-        "extend": bool(extend),
-        "remove_dents": bool(remove_dents),
-        "density": density,
-    }
-    t0 = time.perf_counter()
-    shell = isosurface_shell(src)
-    timings["shell"] = time.perf_counter() - t0
     result = MedialAxis(
         state["points"], state["radii"], edges, faces,
         extras={"thickness": 2.0 * state["radii"], "vertex_kind": state["kind"]},
         metadata=metadata, shape=shell,
     )
-    mesh, medial, features = state["mesh"], state["medial"], state["features"]
+    mesh, medial, grid = state["mesh"], state["medial"], state["grid"]
     voxel_meta = dict(metadata, method="voxels")
     steps = {
-        "medial_voxels": MedialAxis(features.physical(medial.voxels), medial.radius, metadata=voxel_meta, shape=shell),
+        "medial_voxels": MedialAxis(grid.physical(medial.voxels), medial.radius, metadata=voxel_meta, shape=shell),
         "polygonized": MedialAxis(mesh.points, mesh.radii, faces=mesh.faces, metadata=metadata,
                                   extras={"vertex_kind": mesh.kind}, shape=shell),
         "dents_removed": MedialAxis(state["dented_points"], mesh.radii, faces=mesh.faces, metadata=metadata,
                                     extras={"vertex_kind": mesh.kind}, shape=shell),
         "extended": result,
     }
-    return VolumeStages(src, features, state["thickness"], state["lam"], medial, mesh, result, timings, steps)
+    return result, steps
 
 
 def midsurface_medial_axis(
@@ -300,6 +328,9 @@ def midsurface_medial_axis(
     rng: Any = 0,
     raw_shape: Any = None,
     raw_dtype: Any = None,
+    chunks: Any = None,
+    scheduler: Any = None,
+    n_jobs: int | None = None,
     callback: Callable[[str], Any] | None = None,
     show_progress: bool | None = None,
 ) -> MedialAxis:
@@ -348,6 +379,36 @@ def midsurface_medial_axis(
         Order of the sub-sampling within a class (reproducible per seed).
     raw_shape, raw_dtype : optional
         Array shape ``(Z, Y, X)`` and dtype of a ``.raw`` file.
+    chunks : int or 3 ints, optional
+        Block size of the chunked route (:mod:`~medialaxis.volume.chunked`),
+        for volumes larger than memory: the volume is read and processed a
+        block at a time, each with a halo (see below), and only the medial
+        voxels are gathered. Default: blocks of 256 for a Dask or Zarr array,
+        with a cluster ``scheduler``, or above 2^27 voxels (512^3); ``0``
+        keeps the whole volume in memory. The medial voxels are identical to
+        the in-memory route's, and the mesh is built from all of them at
+        once (no seams).
+
+        The halo is chosen from the part: without a thickness, a first pass
+        measures the deepest voxel ``D`` (half the thickest plate); the halo
+        is ``D`` plus two voxels (the medial test of a core voxel uses its
+        neighbours' nearest boundary points, which must be inside the read
+        box), or ``3 D`` plus four voxels when plates of several nominal
+        thicknesses are labelled; with a number ``thickness``, half of it
+        plus three voxels. Every block checks that each voxel its answer
+        depends on is nearer to a boundary point it read than to the sides
+        of its box, and reads itself again with a doubled halo where not.
+        The mesh stages need no halo: they run on the gathered voxels.
+        Accepted sources: arrays, ``dask.array.Array``, Zarr arrays and
+        stores, ``.npy`` and raw files (memory-mapped), NRRD (raw
+        memory-mapped; gzip/bzip2 decompressed once to a temporary file),
+        NIfTI, TIFF stacks and folders (page by page).
+    scheduler : None, "threads", "synchronous", dask Client or str
+        Where the blocks run: local threads (default), one thread, or a Dask
+        cluster (a ``Client`` or an address such as ``"tcp://host:8786"``;
+        its workers must see the input file). Implies the chunked route.
+    n_jobs : int, optional
+        Local worker threads of the chunked route (default: all CPUs).
     callback : callable, optional
         Called with each stage name; returning ``False`` cancels.
     show_progress : bool, optional
@@ -389,6 +450,13 @@ def midsurface_medial_axis(
     >>> bool(np.allclose(ma.points[:, 0], 9.5))
     True
     """
+    sizes = use_chunks(volume, chunks, scheduler, raw_shape, raw_dtype)
+    if sizes is not None:
+        return chunked_midsurface(
+            volume, chunks=sizes, iso=_iso(iso, threshold), thickness=thickness, lam=lam, spacing=spacing, extend=extend,
+            remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype,
+            scheduler=scheduler, n_jobs=n_jobs, callback=callback, show_progress=show_progress,
+        )
     return volume_stages(
         volume, iso=iso, threshold=threshold, thickness=thickness, lam=lam, spacing=spacing, extend=extend,
         remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype, callback=callback,
@@ -406,10 +474,15 @@ def medial_voxel_axis(
     spacing: Any = None,
     raw_shape: Any = None,
     raw_dtype: Any = None,
+    chunks: Any = None,
+    scheduler: Any = None,
+    n_jobs: int | None = None,
+    show_progress: bool | None = None,
 ) -> MedialAxis:
     """The medial voxels themselves (``method="voxels"``): points and radii, no faces.
 
-    Parameters are as :func:`midsurface_medial_axis`.
+    Parameters are as :func:`midsurface_medial_axis`; the chunked route
+    (``chunks``, ``scheduler``) gives the same voxels.
 
     Returns
     -------
@@ -431,6 +504,11 @@ def medial_voxel_axis(
     from medialaxis.volume.polygonize import classify_voxels
     from medialaxis.volume.voxel_table import voxel_table
 
+    sizes = use_chunks(volume, chunks, scheduler, raw_shape, raw_dtype)
+    if sizes is not None:
+        return chunked_voxels(volume, chunks=sizes, iso=_iso(iso, threshold), thickness=thickness, lam=lam,
+                              spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype, scheduler=scheduler,
+                              n_jobs=n_jobs, show_progress=show_progress)
     src = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
     features = feature_transform(src)
     plates, lam_value = _thickness_and_lam(features, thickness, lam)

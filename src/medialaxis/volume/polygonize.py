@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis.volume import _kernels
-from medialaxis.volume.distance import Features
+from medialaxis.volume.distance import Features, Grid
 from medialaxis.volume.medial import MedialVoxels
 from medialaxis.volume.voxel_table import VoxelTable, table_lookup, voxel_table
 
@@ -643,13 +643,13 @@ def _labels(table: VoxelTable, voxels: np.ndarray, picks: np.ndarray, junction: 
     return _kernels.sheet_labels(*table, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, spacing)
 
 
-def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0) -> Polygonization:
+def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0) -> Polygonization:
     """Triangle mesh of the medial voxels by sub-sampling.
 
     Parameters
     ----------
-    features : Features
-        Gives the crop grid of the medial voxels.
+    features : Features or Grid
+        Gives the crop grid of the medial voxels (``shape``, ``spacing``).
     medial : MedialVoxels
     density : float
         Sampling radius in units of the local radius (half thickness); smaller
@@ -663,7 +663,7 @@ def polygonize(features: Features, medial: MedialVoxels, *, density: float = 1.0
     """
     voxels = np.ascontiguousarray(medial.voxels, np.int64)
     n = len(voxels)
-    table = voxel_table(voxels, features.index.shape)
+    table = voxel_table(voxels, features.shape)
     kind = classify_voxels(table, voxels)
     # creases (a sheet bending sharply, pairs in two directions) come right
     # after junctions so that vertices sit on the crease line
