@@ -35,10 +35,11 @@ from scipy.spatial import cKDTree
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.distance import Features, boundary_points, nearest_boundary
 from medialaxis.volume.medial import (
-    LABEL_RADIUS, MedialVoxels, PlateThickness, label_shortest, medial_voxels, plate_labels, plate_pairs,
+    ANTIPODAL_COS, LABEL_RADIUS, MedialPairs, MedialVoxels, PlateThickness, judge_pairs, label_shortest, medial_pairs,
+    medial_voxels, pairs_to_voxels, plate_labels, plate_pairs,
 )
 
-__all__ = ["Block", "block_grid", "halo_voxels", "scan_block", "medial_block", "BlockScan", "BlockMedial", "BlockSampler"]
+__all__ = ["Block", "block_grid", "halo_voxels", "scan_block", "finish_block", "medial_block", "BlockScan", "BlockMedial", "BlockSampler"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -105,8 +106,9 @@ def _read(source: Any, block: Block, halo: np.ndarray, iso: float) -> tuple[np.n
 
 
 def block_features(source: Any, block: Block, halo: np.ndarray, iso: float, spacing: np.ndarray,
-                   *, workers: int = 1) -> tuple[Features | None, np.ndarray, np.ndarray]:
-    """Features of the block's read box and the distance past which a voxel's answer may be wrong.
+                   *, reach: int = 1, workers: int = 1) -> tuple[Features | None, np.ndarray, np.ndarray]:
+    """Features of the voxels within ``reach`` of the block's core, from the boundary points of its read box,
+    and the distance past which a voxel's answer may be wrong.
 
     Returns ``(features, margin, box)``: ``margin (n,)`` is, for each
     foreground voxel, the distance to the nearest side of the read box that
@@ -121,6 +123,7 @@ def block_features(source: Any, block: Block, halo: np.ndarray, iso: float, spac
     bphys = boundary_points(mask, grey, iso, origin) * spacing
     del grey
     voxels = np.argwhere(mask)
+    voxels = voxels[_inside(voxels + origin, np.array(block.lo) - reach, np.array(block.hi) + reach)]
     index = np.full(mask.shape, -1, np.int32)
     index[tuple(voxels.T)] = np.arange(len(voxels), dtype=np.int32)
     del mask
@@ -158,6 +161,14 @@ class BlockScan:
         Largest halo the block needed.
     foreground : int
         Foreground voxels in the core.
+    pairs : MedialPairs or None
+        The candidate medial pairs that mark a core voxel (``chosen`` numbers
+        ``voxels``) or are owned by the core (``owned``; ``chosen`` -1 when
+        the voxel they mark is in another block).
+    voxels : (v, 3) int64 ndarray
+        Volume indices of the core voxels the pairs mark.
+    distance : (v,) float64 ndarray
+    owned : (k,) bool ndarray
     """
 
     gaps: np.ndarray
@@ -166,6 +177,10 @@ class BlockScan:
     hi: np.ndarray | None
     halo: int
     foreground: int = 0
+    pairs: MedialPairs | None = None
+    voxels: np.ndarray | None = None
+    distance: np.ndarray | None = None
+    owned: np.ndarray | None = None
 
 
 def _exact(features: Features, margin: np.ndarray, lo: Any, hi: Any) -> bool:
@@ -184,25 +199,58 @@ def _grow(halo: np.ndarray, limit: int, block: Block, what: str) -> np.ndarray:
 
 
 def scan_block(block: Block, source: Any, iso: float, spacing: np.ndarray, halo: np.ndarray, lower: float,
-               limit: int) -> BlockScan:
-    """First pass: plate-crossing pair lengths, largest depth and foreground box of one core."""
+               shortest: float, limit: int) -> BlockScan:
+    """First pass: plate-crossing pair lengths, depth, foreground box and candidate medial pairs of one core.
+
+    ``shortest`` is the shortest candidate pair (at most the ``lam`` the
+    second half will use): with one nominal thickness the medial voxels come
+    from these pairs (:func:`finish_block`) without reading the block again.
+    """
     unit = float(spacing.min())
+    lo, hi = np.array(block.lo), np.array(block.hi)
     while True:
         features, margin, _ = block_features(source, block, halo, iso, spacing)
         if features is None:
             return BlockScan(np.zeros(0), 0.0, None, None, int(halo.max()), 0)
-        lo, hi = np.array(block.lo), np.array(block.hi)
         if _exact(features, margin, lo - 1, hi + 1):
             break
         halo = _grow(halo, limit, block, "the nearest boundary of its voxels")
     at = features.voxels + features.offset
     core = _inside(at, lo, hi)
-    p, q, gap = plate_pairs(features, label_shortest(lower, unit))
-    own = core[p]
+    pairs = medial_pairs(features, min(shortest, label_shortest(lower, unit)))
+    owned = core[pairs.p]
+    plate = owned & (pairs.cos < -ANTIPODAL_COS) & (pairs.gap > label_shortest(lower, unit))
+    gaps = pairs.gap[plate]
+    marks = core[pairs.chosen]
+    pairs = pairs.subset(marks | owned)
+    owned, marks = owned[marks | owned], marks[marks | owned]
+    rows, number = np.unique(pairs.chosen[marks], return_inverse=True)
+    chosen = np.full(len(pairs.chosen), -1, np.int64)
+    chosen[marks] = number
+    pairs = dataclasses.replace(pairs, chosen=chosen, p=np.zeros(0, np.int64), q=np.zeros(0, np.int64))
     fg = at[core]
     depth = float(features.distance[core].max(initial=0.0))
     box = (fg.min(axis=0), fg.max(axis=0) + 1) if len(fg) else (None, None)
-    return BlockScan(gap[own], depth, box[0], box[1], int(halo.max()), int(core.sum()))
+    return BlockScan(gaps, depth, box[0], box[1], int(halo.max()), int(core.sum()), pairs, at[rows],
+                     features.distance[rows], owned)
+
+
+def finish_block(scan: BlockScan, lam: float, plates: PlateThickness, unit: float) -> BlockMedial:
+    """The medial voxels of a core from its first-pass pairs (one nominal thickness or a number)."""
+    if scan.pairs is None or scan.voxels is None:
+        return BlockMedial(_empty(), scan.lo, scan.hi, scan.foreground)
+    keep, sheet = judge_pairs(scan.pairs, lam, plates, plates.value, unit)
+    sheet &= scan.owned
+    keep &= scan.pairs.chosen >= 0
+    found = pairs_to_voxels(scan.pairs, keep, len(scan.voxels))
+    dropped = scan.pairs.gap[sheet & ~keep]
+    if found is None:
+        medial = dataclasses.replace(_empty(), sheet_pairs=int(sheet.sum()), dropped_gaps=dropped)
+        return BlockMedial(medial, scan.lo, scan.hi, scan.foreground)
+    rows, position, radius, normal, coherence = found
+    medial = MedialVoxels(scan.voxels[rows], position, radius, normal, scan.distance[rows], coherence,
+                          int(sheet.sum()), dropped)
+    return BlockMedial(medial, scan.lo, scan.hi, scan.foreground)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -216,22 +264,26 @@ class BlockMedial:
 
 
 def medial_block(block: Block, source: Any, iso: float, spacing: np.ndarray, halo: np.ndarray, lam: float | None,
-                 plates: PlateThickness, nominal: np.ndarray | None, limit: int) -> BlockMedial:
+                 plates: PlateThickness, nominal: np.ndarray | None, limit: int, depth: float = 0.0) -> BlockMedial:
     """Second pass: the medial voxels of one core, exactly as the whole volume gives them.
 
     ``plates`` carries the part-wide thickness figures; with ``nominal``
-    (several nominal thicknesses) the block labels its own boundary points.
+    (several nominal thicknesses) the block labels its own boundary points;
+    ``depth`` is then the part's deepest voxel.
     """
     lo, hi = np.array(block.lo), np.array(block.hi)
     unit = float(spacing.min())
+    # labels need exact features out to 2 D past the core (the pairs that
+    # label the boundary points the core's voxels are nearest to)
+    reach = 1 if nominal is None else int(math.ceil(2.0 * depth / unit)) + 3
     while True:
-        features, margin, _ = block_features(source, block, halo, iso, spacing)
+        if int(halo.min()) <= reach:
+            halo = _grow(halo, limit, block, "the pairs that label its plates")
+            continue
+        features, margin, _ = block_features(source, block, halo, iso, spacing, reach=reach)
         if features is None:
             return BlockMedial(_empty(), None, None, 0)
-        # labels need exact features out to 2 D past the core (the pairs
-        # that label the boundary points the core's voxels are nearest to)
-        reach = 1 if nominal is None else int(math.ceil(2.0 * float(features.distance.max()) / unit)) + 3
-        if int(halo.min()) > reach and _exact(features, margin, lo - reach, hi + reach):
+        if _exact(features, margin, lo - reach, hi + reach):
             break
         halo = _grow(halo, limit, block, "the nearest boundary of its voxels")
     at = features.voxels + features.offset

@@ -43,7 +43,9 @@ from medialaxis.core.result import MedialAxis
 from medialaxis.core.scene3d import Surface
 from medialaxis.core.validate import check_number
 from medialaxis.errors import EmptyShapeError, InvalidInputError
-from medialaxis.volume.blocks import Block, BlockSampler, block_grid, halo_voxels, medial_block, scan_block
+from medialaxis.volume.blocks import (
+    Block, BlockSampler, block_grid, finish_block, halo_voxels, medial_block, scan_block,
+)
 from medialaxis.volume.distance import Grid
 from medialaxis.volume.inputs import VolumeInput, check_spacing, counted, iso50_counts, value_counts
 from medialaxis.volume.medial import (
@@ -61,7 +63,7 @@ CHUNKED_VOXELS = 1 << 27
 #: Smallest block edge: smaller blocks spend more on their halos than on their cores.
 MIN_CHUNK = 16
 #: Halo of the first pass (voxels), grown per block where the part is thicker.
-FIRST_HALO = 6
+FIRST_HALO = 8
 
 
 def check_chunks(chunks: Any) -> tuple[int, int, int] | None:
@@ -240,20 +242,26 @@ def chunked_medial_voxels(
             lam_value = DEFAULT_LAM_RATIO * value if lam is None else check_number(lam, "lam", positive=True)
             plates, nominal = PlateThickness(value, lam_value, np.inf), None
             halo = halo_voxels(0.5 * value + float(spacing.max()), spacing, False)
+            _check_halo(halo, limit)
+            parts = run(medial_block, blocks, source, iso_value, spacing, halo, lam_value, plates, None, limit,
+                        desc="medial voxels")
         else:
-            first = np.full(3, FIRST_HALO, np.int64)
+            first = np.full(3, min(FIRST_HALO, limit), np.int64)
             lower = DEFAULT_MIN_THICKNESS * unit if thickness is None else float(thickness[0])
-            scans = run(scan_block, blocks, source, iso_value, spacing, first, lower, limit, desc="plate thickness")
+            shortest = 1.5 * unit if lam is None else min(check_number(lam, "lam", positive=True), 1.5 * unit)
+            scans = run(scan_block, blocks, source, iso_value, spacing, first, lower, shortest, limit,
+                        desc="medial voxels")
             _check_foreground(sum(s.foreground for s in scans), source, iso_value)
             plates, lam_value, nominal = _plates(scans, thickness, lam, spacing)
-            halo = halo_voxels(max(s.depth for s in scans), spacing, nominal is not None)
-        if int(halo.max()) > limit:
-            raise InvalidInputError(
-                f"chunks={limit} is smaller than the halo of {int(halo.max())} voxels that plates of this part need; "
-                f"use chunks of at least {int(halo.max())}"
-            )
-        parts = run(medial_block, blocks, source, iso_value, spacing, halo, lam_value, plates, nominal, limit,
-                    desc="medial voxels")
+            depth = max(s.depth for s in scans)
+            halo = halo_voxels(depth, spacing, nominal is not None)
+            if nominal is None:  # one thickness: the first pass's pairs give the medial voxels
+                parts = [finish_block(scan, lam_value, plates, unit) for scan in scans]
+            else:  # several: each block labels its plates, reading itself again
+                del scans
+                _check_halo(halo, limit)
+                parts = run(medial_block, blocks, source, iso_value, spacing, halo, lam_value, plates, nominal, limit,
+                            depth, desc="plate labels")
         medial, grid, foreground = _gather(parts)
         _check_foreground(foreground, source, iso_value)
         if grid is None or len(medial.voxels) == 0:
@@ -268,6 +276,14 @@ def chunked_medial_voxels(
     except BaseException:
         _cleanup(source)
         raise
+
+
+def _check_halo(halo: np.ndarray, limit: int) -> None:
+    if int(halo.max()) > limit:
+        raise InvalidInputError(
+            f"chunks={limit} is smaller than the halo of {int(halo.max())} voxels that plates of this part need; "
+            f"use chunks of at least {int(halo.max())}"
+        )
 
 
 def _check_foreground(count: int, source: Source, iso: float) -> None:

@@ -19,7 +19,6 @@ the thinner of the two plates it touches).
 from __future__ import annotations
 
 import dataclasses
-import warnings
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -333,13 +332,12 @@ def _smooth_labels(points: np.ndarray, label: np.ndarray, radius: float, block: 
         _, idx = tree.query(points[lo:lo + block], k=LABEL_NEIGHBOURS, distance_upper_bound=radius)
         neighbours[lo:lo + block] = idx  # len(points) where fewer are within radius
     padded = np.append(label, np.inf)
-    median = np.empty(len(points))
+    median = np.full(len(points), np.nan)
     for lo in range(0, len(points), block):
         near = padded[neighbours[lo:lo + block]]
         near[~np.isfinite(near)] = np.nan
-        with np.errstate(all="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN rows
-            median[lo:lo + block] = np.nanmedian(near, axis=1)
+        some = ~np.all(np.isnan(near), axis=1)  # all-NaN rows stay NaN (no warning: blocks run in threads)
+        median[lo:lo + block][some] = np.nanmedian(near[some], axis=1)
     known = np.isfinite(median)
     if not known.all() and known.any():
         _, nearest = cKDTree(points[known]).query(points[~known], k=1)
@@ -388,45 +386,91 @@ def medial_voxels(features: Features, lam: float | None, thickness: float | Plat
     if lam is not None and (not np.isfinite(lam) or lam <= 0):
         raise InvalidInputError(f"lam must be finite and > 0, got {lam!r}")
     nominal = 0.0 if thickness is None else (plates.value if plates is not None else float(thickness))
-    n = len(features.voxels)
     unit = float(features.spacing.min())
     if plates is not None and plates.local:
         shortest = DEFAULT_LAM_RATIO * plates.lower if lam is None else lam
     else:
         shortest = float(lam)  # type: ignore[arg-type]
+    # pairs of a plate too thin for lam are counted (they are dropped)
+    pairs = medial_pairs(features, min(shortest, 1.5 * unit),
+                         plates.boundary if plates is not None and plates.local else None)
+    keep, sheet = judge_pairs(pairs, lam, plates, nominal, unit)
+    if counted is not None:
+        sheet &= counted[pairs.p]
+    medial = pairs_to_voxels(pairs, keep, len(features.voxels))
+    if medial is None:
+        what = f"lam={lam:g}" if lam is not None else f"plates {plates.lower:g} to {plates.upper:g} thick"  # type: ignore[union-attr]
+        raise EmptyShapeError(f"no medial voxel for {what}: the thickness or lam is larger than the part allows")
+    rows, position, radius, normal, coherence = medial
+    return MedialVoxels(
+        voxels=features.voxels[rows],
+        position=position,
+        radius=radius,
+        normal=normal,
+        distance=features.distance[rows],
+        coherence=coherence,
+        sheet_pairs=int(sheet.sum()),
+        dropped_gaps=pairs.gap[sheet & ~keep],
+    )
+
+
+@dataclasses.dataclass(frozen=True)
+class MedialPairs:
+    """Candidate medial pairs of adjacent voxels, axis by axis in grid order.
+
+    Attributes
+    ----------
+    axis : (k,) int8 ndarray
+        The axis along which the pair is adjacent (pairs are sorted by it).
+    p, q : (k,) int64 ndarray
+        Rows of the lower and upper voxel.
+    gap, cos : (k,) float64 ndarray
+        Distance between their nearest boundary points, and the cosine of
+        the angle between the directions to them.
+    local : (k,) float64 ndarray or None
+        Thickness of the thinner plate the pair touches (per-plate mode).
+    chosen : (k,) int64 ndarray
+        Row of the voxel the pair marks (nearer the bisector plane).
+    mid, u : (k, 3) float64 ndarray
+        Mid-point of the boundary points and the unit direction between
+        them, oriented with its largest component positive.
+    """
+
+    axis: np.ndarray
+    p: np.ndarray
+    q: np.ndarray
+    gap: np.ndarray
+    cos: np.ndarray
+    local: np.ndarray | None
+    chosen: np.ndarray
+    mid: np.ndarray
+    u: np.ndarray
+
+    def subset(self, keep: np.ndarray) -> MedialPairs:
+        return MedialPairs(*(None if v is None else v[keep] for v in dataclasses.astuple(self)))  # type: ignore[arg-type]
+
+
+def medial_pairs(features: Features, shortest: float, labels: np.ndarray | None = None) -> MedialPairs:
+    """Adjacent voxel pairs whose nearest boundary points are more than ``shortest`` apart.
+
+    ``labels`` (per boundary point plate thickness) gives each pair the
+    thinner plate it touches.
+    """
+    unit = float(features.spacing.min())
     F = features.feature
     P = (features.voxels + features.offset) * features.spacing
-    acc_mid = np.zeros((n, 3))
-    acc_normal = np.zeros((n, 3))
-    acc_q = np.zeros((n, 3, 3))  # sum of u u^T over the pairs (plane quadric)
-    acc_qm = np.zeros((n, 3))  # sum of u u^T mid
-    acc_gap = np.zeros(n)
-    count = np.zeros(n)
-    sheet_pairs = 0
-    dropped = []
-    for p, q, gap in _pair_gaps(features):
-        # pairs of a plate too thin for lam are counted (they are dropped)
-        candidate = gap > min(shortest, 1.5 * unit)
+    out = []
+    for axis, (p, q, gap) in enumerate(_pair_gaps(features)):
+        candidate = gap > shortest
         p, q, gap = p[candidate], q[candidate], gap[candidate]
         fp, fq = F[p], F[q]
         # separation angle: the contact directions of a sheet are opposite; at
         # convex edges and where an end face meets a junction they are ~90 deg
         cos = _cosines(features, p, q)
-        if plates is not None and plates.local:
+        local = None
+        if labels is not None:
             # each pair is judged by the thinner of the plates it touches
-            local = np.minimum(plates.boundary[features.feature_index[p]], plates.boundary[features.feature_index[q]])
-            lam_pair = DEFAULT_LAM_RATIO * local if lam is None else np.full(len(p), float(lam))
-            keep = (gap > lam_pair) & (local >= plates.lower) & (local <= plates.upper)
-        else:
-            local = np.full(len(p), nominal)
-            keep = gap > float(lam)  # type: ignore[arg-type]
-        keep &= (cos < SEPARATION_COS) | (gap >= FULL_GAP * local)
-        sheet = (cos < -ANTIPODAL_COS) & (gap > 1.5 * unit)
-        if counted is not None:
-            sheet &= counted[p]
-        sheet_pairs += int(sheet.sum())
-        dropped.append(gap[sheet & ~keep])
-        p, q, gap, fp, fq = p[keep], q[keep], gap[keep], fp[keep], fq[keep]
+            local = np.minimum(labels[features.feature_index[p]], labels[features.feature_index[q]])
         mid = 0.5 * (fp + fq)
         u = (fq - fp) / gap[:, None]
         sp = np.abs(np.einsum("ij,ij->i", P[p] - mid, u))
@@ -436,6 +480,44 @@ def medial_voxels(features: Features, lam: float | None, thickness: float | Plat
         # orient normals consistently (largest component positive) before averaging
         flip = np.take_along_axis(u, np.abs(u).argmax(axis=1)[:, None], axis=1)[:, 0] < 0
         u[flip] *= -1
+        out.append(MedialPairs(np.full(len(p), axis, np.int8), p, q, gap, cos, local, chosen, mid, u))
+    return MedialPairs(*(
+        None if out[0].local is None and name == "local" else np.concatenate([getattr(o, name) for o in out])
+        for name in (f.name for f in dataclasses.fields(MedialPairs))
+    ))
+
+
+def judge_pairs(pairs: MedialPairs, lam: float | None, plates: PlateThickness | None, nominal: float,
+                unit: float) -> tuple[np.ndarray, np.ndarray]:
+    """Which pairs mark a medial voxel (``keep``), and which see both faces of a plate (``sheet``)."""
+    gap, cos = pairs.gap, pairs.cos
+    if plates is not None and plates.local:
+        local = pairs.local
+        lam_pair = DEFAULT_LAM_RATIO * local if lam is None else np.full(len(gap), float(lam))
+        keep = (gap > lam_pair) & (local >= plates.lower) & (local <= plates.upper)
+    else:
+        local = np.full(len(gap), nominal)
+        keep = gap > float(lam)  # type: ignore[arg-type]
+    keep &= (cos < SEPARATION_COS) | (gap >= FULL_GAP * local)
+    sheet = (cos < -ANTIPODAL_COS) & (gap > 1.5 * unit)
+    return keep, sheet
+
+
+def pairs_to_voxels(pairs: MedialPairs, keep: np.ndarray, n: int) -> tuple[np.ndarray, ...] | None:
+    """Rows, positions, radii, normals and coherence of the voxels the kept pairs mark (None: none).
+
+    Sums run axis by axis in pair order, as the medial test visits them, so a
+    voxel gets the same figures from any block that holds all its pairs.
+    """
+    acc_mid = np.zeros((n, 3))
+    acc_normal = np.zeros((n, 3))
+    acc_q = np.zeros((n, 3, 3))  # sum of u u^T over the pairs (plane quadric)
+    acc_qm = np.zeros((n, 3))  # sum of u u^T mid
+    acc_gap = np.zeros(n)
+    count = np.zeros(n)
+    for axis in range(3):
+        sel = keep & (pairs.axis == axis)
+        chosen, mid, u, gap = pairs.chosen[sel], pairs.mid[sel], pairs.u[sel], pairs.gap[sel]
         uu = u[:, :, None] * u[:, None, :]
         uum = np.einsum("kij,kj->ki", uu, mid)
         for k in range(3):
@@ -448,8 +530,7 @@ def medial_voxels(features: Features, lam: float | None, thickness: float | Plat
         count += np.bincount(chosen, minlength=n)
     rows = np.flatnonzero(count)
     if len(rows) == 0:
-        what = f"lam={lam:g}" if lam is not None else f"plates {plates.lower:g} to {plates.upper:g} thick"  # type: ignore[union-attr]
-        raise EmptyShapeError(f"no medial voxel for {what}: the thickness or lam is larger than the part allows")
+        return None
     c = count[rows]
     normal = acc_normal[rows] / c[:, None]
     coherence = np.linalg.norm(normal, axis=1)
@@ -461,13 +542,4 @@ def medial_voxels(features: Features, lam: float | None, thickness: float | Plat
     q = acc_q[rows] / c[:, None, None] + POSITION_REGULARIZATION * np.eye(3)
     rhs = acc_qm[rows] / c[:, None] + POSITION_REGULARIZATION * centre
     position = np.linalg.solve(q, rhs[:, :, None])[:, :, 0]
-    return MedialVoxels(
-        voxels=features.voxels[rows],
-        position=position,
-        radius=0.5 * acc_gap[rows] / c,
-        normal=normal,
-        distance=features.distance[rows],
-        coherence=coherence,
-        sheet_pairs=sheet_pairs,
-        dropped_gaps=np.concatenate(dropped),
-    )
+    return rows, position, 0.5 * acc_gap[rows] / c, normal, coherence
