@@ -129,6 +129,13 @@ def _add_compute(sub: Any) -> None:
     p.add_argument("--raw-shape", type=int, nargs=3, default=None, metavar=("Z", "Y", "X"),
                    help="volumes: array shape of a .raw file")
     p.add_argument("--raw-dtype", default=None, help="volumes: data type of a .raw file (e.g. uint16)")
+    p.add_argument("--chunks", type=int, nargs="+", default=None, metavar="N",
+                   help="volumes: process in blocks of N (or Z Y X) voxels, reading one block at a time; 0 keeps "
+                        "the volume in memory (default: blocks of 256 above 512^3 voxels)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="volumes: run the blocks on a Dask cluster (tcp://host:8786); its workers must see the input")
+    p.add_argument("--jobs", type=int, default=None, metavar="N", help="volumes: local worker threads for the blocks "
+                                                                        "(default: all CPUs)")
     p.add_argument("--foreground", choices=["auto", "bright", "dark"], default=None,
                    help="images: which side of the threshold is the shape; auto (the default) takes the side "
                         "that does not own most of the image border, so a dark shape on light paper works")
@@ -155,6 +162,16 @@ def _options(args: argparse.Namespace) -> tuple[dict[str, Any], Any]:
         options["thickness"] = args.thickness[0] if len(args.thickness) == 1 else tuple(args.thickness)
     if args.repair:
         options["repair"] = True
+    if args.chunks is not None:
+        if len(args.chunks) not in (1, 3):
+            raise UsageError(f"--chunks takes one size or Z Y X, got {len(args.chunks)} values")
+        options["chunks"] = args.chunks[0] if len(args.chunks) == 1 else tuple(args.chunks)
+    if args.scheduler is not None:
+        options["scheduler"] = args.scheduler
+    if args.jobs is not None:
+        if args.jobs < 1:
+            raise UsageError(f"--jobs must be at least 1, got {args.jobs}")
+        options["n_jobs"] = args.jobs
     spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
     return options, spacing
 

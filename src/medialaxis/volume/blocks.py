@@ -331,7 +331,7 @@ class BlockSampler:
         from scipy import ndimage
 
         coords = np.asarray(coords, np.float64).reshape(3, -1)
-        out = np.full(coords.shape[1], float(cval))
+        out = np.full(coords.shape[1], float(cval), np.float32)  # as map_coordinates gives for a float32 volume
         shape = np.array(self.source.shape)
         base = np.floor(coords.T).astype(np.int64)
         near = np.all((base >= -1) & (base < shape), axis=1)  # farther out: cval

@@ -37,6 +37,9 @@ def stages_for_method(volume: Any, method: str | None = None, **options: Any) ->
     import inspect
 
     accepted = inspect.signature(volume_stages).parameters
+    chunked = [k for k in ("chunks", "scheduler", "n_jobs") if k in given]
+    if chunked:
+        raise InvalidInputError("stages are kept whole in memory: --steps does not take --chunks, --scheduler or --jobs")
     unknown = [k for k in given if k not in accepted]
     if unknown:
         raise InvalidInputError(f"unknown option(s) {', '.join(map(repr, unknown))} for the volume mid-surface")

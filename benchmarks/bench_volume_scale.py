@@ -1,0 +1,180 @@
+"""Mid-surfaces of CT scans larger than memory: seconds, peak memory, accuracy (issue 12).
+
+Writes the ribbed panel (:func:`medialaxis.volume.phantoms.ribbed_panel`: a
+base plate, three webs and a cross rib, 8-voxel plates, blurred and noisy,
+16-bit grey values 1000/3000) to ``panel_<N>.npy`` slab by slab (never whole
+in memory), then runs, each in a fresh child process:
+
+* ours, chunked: ``medial_axis("panel_N.npy", method="midsurface", chunks=C, n_jobs=J)``;
+* ours, in memory (``chunks=0``), at the sizes that fit (today's route);
+* kimimaro (bench extra, GPL-3.0: measured, never a dependency) on the
+  same volume binarized at ISO-50 (it needs the whole label volume in memory).
+
+Peak memory is the largest sum of the resident memory of the child and its
+own children, sampled every 0.1 s (psutil), minus nothing: it includes the
+interpreter and libraries. Accuracy against the exact mid-planes (voxels):
+99th percentile distance of the mesh vertices, share of the true mid-surface
+within 1 voxel of the mesh, components, median thickness.
+
+Usage::
+
+    PYTHONPATH=src python benchmarks/bench_volume_scale.py --sizes 256 512 1024 --chunks 256 --jobs 2 \
+        [--dir /tmp/panels] [--no-kimimaro] [--no-memory-route]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+SRC = HERE.parent / "src"
+sys.path.insert(0, str(SRC))
+
+THICKNESS = 8
+MARGIN = 8
+LEVELS = (1000.0, 3000.0)
+NOISE = 0.05
+
+
+def write_panel(path: Path, n: int, slab: int = 32) -> float:
+    """Write the n^3 uint16 panel to ``path`` slab by slab; returns seconds."""
+    from medialaxis.volume.phantoms import ribbed_panel_slab
+
+    t0 = time.perf_counter()
+    shape = (n, n, n)
+    tmp = path.with_suffix(".part")
+    with open(tmp, "wb") as fh:
+        np.lib.format.write_array_header_2_0(fh, {"descr": np.dtype("<u2").str, "fortran_order": False, "shape": shape})
+        for z in range(0, n, slab):
+            block = ribbed_panel_slab(shape, z, min(z + slab, n), thickness=THICKNESS, margin=MARGIN, noise=NOISE,
+                                      levels=LEVELS, dtype=np.uint16)
+            fh.write(np.ascontiguousarray(block, "<u2").tobytes())
+    os.replace(tmp, path)
+    return time.perf_counter() - t0
+
+
+def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
+    """Runs in the measured process; prints a JSON line."""
+    out: dict = {"tool": tool, "size": n}
+    if tool in ("chunked", "memory"):
+        import medialaxis as mx
+        from medialaxis.volume.phantoms import ribbed_panel_truth
+        from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
+
+        t0 = time.perf_counter()
+        ma = mx.medial_axis(path, method="midsurface", chunks=chunks if tool == "chunked" else 0, n_jobs=jobs)
+        out["seconds"] = time.perf_counter() - t0
+        rects = ribbed_panel_truth((n, n, n), thickness=THICKNESS, margin=MARGIN)
+        d = distance_to_rects(ma.points, rects)
+        truth = np.concatenate([r.sample(1.0) for r in rects])
+        out["p99"] = float(np.percentile(d, 99))
+        out["covered"] = coverage(truth, ma.points, ma.faces, tolerance=1.0, step=0.5)[0]
+        topo = mesh_topology(ma.faces)
+        out["components"], out["euler"] = topo.components, topo.euler
+        out["faces"], out["vertices"] = len(ma.faces), len(ma.points)
+        out["thickness"] = float(np.median(2 * ma.radii))
+        out["iso"] = ma.metadata["iso"]
+    elif tool == "kimimaro":
+        import kimimaro
+
+        from medialaxis.volume.sources import open_source
+
+        src = open_source(path)
+        t0 = time.perf_counter()
+        labels = np.empty(src.shape, np.uint8)
+        for z in range(0, n, 64):
+            labels[z:z + 64] = src.read((slice(z, min(z + 64, n)), slice(0, n), slice(0, n))) > 2000
+        skels = kimimaro.skeletonize(labels, anisotropy=(1, 1, 1), parallel=jobs, progress=False)
+        out["seconds"] = time.perf_counter() - t0
+        out["vertices"] = int(sum(len(s.vertices) for s in skels.values()))
+    return out
+
+
+def measure(tool: str, path: Path, n: int, chunks: int, jobs: int, timeout: float) -> dict:
+    import psutil
+
+    cmd = [sys.executable, __file__, "--child", tool, str(path), str(n), str(chunks), str(jobs)]
+    env = dict(os.environ, PYTHONPATH=str(SRC) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    peak = 0
+    watched = psutil.Process(proc.pid)
+    while proc.poll() is None:
+        try:
+            rss = watched.memory_info().rss + sum(c.memory_info().rss for c in watched.children(recursive=True))
+            peak = max(peak, rss)
+        except psutil.Error:
+            pass
+        if time.perf_counter() - t0 > timeout:
+            proc.kill()
+            return {"tool": tool, "size": n, "error": f"timeout after {timeout:.0f} s"}
+        time.sleep(0.1)
+    stdout, stderr = proc.communicate()
+    if proc.returncode != 0:
+        return {"tool": tool, "size": n, "error": (stderr.strip().splitlines() or ["?"])[-1]}
+    result = json.loads(stdout.strip().splitlines()[-1])
+    result["peak_gib"] = peak / 2**30
+    return result
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--sizes", type=int, nargs="+", default=[256, 512, 1024])
+    parser.add_argument("--chunks", type=int, default=256)
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--dir", type=Path, default=Path(os.environ.get("TMPDIR", "/tmp")) / "medialaxis-panels")
+    parser.add_argument("--no-kimimaro", action="store_true")
+    parser.add_argument("--no-memory-route", action="store_true", help="skip the in-memory route (chunks=0)")
+    parser.add_argument("--memory-limit", type=int, default=512, help="largest size run in memory (default 512)")
+    parser.add_argument("--timeout", type=float, default=3600)
+    args = parser.parse_args()
+    args.dir.mkdir(parents=True, exist_ok=True)
+    # warm the numba caches once, outside the measurements
+    subprocess.run([sys.executable, "-c", "import medialaxis as mx; from medialaxis.volume.phantoms import ribbed_panel;"
+                    "mx.medial_axis(ribbed_panel((64, 96, 96)).volume, method='midsurface')"],
+                   env=dict(os.environ, PYTHONPATH=str(SRC)), check=True)
+    rows = []
+    for n in args.sizes:
+        path = args.dir / f"panel_{n}.npy"
+        if not path.exists():
+            print(f"writing {path} ({n}^3 uint16, {n**3 * 2 / 2**30:.2f} GiB) ...", flush=True)
+            print(f"  written in {write_panel(path, n):.1f} s", flush=True)
+        tools = ["chunked"]
+        if not args.no_memory_route and n <= args.memory_limit:
+            tools.append("memory")
+        if not args.no_kimimaro:
+            tools.append("kimimaro")
+        for tool in tools:
+            r = measure(tool, path, n, args.chunks, args.jobs, args.timeout)
+            if "seconds" in r:
+                r["mvox_per_s"] = n**3 / r["seconds"] / 1e6
+            rows.append(r)
+            print(json.dumps(r), flush=True)
+    print()
+    print("| size | tool | seconds | M voxels/s | peak GiB | p99 (vox) | covered | pieces | euler | thickness |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        if "error" in r:
+            print(f"| {r['size']}^3 | {r['tool']} | {r['error']} |")
+            continue
+        acc = (f"{r['p99']:.2f} | {100 * r['covered']:.1f}% | {r['components']} | {r['euler']} | {r['thickness']:.2f}"
+               if "p99" in r else "- | - | - | - | -")
+        print(f"| {r['size']}^3 | {r['tool']} | {r['seconds']:.1f} | {r['mvox_per_s']:.2f} | {r['peak_gib']:.2f} | {acc} |")
+    print(f"\nchunks={args.chunks}, n_jobs={args.jobs}; targets: peak <= 8 GiB at 1024^3, >= 2.6 M voxels/s (goal 5), "
+          "p99 <= 1 voxel, >= 98% covered, one piece, thickness within 10% of 8")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) > 1 and sys.argv[1] == "--child":
+        _, _, tool, path, n, chunks, jobs = sys.argv
+        print(json.dumps(child(tool, path, int(n), int(chunks), int(jobs))))
+    else:
+        main()
