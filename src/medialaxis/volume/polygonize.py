@@ -135,15 +135,29 @@ def _has(keys: np.ndarray, query: np.ndarray) -> np.ndarray:
     return keys[pos] == query if len(keys) else np.zeros(len(query), bool)
 
 
+#: Medial voxels whose 2x2x2 blocks are labelled at a time (bounds the memory of a large sheet).
+BLOCK_BATCH = 250_000
+
+
 def _block_labels(table: VoxelTable, voxels: np.ndarray, label: np.ndarray,
                   sheet: np.ndarray | None = None) -> np.ndarray:
-    """Sorted labels (-1 padded) of every 2x2x2 block that holds a medial voxel.
+    """Sorted labels (-1 padded) of the 2x2x2 blocks that hold three or more regions (Voronoi vertices).
 
     With ``sheet`` (sheet of each voxel, -1 junction), a block gives one row
     per sheet in it, with the labels of that sheet's voxels and of the
     junction voxels; blocks of junction voxels only give none. Regions of
-    two sheets thus never form a triangle.
+    two sheets thus never form a triangle. The voxels are taken
+    ``BLOCK_BATCH`` at a time: a block may come once per batch (the
+    triangles are made unique afterwards).
     """
+    out = [np.zeros((0, 8), np.int64)]
+    for start in range(0, len(voxels), BLOCK_BATCH):
+        labels = _batch_labels(table, voxels[start:start + BLOCK_BATCH], label, sheet)
+        out.append(labels[(labels >= 0).sum(axis=1) >= 3])
+    return np.concatenate(out)
+
+
+def _batch_labels(table: VoxelTable, voxels: np.ndarray, label: np.ndarray, sheet: np.ndarray | None) -> np.ndarray:
     corners = np.array(list(itertools.product((0, 1), repeat=3)), np.int64)
     origins = (voxels[:, None, :] - corners[None, :, :]).reshape(-1, 3)
     shape = table.shape
@@ -159,12 +173,14 @@ def _block_labels(table: VoxelTable, voxels: np.ndarray, label: np.ndarray,
         real = sheets >= 0
         top = np.where(real, sheets, -1).max(axis=1)
         bottom = np.where(real, sheets, np.iinfo(sheets.dtype).max).min(axis=1)
-        out = [labels[(top >= 0) & (top == bottom)]]
-        for b in np.flatnonzero((top >= 0) & (top != bottom)):
-            for one in np.unique(sheets[b][real[b]]):
-                keep = (sheets[b] == one) | (sheets[b] == -1)
-                out.append(np.where(keep, labels[b], -1)[None, :])
-        labels = np.concatenate(out)
+        mixed = np.flatnonzero((top >= 0) & (top != bottom))
+        # one row per (block, sheet) of the blocks that hold several sheets,
+        # in block then sheet order
+        block, slot = np.nonzero(real[mixed])
+        pairs = np.unique(np.stack([mixed[block], sheets[mixed[block], slot]], axis=1), axis=0)
+        b, one = pairs[:, 0], pairs[:, 1]
+        keep = (sheets[b] == one[:, None]) | (sheets[b] == -1)
+        labels = np.concatenate([labels[(top >= 0) & (top == bottom)], np.where(keep, labels[b], -1)])
     labels.sort(axis=1)
     # blank repeated labels so each row lists its distinct labels
     labels[:, 1:][labels[:, 1:] == labels[:, :-1]] = -1
@@ -391,10 +407,18 @@ def _drop_double_quads(faces: np.ndarray, points: np.ndarray) -> np.ndarray:
         return faces
     present = {tuple(f) for f in faces.tolist()}
     index = {f: i for i, f in enumerate(map(tuple, faces.tolist()))}
+    # faces on each edge: the edge keys sorted once, each edge's faces a run in that order
+    n = int(faces.max()) + 1
+    keys = (e[..., 0].astype(np.int64) * n + e[..., 1]).ravel()
+    order = np.argsort(keys, kind="stable")
+    sorted_keys = keys[order]
+    owner = order // 3
     drop: set[int] = set()
     for i in np.flatnonzero((count >= 3).any(axis=1)):
         for a, b in itertools.combinations(faces[i].tolist(), 2):
-            for other in np.flatnonzero((faces == a).any(axis=1) & (faces == b).any(axis=1)).tolist():
+            key = min(a, b) * n + max(a, b)
+            lo, hi = np.searchsorted(sorted_keys, key, side="left"), np.searchsorted(sorted_keys, key, side="right")
+            for other in np.sort(owner[lo:hi]).tolist():
                 quad = sorted(set(faces[i].tolist()) | set(faces[other].tolist()))
                 if len(quad) != 4:
                     continue

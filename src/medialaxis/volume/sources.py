@@ -249,6 +249,9 @@ class TiffSource(Source):
             for f in self.files:
                 size = os.path.getsize(f)
                 with tifffile.TiffFile(f) as tf:
+                    declared = _declared_pages(tf)
+                    if declared > len(tf.pages):
+                        raise InputFileError(f"{self.name}: {f!r} declares {declared} pages and holds {len(tf.pages)} (truncated)")
                     for page in tf.pages:
                         ends = [int(o) + int(n) for o, n in zip(page.dataoffsets, page.databytecounts)]
                         if max(ends, default=0) > size:
@@ -284,6 +287,19 @@ class TiffSource(Source):
         except Exception as exc:  # noqa: BLE001
             raise InputFileError(f"cannot read slices {z.start}..{z.stop - 1} of {self.name}: {exc}") from exc
         return out
+
+
+def _declared_pages(tf: Any) -> int:
+    """Pages a TIFF says it has (tifffile's shape or ImageJ's image count), 0 when it does not say."""
+    try:
+        if tf.is_shaped and tf.shaped_metadata:
+            shape = tf.shaped_metadata[0].get("shape", ())
+            return int(np.prod(shape)) // max(1, int(np.prod(tf.pages[0].shape)))
+        if tf.is_imagej and tf.imagej_metadata:
+            return int(tf.imagej_metadata.get("images", 0))
+    except (TypeError, ValueError, AttributeError):
+        pass
+    return 0
 
 
 class NiftiSource(Source):
