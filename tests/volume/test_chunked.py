@@ -239,3 +239,19 @@ def test_cli_runs_the_chunked_route_and_writes_nothing_on_failure(tmp_path, smal
     assert not (tmp_path / "bad.ply").exists() and len(list(tmp_path.iterdir())) == 3
     usage = subprocess.run(run + [str(tmp_path / "scan.npy"), "--chunks", "1", "2"], capture_output=True, text=True)
     assert usage.returncode == 2
+
+
+def test_ctrl_c_between_blocks_stops_cleanly_and_writes_nothing(tmp_path):
+    import signal
+    import time
+
+    np.save(tmp_path / "scan.npy", ribbed_panel_slab((96, 192, 192), 0, 96, levels=(1000, 3000), dtype=np.uint16))
+    out = tmp_path / "mid.ply"
+    proc = subprocess.Popen([sys.executable, "-m", "medialaxis", "compute", str(tmp_path / "scan.npy"), "--chunks", "16",
+                             "--jobs", "2", "-o", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(4.0)  # imported, reading blocks (the run takes far longer with blocks this small)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert err == "medialaxis: interrupted\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scan.npy"]
