@@ -11,8 +11,9 @@ in memory), then runs, each in a fresh child process:
   same volume binarized at ISO-50 (it needs the whole label volume in memory).
 
 Peak memory is the largest sum of the resident memory of the child and its
-own children, sampled every 0.1 s (psutil), minus nothing: it includes the
-interpreter and libraries. Accuracy against the exact mid-planes (voxels):
+own children, sampled every 0.25 s (psutil), minus nothing: it includes the
+interpreter and libraries. A tool whose tree passes ``--cap`` GiB is stopped
+(the machine has 24 GB) and reported as such. Accuracy against the exact mid-planes (voxels):
 99th percentile distance of the mesh vertices, share of the true mid-surface
 within 1 voxel of the mesh, components, median thickness.
 
@@ -98,7 +99,7 @@ def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
     return out
 
 
-def measure(tool: str, path: Path, n: int, chunks: int, jobs: int, timeout: float) -> dict:
+def measure(tool: str, path: Path, n: int, chunks: int, jobs: int, timeout: float, cap_gib: float) -> dict:
     import psutil
 
     cmd = [sys.executable, __file__, "--child", tool, str(path), str(n), str(chunks), str(jobs)]
@@ -113,10 +114,15 @@ def measure(tool: str, path: Path, n: int, chunks: int, jobs: int, timeout: floa
             peak = max(peak, rss)
         except psutil.Error:
             pass
-        if time.perf_counter() - t0 > timeout:
+        if time.perf_counter() - t0 > timeout or peak > cap_gib * 2**30:
+            for child_proc in watched.children(recursive=True):
+                child_proc.kill()
             proc.kill()
-            return {"tool": tool, "size": n, "error": f"timeout after {timeout:.0f} s"}
-        time.sleep(0.1)
+            proc.communicate()
+            why = f"timeout after {timeout:.0f} s" if peak <= cap_gib * 2**30 else \
+                f"stopped above {cap_gib:g} GiB after {time.perf_counter() - t0:.0f} s"
+            return {"tool": tool, "size": n, "error": why}
+        time.sleep(0.25)
     stdout, stderr = proc.communicate()
     if proc.returncode != 0:
         return {"tool": tool, "size": n, "error": (stderr.strip().splitlines() or ["?"])[-1]}
@@ -135,6 +141,7 @@ def main() -> None:
     parser.add_argument("--no-memory-route", action="store_true", help="skip the in-memory route (chunks=0)")
     parser.add_argument("--memory-limit", type=int, default=512, help="largest size run in memory (default 512)")
     parser.add_argument("--timeout", type=float, default=3600)
+    parser.add_argument("--cap", type=float, default=18.0, help="stop a tool whose memory passes this many GiB")
     args = parser.parse_args()
     args.dir.mkdir(parents=True, exist_ok=True)
     # warm the numba caches once, outside the measurements
@@ -153,7 +160,7 @@ def main() -> None:
         if not args.no_kimimaro:
             tools.append("kimimaro")
         for tool in tools:
-            r = measure(tool, path, n, args.chunks, args.jobs, args.timeout)
+            r = measure(tool, path, n, args.chunks, args.jobs, args.timeout, args.cap)
             if "seconds" in r:
                 r["mvox_per_s"] = n**3 / r["seconds"] / 1e6
             rows.append(r)

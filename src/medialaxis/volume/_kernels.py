@@ -53,13 +53,13 @@ OFFSETS_26 = np.array([(a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c i
 
 
 @njit(cache=True, nogil=True)
-def topology_class(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: np.ndarray, offs: np.ndarray,
+def topology_class(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, offs: np.ndarray,
                    adj: np.ndarray, face: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Number of 6-connected background components in the 26-neighbourhood
     of each voxel (Malandain's count of background components: 2 inside a
     thin sheet, 1 on its free edge, 3 or more at a junction of sheets).
 
-    The sheet is the voxel table ``(keys, rows, shape)``
+    The sheet is the voxel table ``(directory, bricks, shape)``
     (:class:`~medialaxis.volume.voxel_table.VoxelTable`; outside ``shape`` is
     background); ``voxels`` (n, 3) are indices of sheet voxels.
     """
@@ -72,7 +72,7 @@ def topology_class(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels
     for i in range(n):
         z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
         for j in range(m):
-            bg[j] = table_find(keys, rows, shape, z + offs[j, 0], y + offs[j, 1], x + offs[j, 2]) < 0
+            bg[j] = table_find(directory, bricks, shape, z + offs[j, 0], y + offs[j, 1], x + offs[j, 2]) < 0
             seen[j] = False
         count = 0
         for j in range(m):
@@ -109,11 +109,11 @@ def topology_class_reference(occupied: np.ndarray, voxels: np.ndarray) -> np.nda
 
 
 @njit(cache=True, nogil=True)
-def greedy_subsample(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: np.ndarray, order: np.ndarray,
+def greedy_subsample(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, order: np.ndarray,
                      radius: np.ndarray, spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Pick ``voxels[order[k]]`` unless removed; each pick removes every
     voxel within ``radius[pick]`` (physical units). The voxel table
-    ``(keys, rows, shape)`` maps grid positions to rows. Returns picked rows
+    ``(directory, bricks, shape)`` maps grid positions to rows. Returns picked rows
     in pick order."""
     n = voxels.shape[0]
     removed = np.zeros(n, np.bool_)
@@ -138,7 +138,7 @@ def greedy_subsample(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxe
             for b in range(max(y - hy, 0), min(y + hy + 1, Y)):
                 db = (b - y) * spacing[1]
                 for c in range(max(x - hx, 0), min(x + hx + 1, X)):
-                    j = table_find(keys, rows, shape, a, b, c)
+                    j = table_find(directory, bricks, shape, a, b, c)
                     if j >= 0 and not removed[j]:
                         dc = (c - x) * spacing[2]
                         if da * da + db * db + dc * dc <= r2:
@@ -161,7 +161,7 @@ def greedy_subsample_reference(voxels: np.ndarray, order: np.ndarray, radius: np
 
 
 @njit(cache=True, nogil=True)
-def sheet_labels(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: np.ndarray, seeds: np.ndarray,
+def sheet_labels(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, seeds: np.ndarray,
                  seed_label: np.ndarray, sheet: np.ndarray, offs: np.ndarray,
                  spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Discrete geodesic Voronoi regions of ``seeds`` that stay inside sheets.
@@ -169,7 +169,7 @@ def sheet_labels(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: 
     Regions grow in order of the Euclidean distance from a voxel to the seed
     of the neighbour it is reached from (vector propagation with a heap), so
     region borders are near the Euclidean bisectors; ties go to the lower
-    seed. The voxel table ``(keys, rows, shape)`` maps grid positions to rows. Seed ``s``
+    seed. The voxel table ``(directory, bricks, shape)`` maps grid positions to rows. Seed ``s``
     gives its region the label ``seed_label[s]`` (several seeds may share
     one), and a region grows from
     voxel ``i`` to voxel ``j`` only when ``sheet[j] >= 0`` and ``sheet[i]``
@@ -196,7 +196,7 @@ def sheet_labels(keys: np.ndarray, rows: np.ndarray, shape: np.ndarray, voxels: 
         src = seeds[s]
         for t in range(offs.shape[0]):
             a, b, c = voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1], voxels[i, 2] + offs[t, 2]
-            j = table_find(keys, rows, shape, a, b, c)
+            j = table_find(directory, bricks, shape, a, b, c)
             if j >= 0 and not done[j] and sheet[j] >= 0 and (sheet[i] < 0 or sheet[i] == sheet[j]):
                 dz = (a - voxels[src, 0]) * spacing[0]
                 dy = (b - voxels[src, 1]) * spacing[1]
