@@ -112,6 +112,8 @@ def classify(shape: Any, method: str | None = None) -> str:
         return "mesh"
     if isinstance(shape, (list, tuple)) and shape and all(hasattr(s, "geom_type") for s in shape):
         return "planar"
+    if module.startswith(("dask", "zarr")) and hasattr(shape, "ndim") and hasattr(shape, "dtype"):
+        return _classify_ndim(shape.ndim, tuple(shape.shape), shape.dtype)  # lazy arrays: never read whole here
     try:
         arr = np.asarray(shape)
     except Exception as exc:  # noqa: BLE001

@@ -106,7 +106,7 @@ def _read(source: Any, block: Block, halo: np.ndarray, iso: float) -> tuple[np.n
 
 
 def block_features(source: Any, block: Block, halo: np.ndarray, iso: float, spacing: np.ndarray,
-                   *, reach: int = 1, workers: int = 1) -> tuple[Features | None, np.ndarray, np.ndarray]:
+                   *, reach: Any = 1, workers: int = 1) -> tuple[Features | None, np.ndarray, np.ndarray]:
     """Features of the voxels within ``reach`` of the block's core, from the boundary points of its read box,
     and the distance past which a voxel's answer may be wrong.
 
@@ -275,9 +275,9 @@ def medial_block(block: Block, source: Any, iso: float, spacing: np.ndarray, hal
     unit = float(spacing.min())
     # labels need exact features out to 2 D past the core (the pairs that
     # label the boundary points the core's voxels are nearest to)
-    reach = 1 if nominal is None else int(math.ceil(2.0 * depth / unit)) + 3
+    reach = np.ones(3, np.int64) if nominal is None else np.ceil(2.0 * depth / spacing).astype(np.int64) + 3
     while True:
-        if int(halo.min()) <= reach:
+        if np.any(halo <= reach):
             halo = _grow(halo, limit, block, "the pairs that label its plates")
             continue
         features, margin, _ = block_features(source, block, halo, iso, spacing, reach=reach)

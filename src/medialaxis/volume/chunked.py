@@ -226,9 +226,11 @@ def chunked_medial_voxels(
         limit = int(max(chunks))
         blocks = block_grid(source.shape, chunks)  # type: ignore[arg-type]
 
+        jobs = _local_jobs(n_jobs, chunks)
+
         def run(fn: Callable[..., Any], items: list[Any], *args: Any, desc: str) -> list[Any]:
             check_cancel(callback, desc)
-            return run_tasks(fn, items, *args, scheduler=scheduler, n_jobs=n_jobs, desc=desc,
+            return run_tasks(fn, items, *args, scheduler=scheduler, n_jobs=jobs, desc=desc,
                              show_progress=show_progress, callback=callback)
 
         iso_value, minimum = _iso(source, blocks, iso, run)
@@ -242,7 +244,7 @@ def chunked_medial_voxels(
             lam_value = DEFAULT_LAM_RATIO * value if lam is None else check_number(lam, "lam", positive=True)
             plates, nominal = PlateThickness(value, lam_value, np.inf), None
             halo = halo_voxels(0.5 * value + float(spacing.max()), spacing, False)
-            _check_halo(halo, limit)
+            _check_halo(halo, chunks, source.shape)
             parts = run(medial_block, blocks, source, iso_value, spacing, halo, lam_value, plates, None, limit,
                         desc="medial voxels")
         else:
@@ -259,7 +261,7 @@ def chunked_medial_voxels(
                 parts = [finish_block(scan, lam_value, plates, unit) for scan in scans]
             else:  # several: each block labels its plates, reading itself again
                 del scans
-                _check_halo(halo, limit)
+                _check_halo(halo, chunks, source.shape)
                 parts = run(medial_block, blocks, source, iso_value, spacing, halo, lam_value, plates, nominal, limit,
                             depth, desc="plate labels")
         medial, grid, foreground = _gather(parts)
@@ -278,11 +280,29 @@ def chunked_medial_voxels(
         raise
 
 
-def _check_halo(halo: np.ndarray, limit: int) -> None:
-    if int(halo.max()) > limit:
+#: Bytes per voxel of a block's read box at its peak (grey, mask, index, the
+#: foreground's features and pairs), measured on the ribbed panel: a 256^3
+#: block peaks at about 0.7 GiB.
+BLOCK_BYTES_PER_VOXEL = 40
+
+
+def _local_jobs(n_jobs: int | None, chunks: tuple[int, ...]) -> int | None:
+    """Threads for local blocks: ``n_jobs``, or as many CPUs as there is memory for their blocks."""
+    if n_jobs is not None:
+        return n_jobs
+    from medialaxis.core.validate import memory_budget
+
+    per_block = BLOCK_BYTES_PER_VOXEL * math.prod(int(c) + 16 for c in chunks)
+    return max(1, min(os.cpu_count() or 1, memory_budget() // (2 * per_block)))
+
+
+def _check_halo(halo: np.ndarray, chunks: tuple[int, ...], shape: tuple[int, ...]) -> None:
+    """Refuse blocks smaller than their halo along an axis they cut (they would read mostly halo)."""
+    small = [k for k in range(3) if chunks[k] < shape[k] and halo[k] > chunks[k]]
+    if small:
         raise InvalidInputError(
-            f"chunks={limit} is smaller than the halo of {int(halo.max())} voxels that plates of this part need; "
-            f"use chunks of at least {int(halo.max())}"
+            f"chunks={tuple(chunks)} is smaller than the halo of {tuple(int(h) for h in halo)} voxels that the plates "
+            f"of this part need; use chunks of at least {int(max(halo[k] for k in small))} along axis {small[0]}"
         )
 
 
