@@ -95,6 +95,42 @@ def topology_class(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray,
     return out
 
 
+@njit(cache=True, nogil=True)
+def neighbour_components(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray,
+                         member: np.ndarray, offs: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+    """Connected components of the ``member`` voxels under the neighbourhood ``offs``
+    (union-find: no edge list is stored). Each voxel gets the smallest row of
+    its component (non-members their own row)."""
+    n = voxels.shape[0]
+    parent = np.arange(n)
+    for i in range(n):
+        if not member[i]:
+            continue
+        for t in range(offs.shape[0]):
+            j = table_find(directory, bricks, shape, voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1],
+                           voxels[i, 2] + offs[t, 2])
+            if j < 0 or not member[j]:
+                continue
+            a = i
+            while parent[a] != a:
+                parent[a] = parent[parent[a]]
+                a = parent[a]
+            b = j
+            while parent[b] != b:
+                parent[b] = parent[parent[b]]
+                b = parent[b]
+            if a < b:
+                parent[b] = a
+            elif b < a:
+                parent[a] = b
+    for i in range(n):
+        r = i
+        while parent[r] != r:
+            r = parent[r]
+        parent[i] = r
+    return parent
+
+
 def topology_class_reference(occupied: np.ndarray, voxels: np.ndarray) -> np.ndarray:
     """Pure-Python/SciPy reference of :func:`topology_class`."""
     from scipy import ndimage

@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
+import tempfile
 from typing import Any
 
 import numpy as np
@@ -181,6 +183,30 @@ class BlockScan:
     voxels: np.ndarray | None = None
     distance: np.ndarray | None = None
     owned: np.ndarray | None = None
+    spilled: str | None = None
+
+    def spill(self, folder: str) -> BlockScan:
+        """The same scan with its pairs in a file of ``folder`` (the first pass of a large volume keeps
+        about 130 bytes per marked voxel until lam is known: 1 GiB at 1024^3 in memory)."""
+        if self.pairs is None or len(self.pairs.gap) == 0:
+            return self
+        handle, path = tempfile.mkstemp(suffix=".npz", dir=folder)
+        os.close(handle)
+        arrays = {f.name: getattr(self.pairs, f.name) for f in dataclasses.fields(MedialPairs)
+                  if getattr(self.pairs, f.name) is not None}
+        np.savez(path, voxels=self.voxels, distance=self.distance, owned=self.owned, **arrays)
+        return dataclasses.replace(self, pairs=None, voxels=None, distance=None, owned=None, spilled=path)
+
+    def restored(self) -> BlockScan:
+        """The scan with its pairs read back from its file (removed)."""
+        if self.spilled is None:
+            return self
+        with np.load(self.spilled) as data:
+            fields = {f.name: (data[f.name] if f.name in data.files else None) for f in dataclasses.fields(MedialPairs)}
+            voxels, distance, owned = data["voxels"], data["distance"], data["owned"]
+        os.remove(self.spilled)
+        return dataclasses.replace(self, pairs=MedialPairs(**fields), voxels=voxels, distance=distance, owned=owned,
+                                   spilled=None)
 
 
 def _exact(features: Features, margin: np.ndarray, lo: Any, hi: Any) -> bool:
@@ -199,12 +225,13 @@ def _grow(halo: np.ndarray, limit: int, block: Block, what: str) -> np.ndarray:
 
 
 def scan_block(block: Block, source: Any, iso: float, spacing: np.ndarray, halo: np.ndarray, lower: float,
-               shortest: float, limit: int) -> BlockScan:
+               shortest: float, limit: int, spill: str | None = None) -> BlockScan:
     """First pass: plate-crossing pair lengths, depth, foreground box and candidate medial pairs of one core.
 
     ``shortest`` is the shortest candidate pair (at most the ``lam`` the
     second half will use): with one nominal thickness the medial voxels come
     from these pairs (:func:`finish_block`) without reading the block again.
+    With ``spill`` (a folder) the pairs wait there instead of in memory.
     """
     unit = float(spacing.min())
     lo, hi = np.array(block.lo), np.array(block.hi)
@@ -231,12 +258,14 @@ def scan_block(block: Block, source: Any, iso: float, spacing: np.ndarray, halo:
     fg = at[core]
     depth = float(features.distance[core].max(initial=0.0))
     box = (fg.min(axis=0), fg.max(axis=0) + 1) if len(fg) else (None, None)
-    return BlockScan(gaps, depth, box[0], box[1], int(halo.max()), int(core.sum()), pairs, at[rows],
+    scan = BlockScan(gaps, depth, box[0], box[1], int(halo.max()), int(core.sum()), pairs, at[rows],
                      features.distance[rows], owned)
+    return scan if spill is None else scan.spill(spill)
 
 
 def finish_block(scan: BlockScan, lam: float, plates: PlateThickness, unit: float) -> BlockMedial:
     """The medial voxels of a core from its first-pass pairs (one nominal thickness or a number)."""
+    scan = scan.restored()
     if scan.pairs is None or scan.voxels is None:
         return BlockMedial(_empty(), scan.lo, scan.hi, scan.foreground)
     keep, sheet = judge_pairs(scan.pairs, lam, plates, plates.value, unit)

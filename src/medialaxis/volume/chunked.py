@@ -32,7 +32,9 @@ from __future__ import annotations
 import math
 import os
 import shutil
+import tempfile
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -51,7 +53,7 @@ from medialaxis.volume.inputs import VolumeInput, check_spacing, counted, iso50_
 from medialaxis.volume.medial import (
     DEFAULT_LAM_RATIO, DEFAULT_MIN_THICKNESS, MedialVoxels, PlateThickness, nominal_thicknesses, plate_summary,
 )
-from medialaxis.volume.sources import Source, open_source
+from medialaxis.volume.sources import Source, is_zarr_folder, open_source
 
 __all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "chunked_medial_voxels", "chunked_midsurface",
            "chunked_voxels", "use_chunks"]
@@ -84,8 +86,8 @@ def check_chunks(chunks: Any) -> tuple[int, int, int] | None:
 def use_chunks(volume: Any, chunks: Any, scheduler: Any, raw_shape: Any = None, raw_dtype: Any = None) -> tuple[int, int, int] | None:
     """The block size when ``volume`` takes the chunked route, else None.
 
-    Given ``chunks`` decide (0: in memory); otherwise a Dask array, a cluster
-    ``scheduler`` or more than :data:`CHUNKED_VOXELS` voxels take it with
+    Given ``chunks`` decide (0: in memory); otherwise a Dask or Zarr array or
+    store, a cluster ``scheduler`` or more than :data:`CHUNKED_VOXELS` voxels take it with
     blocks of :data:`DEFAULT_CHUNK`.
     """
     sizes = check_chunks(chunks)
@@ -97,9 +99,11 @@ def use_chunks(volume: Any, chunks: Any, scheduler: Any, raw_shape: Any = None, 
     if module.startswith(("dask", "zarr")):
         return (DEFAULT_CHUNK,) * 3
     shape = getattr(volume, "shape", None)
+    if isinstance(volume, (str, os.PathLike)) and is_zarr_folder(Path(volume)):
+        return (DEFAULT_CHUNK,) * 3  # only the block reader reads Zarr stores
     if shape is None and isinstance(volume, (str, os.PathLike)):
         try:
-            shape = open_source(volume, raw_shape=raw_shape, raw_dtype=raw_dtype).shape
+            shape = open_source(volume, raw_shape=raw_shape, raw_dtype=raw_dtype, header_only=True).shape
         except Exception:  # noqa: BLE001 - formats without a block reader are read whole
             return None
     if shape is not None and len(shape) == 3 and math.prod(int(s) for s in shape) > CHUNKED_VOXELS:
@@ -220,6 +224,7 @@ def chunked_medial_voxels(
     check_scheduler(scheduler)
     check_jobs(n_jobs)
     source = open_source(volume, raw_shape=raw_shape, raw_dtype=raw_dtype)
+    folders: list[str | None] = []
     try:
         spacing = check_spacing(spacing, source.spacing)
         chunks = tuple(min(int(c), int(s)) for c, s in zip(chunks, source.shape))
@@ -251,7 +256,10 @@ def chunked_medial_voxels(
             first = np.full(3, min(FIRST_HALO, limit), np.int64)
             lower = DEFAULT_MIN_THICKNESS * unit if thickness is None else float(thickness[0])
             shortest = 1.5 * unit if lam is None else min(check_number(lam, "lam", positive=True), 1.5 * unit)
-            scans = run(scan_block, blocks, source, iso_value, spacing, first, lower, shortest, limit,
+            # local runs keep the first pass's pairs in a temporary folder, cluster runs in memory
+            spill = tempfile.mkdtemp(prefix="medialaxis-pairs-") if scheduler in (None, "threads", "synchronous") else None
+            folders.append(spill)
+            scans = run(scan_block, blocks, source, iso_value, spacing, first, lower, shortest, limit, spill,
                         desc="medial voxels")
             _check_foreground(sum(s.foreground for s in scans), source, iso_value)
             plates, lam_value, nominal = _plates(scans, thickness, lam, spacing)
@@ -278,6 +286,10 @@ def chunked_medial_voxels(
     except BaseException:
         _cleanup(source)
         raise
+    finally:
+        for folder in folders:
+            if folder:
+                shutil.rmtree(folder, ignore_errors=True)
 
 
 #: Bytes per voxel of a block's read box at its peak (grey, mask, index, the

@@ -582,17 +582,6 @@ SHEET_SEPARATION = 3.0
 MIN_SHEET_VOXELS = 20
 
 
-def _neighbour_pairs(table: VoxelTable, voxels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Rows (i, j) of 26-adjacent medial voxels, each pair once."""
-    rows_i, rows_j = [], []
-    for off in _kernels.OFFSETS_26[:13]:
-        j = table_lookup(table, voxels + off)
-        has = j >= 0
-        rows_i.append(np.flatnonzero(has))
-        rows_j.append(j[has])
-    return np.concatenate(rows_i), np.concatenate(rows_j)
-
-
 def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spacing: np.ndarray) -> np.ndarray:
     """Split the medial voxels into sheets that meet at junction voxels.
 
@@ -614,8 +603,6 @@ def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spaci
     (n,) int64 ndarray
         Sheet number, -1 for junction voxels.
     """
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
     n = len(voxels)
@@ -624,10 +611,8 @@ def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spaci
     else:
         near, _ = cKDTree(voxels[junction]).query(voxels, k=1, distance_upper_bound=SHEET_SEPARATION + 1e-9)
         free = ~np.isfinite(near) | (near > SHEET_SEPARATION)
-    i, j = _neighbour_pairs(table, voxels)
-    keep = free[i] & free[j]
-    graph = coo_matrix((np.ones(int(keep.sum())), (i[keep], j[keep])), shape=(n, n))
-    _, comp = connected_components(graph, directed=False)
+    # components numbered by their smallest row (the order of scipy's connected_components)
+    comp = _kernels.neighbour_components(*table, voxels, free, _kernels.OFFSETS_26[:13])
     size = np.bincount(comp[free], minlength=n)
     core = free & (size[comp] >= MIN_SHEET_VOXELS)
     if not core.any():

@@ -29,7 +29,7 @@ import numpy as np
 from medialaxis._optional import require
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
 
-__all__ = ["Source", "open_source", "Region"]
+__all__ = ["Source", "open_source", "is_zarr_folder", "Region"]
 
 Region = tuple[slice, slice, slice]
 
@@ -171,7 +171,18 @@ def nrrd_spacing(header: dict[str, Any]) -> tuple[float, float, float] | None:
     return spacing[::-1]  # type: ignore[return-value]  # the header lists the fastest axis first
 
 
-def _nrrd(path: Path) -> Source:
+class HeaderOnly(Source):
+    """The shape and type of a volume file whose data is not opened (a compressed NRRD before decompression)."""
+
+    def __init__(self, shape: Any, dtype: Any, name: str, spacing: Any = None) -> None:
+        self.name, self.spacing = name, spacing
+        self.shape, self.dtype = _check(shape, dtype, name)
+
+    def read(self, region: Region) -> np.ndarray:
+        raise RuntimeError(f"{self.name} was opened for its header only")
+
+
+def _nrrd(path: Path, spill: bool = True) -> Source:
     nrrd = require("nrrd", "pynrrd")
     name = f"NRRD {str(path)!r}"
     try:
@@ -200,6 +211,8 @@ def _nrrd(path: Path) -> Source:
     if encoding == "raw":
         return MappedSource(data, shape, dtype, offset, name, spacing)
     if encoding in ("gzip", "gz", "bzip2", "bz2"):
+        if not spill:
+            return HeaderOnly(shape, dtype, name, spacing)
         return _spill(data, offset, encoding, shape, dtype, name, spacing)
     raise InputFileError(f"{name} uses the {encoding!r} encoding; the chunked reader takes raw, gzip and bzip2")
 
@@ -371,12 +384,14 @@ class DaskSource(Source):
         return np.asarray(self.array[region].compute(scheduler="synchronous"))
 
 
-def _is_zarr_folder(path: Path) -> bool:
+def is_zarr_folder(path: Path) -> bool:
     return path.is_dir() and (path.suffix.lower() == ".zarr" or (path / ".zarray").exists() or (path / "zarr.json").exists())
 
 
-def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None) -> Source:
+def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None, header_only: bool = False) -> Source:
     """A :class:`Source` for an array, a Dask or Zarr array, or a volume file or folder.
+
+    ``header_only``: the shape and type are enough (a compressed NRRD is not decompressed).
 
     Raises
     ------
@@ -394,7 +409,7 @@ def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None) ->
         if not path.exists():
             raise InputFileError(f"no such file or folder: {str(path)!r}")
         name = path.name.lower()
-        if _is_zarr_folder(path):
+        if is_zarr_folder(path):
             return ZarrSource(path)
         if path.is_dir():
             if any(p.suffix.lower() in (".tif", ".tiff") for p in path.iterdir()):
@@ -405,7 +420,7 @@ def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None) ->
         if name.endswith(".raw"):
             return _raw(path, raw_shape, raw_dtype)
         if name.endswith((".nrrd", ".nhdr")):
-            return _nrrd(path)
+            return _nrrd(path, spill=not header_only)
         if name.endswith((".nii", ".nii.gz")):
             return NiftiSource(path)
         if name.endswith((".tif", ".tiff")):
