@@ -26,7 +26,6 @@ What the core's answers depend on:
 from __future__ import annotations
 
 import dataclasses
-import math
 import os
 import tempfile
 from typing import Any
@@ -36,10 +35,8 @@ from scipy.spatial import cKDTree
 
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.distance import Features, boundary_points, nearest_boundary
-from medialaxis.volume.medial import (
-    ANTIPODAL_COS, LABEL_RADIUS, MedialPairs, MedialVoxels, PlateThickness, judge_pairs, label_shortest, medial_pairs,
-    medial_voxels, pairs_to_voxels, plate_labels, plate_pairs,
-)
+from medialaxis.volume.medial import MedialPairs, MedialVoxels, judge_pairs, medial_pairs, medial_voxels, pairs_to_voxels
+from medialaxis.volume.plates import ANTIPODAL_COS, LABEL_RADIUS, PlateThickness, label_shortest, plate_labels, plate_pairs
 
 __all__ = ["Block", "block_grid", "halo_voxels", "scan_block", "finish_block", "medial_block", "BlockScan", "BlockMedial", "BlockSampler"]
 

@@ -50,10 +50,13 @@ from medialaxis.volume.blocks import (
 )
 from medialaxis.volume.distance import Grid
 from medialaxis.volume.inputs import VolumeInput, check_spacing, counted, iso50_counts, value_counts
-from medialaxis.volume.medial import (
-    DEFAULT_LAM_RATIO, DEFAULT_MIN_THICKNESS, MedialVoxels, PlateThickness, nominal_thicknesses, plate_summary,
-)
+from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels
+from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness, nominal_thicknesses, plate_summary
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
+from medialaxis.volume.stages import (
+    assemble, check_range, dents_stage, dropped_report, extension_stage, polygonize_stage, stage_metadata,
+    thickness_range,
+)
 
 __all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "chunked_medial_voxels", "chunked_midsurface",
            "chunked_voxels", "use_chunks"]
@@ -176,9 +179,7 @@ def _plates(scans: list[Any], thickness: Any, lam: Any, spacing: np.ndarray) -> 
     if thickness is None:
         lower, upper = DEFAULT_MIN_THICKNESS * unit, np.inf
     else:
-        from medialaxis.volume.pipeline import _check_range
-
-        lower, upper = _check_range(thickness)
+        lower, upper = check_range(thickness)
     gaps = np.concatenate([s.gaps for s in scans])
     plates = plate_summary(gaps, lower, upper, unit)
     nominal = nominal_thicknesses(gaps, lower, unit)
@@ -349,15 +350,12 @@ def shell_of_source(source: Source, iso: float, spacing: np.ndarray, cells: int 
 def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: bool = True, remove_dents: bool = True,
                        density: float = 1.0, rng: Any = 0, **options: Any) -> MedialAxis:
     """The mid-surface of a volume by blocks (options of :func:`chunked_medial_voxels`)."""
-    from medialaxis.volume.pipeline import (
-        _dropped, _metadata, assemble, dents_stage, extension_stage, polygonize_stage,
-    )
 
     density = check_number(density, "density", positive=True)
     state = chunked_medial_voxels(volume, chunks=chunks, **options)
     source = state["source"]
     try:
-        state["dropped"] = _dropped(state["medial"], state["plates"], state["lam"])
+        state["dropped"] = dropped_report(state["medial"], state["plates"], state["lam"])
         callback = options.get("callback")
         check_cancel(callback, "polygonize")
         polygonize_stage(state, density, rng)
@@ -368,7 +366,7 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
             minimum = state["minimum"] if np.isfinite(state["minimum"]) else state["iso"] - 1.0
             sampler = BlockSampler(source, state["chunks"], minimum)
             extension_stage(state, sampler, state["iso"], state["spacing"], density)
-        metadata = _metadata(state["iso"], state, state["spacing"], source.shape)
+        metadata = stage_metadata(state["iso"], state, state["spacing"], source.shape)
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
                          "chunks": list(state["chunks"]), "halo": state["halo"].tolist()})
         shell = shell_of_source(source, state["iso"], state["spacing"])
@@ -379,7 +377,6 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
 
 def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], **options: Any) -> MedialAxis:
     """The medial voxels of a volume by blocks (``method="voxels"``)."""
-    from medialaxis.volume.pipeline import _dropped, _range
     from medialaxis.volume.polygonize import classify_voxels
     from medialaxis.volume.voxel_table import voxel_table
 
@@ -387,10 +384,10 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], **options: Any)
     source = state["source"]
     try:
         medial, grid, plates = state["medial"], state["grid"], state["plates"]
-        dropped = _dropped(medial, plates, state["lam"])
+        dropped = dropped_report(medial, plates, state["lam"])
         kind = classify_voxels(voxel_table(medial.voxels, grid.shape), medial.voxels)
         metadata = {"method": "voxels", "domain": "volume", "iso": state["iso"], "thickness": plates.value,
-                    "thickness_range": _range(plates), "lam": state["lam"], "dropped": dropped,
+                    "thickness_range": thickness_range(plates), "lam": state["lam"], "dropped": dropped,
                     "spacing": state["spacing"].tolist(), "image_shape": list(source.shape),
                     "chunks": list(state["chunks"]), "halo": state["halo"].tolist()}
         return MedialAxis(

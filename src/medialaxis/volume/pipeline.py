@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import dataclasses
 import time
-import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -23,37 +22,20 @@ import numpy as np
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
-from medialaxis.errors import InvalidInputError, MedialAxisWarning
+from medialaxis.errors import InvalidInputError
 from medialaxis.volume.chunked import chunked_midsurface, chunked_voxels, use_chunks
-from medialaxis.volume.dents import bent_vertices
-from medialaxis.volume.dents import remove_dents as _remove_dents
 from medialaxis.volume.distance import Features, feature_transform
-from medialaxis.volume.extension import extend_mesh
 from medialaxis.volume.inputs import VolumeInput, load_volume
-from medialaxis.volume.medial import (
-    DEFAULT_LAM_RATIO, MedialVoxels, PlateThickness, medial_voxels, plate_thickness,
-)
-from medialaxis.volume.polygonize import (
-    BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, Polygonization, polygonize,
+from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
+from medialaxis.volume.plates import PlateThickness, plate_thickness
+from medialaxis.volume.polygonize import Polygonization
+from medialaxis.volume.stages import (
+    assemble, check_range, dents_stage, dropped_report, extension_stage, polygonize_stage, stage_metadata,
+    thickness_range,
 )
 from medialaxis.volume.shell import isosurface_shell
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
-
-#: Passes of eq. (1) for free-edge vertices: each pass keeps 1 / (1 + k) of
-#: the offset from the planes of the k faces beside the vertex.
-FREE_EDGE_PASSES = 3
-
-#: Passes of eq. (1) for crease vertices.
-CREASE_PASSES = 2
-
-#: Free-edge vertices take planes from faces this many rings away: beside
-#: the end of a junction line their one-ring holds no clean face.
-FREE_EDGE_RINGS = 2
-
-#: Warn when the medial test leaves out at least this fraction of the pairs
-#: that see both faces of a plate (a plate outside the thickness asked for).
-DROPPED_WARNING = 0.01
 
 
 @dataclasses.dataclass(frozen=True)
@@ -95,22 +77,12 @@ def _iso(iso: Any, threshold: Any) -> Any:
     return iso if iso is not None else threshold
 
 
-def _check_range(thickness: Any) -> tuple[float, float]:
-    try:
-        lo, hi = (float(v) for v in thickness)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"thickness must be a number or a (min, max) pair, got {thickness!r}") from None
-    if not (np.isfinite(lo) and lo > 0 and hi > lo) or np.isnan(hi):
-        raise InvalidInputError(f"thickness range must be 0 < min < max (max may be inf), got {thickness!r}")
-    return lo, hi
-
-
 def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[PlateThickness, float | None]:
     """The plate thickness (one value, or per plate) and ``lam`` (``None``: per plate)."""
     deepest = 2.0 * float(features.distance.max()) + float(features.spacing.max())
     lam_value = None if lam is None else check_number(lam, "lam", positive=True)
     if thickness is None or isinstance(thickness, (tuple, list, np.ndarray)):
-        lower, upper = (None, np.inf) if thickness is None else _check_range(thickness)
+        lower, upper = (None, np.inf) if thickness is None else check_range(thickness)
         plates = plate_thickness(features, lower, upper)
         if lam_value is None and not plates.local:  # one plate thickness: lam as for a nominal one
             lam_value = DEFAULT_LAM_RATIO * plates.value
@@ -128,33 +100,6 @@ def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[Pl
     if lam_value is None:
         lam_value = DEFAULT_LAM_RATIO * thickness_value
     return PlateThickness(thickness_value, lam_value, np.inf), lam_value
-
-
-def _range(plates: PlateThickness) -> list[float | None] | None:
-    """The thickness bounds for metadata (``None`` for no upper bound: JSON has no infinity)."""
-    if not plates.ranged:
-        return None
-    return [plates.lower, plates.upper if np.isfinite(plates.upper) else None]
-
-
-def _dropped(medial: MedialVoxels, plates: PlateThickness, lam: float | None) -> dict[str, float] | None:
-    """What the medial test left out of the plates (metadata), with a warning when it matters."""
-    gaps = medial.dropped_gaps
-    if medial.sheet_pairs == 0 or len(gaps) == 0:
-        return None
-    fraction = len(gaps) / medial.sheet_pairs
-    info = {"fraction": float(fraction), "thickness": float(np.median(gaps))}
-    if fraction >= DROPPED_WARNING:
-        if plates.ranged:
-            rule = f"thickness range {plates.lower:g} to {plates.upper:g}" + (f" or lam={lam:g}" if lam is not None else "")
-        else:
-            rule = f"thickness={plates.value:g} (lam={lam:g})"
-        warnings.warn(
-            f"plates about {info['thickness']:.3g} thick ({fraction:.0%} of the plate area) are left out of the "
-            f"mid-surface by {rule}; omit thickness or give a (min, max) range to keep them",
-            MedialAxisWarning, stacklevel=4,
-        )
-    return info
 
 
 def volume_stages(
@@ -197,7 +142,7 @@ def volume_stages(
             state["thickness"] = state["plates"].value
         elif stage == "medial voxels":
             state["medial"] = medial_voxels(state["features"], state["lam"], state["plates"])
-            state["dropped"] = _dropped(state["medial"], state["plates"], state["lam"])
+            state["dropped"] = dropped_report(state["medial"], state["plates"], state["lam"])
         elif stage == "polygonize":
             state["grid"] = state["features"]
             polygonize_stage(state, density, rng)
@@ -208,7 +153,7 @@ def volume_stages(
             extension_stage(state, src.grey, src.iso, src.spacing, density)
         timings[stage] = time.perf_counter() - t0
     src = state["source"]
-    metadata = _metadata(src.iso, state, src.spacing, src.mask.shape)
+    metadata = stage_metadata(src.iso, state, src.spacing, src.mask.shape)
     metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density})
     t0 = time.perf_counter()
     shell = isosurface_shell(src)
@@ -216,102 +161,6 @@ def volume_stages(
     result, steps = assemble(state, metadata, shell)
     return VolumeStages(src, state["features"], state["thickness"], state["lam"], state["medial"], state["mesh"], result,
                         timings, steps)
-
-
-def _metadata(iso: float, state: dict[str, Any], spacing: np.ndarray, shape: tuple[int, ...]) -> dict[str, Any]:
-    return {
-        "method": "midsurface",
-        "domain": "volume",
-        "iso": iso,
-        "thickness": state["thickness"],
-        "thickness_range": _range(state["plates"]),
-        "lam": state["lam"],
-        "dropped": state["dropped"],
-        "spacing": np.asarray(spacing).tolist(),
-        "image_shape": list(shape),
-    }
-
-
-def polygonize_stage(state: dict[str, Any], density: float, rng: Any) -> None:
-    """Sub-sampling polygonization of ``state["medial"]`` on ``state["grid"]``."""
-    mesh = polygonize(state["grid"], state["medial"], density=density, rng=rng)
-    state["mesh"] = mesh
-    state["points"], state["faces"] = mesh.points, mesh.faces
-    state["radii"], state["kind"] = mesh.radii, mesh.kind
-
-
-def dents_stage(state: dict[str, Any], remove_dents: bool) -> None:
-    """Free edges, dents at junctions and creases put on the planes of the faces beside them (eq. 1)."""
-    kind = state["kind"]
-    special = (kind == JUNCTION) | (kind == BOUNDARY)
-    # free-edge vertices mix in boundary points of the end face: put them
-    # on the planes of the interior faces next to them (eq. 1 as well)
-    moved = state["points"]
-    for _ in range(FREE_EDGE_PASSES):
-        moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
-    if remove_dents:
-        moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
-        # creases (a sheet bending sharply) are rounded like dents: put
-        # them on the planes of the faces on either side
-        crease = (kind == SURFACE) & (state["medial"].coherence[state["mesh"].picks] < CREASE_COHERENCE)
-        crease |= (kind == SURFACE) & bent_vertices(moved, state["faces"])
-        for _ in range(CREASE_PASSES):
-            moved = _remove_dents(moved, state["faces"], crease, special | crease, rings=2)
-    state["points"] = moved
-    state["dented_points"] = moved
-
-
-def extension_stage(state: dict[str, Any], grey: Any, iso: float, spacing: np.ndarray, density: float) -> None:
-    """Free edges extended to the isosurface (``grey``: an array, or a sampler with ``sample`` and ``minimum``)."""
-    if state["plates"].local:
-        # each free edge reaches as far as its own plate's thickness allows
-        plate = 2.0 * state["radii"]
-    else:
-        plate = state["thickness"]
-    if state["plates"].local:
-        sample_radius = density * state["radii"]
-    else:
-        sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
-    points, faces, source = extend_mesh(
-        state["points"], state["faces"], grey, iso, spacing,
-        max_length=1.5 * plate + 2.0 * sample_radius,
-        free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
-        probe=0.5 * plate + 2.0 * float(spacing.max()),
-    )
-    state["points"], state["faces"] = points, faces
-    state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
-    state["kind"] = np.concatenate([state["kind"], np.full(len(source), EXTENSION, np.int8)])
-
-
-def assemble(state: dict[str, Any], metadata: dict[str, Any], shell: Any) -> tuple[MedialAxis, dict[str, MedialAxis]]:
-    """The result and the axis after each stage (``VolumeStages.steps``)."""
-    if len(state["faces"]):
-        # a lone medial voxel (a noisy corner) is a vertex without a face: not part of the mid-surface
-        used = np.zeros(len(state["points"]), bool)
-        used[state["faces"].ravel()] = True
-        if not used.all():
-            new_index = np.cumsum(used) - 1
-            state["faces"] = new_index[state["faces"]]
-            for key in ("points", "radii", "kind"):
-                state[key] = state[key][used]
-    faces = state["faces"]
-    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
-    result = MedialAxis(
-        state["points"], state["radii"], edges, faces,
-        extras={"thickness": 2.0 * state["radii"], "vertex_kind": state["kind"]},
-        metadata=metadata, shape=shell,
-    )
-    mesh, medial, grid = state["mesh"], state["medial"], state["grid"]
-    voxel_meta = dict(metadata, method="voxels")
-    steps = {
-        "medial_voxels": MedialAxis(grid.physical(medial.voxels), medial.radius, metadata=voxel_meta, shape=shell),
-        "polygonized": MedialAxis(mesh.points, mesh.radii, faces=mesh.faces, metadata=metadata,
-                                  extras={"vertex_kind": mesh.kind}, shape=shell),
-        "dents_removed": MedialAxis(state["dented_points"], mesh.radii, faces=mesh.faces, metadata=metadata,
-                                    extras={"vertex_kind": mesh.kind}, shape=shell),
-        "extended": result,
-    }
-    return result, steps
 
 
 def midsurface_medial_axis(
@@ -513,10 +362,10 @@ def medial_voxel_axis(
     features = feature_transform(src)
     plates, lam_value = _thickness_and_lam(features, thickness, lam)
     medial = medial_voxels(features, lam_value, plates)
-    dropped = _dropped(medial, plates, lam_value)
+    dropped = dropped_report(medial, plates, lam_value)
     kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
     metadata = {"method": "voxels", "domain": "volume", "iso": src.iso, "thickness": plates.value,
-                "thickness_range": _range(plates), "lam": lam_value,
+                "thickness_range": thickness_range(plates), "lam": lam_value,
                 "dropped": dropped,
                 "spacing": src.spacing.tolist(), "image_shape": list(src.mask.shape)}
     return MedialAxis(

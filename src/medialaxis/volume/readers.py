@@ -17,6 +17,7 @@ import numpy as np
 from medialaxis._optional import require
 from medialaxis.core.validate import memory_budget
 from medialaxis.errors import InputFileError, InvalidInputError, ResourceLimitError, UnsupportedFormatError
+from medialaxis.volume.source_files import nrrd_spacing
 
 __all__ = ["read_volume", "VOLUME_SUFFIXES"]
 
@@ -57,16 +58,7 @@ def _read_nrrd(path: Path) -> tuple[np.ndarray, Any]:
     nrrd = require("nrrd", "pynrrd")
     check_voxels(nrrd.read_header(str(path)).get("sizes", ()), f"NRRD {str(path)!r}")
     data, header = nrrd.read(str(path), index_order="C")
-    spacing = None
-    if "spacings" in header:
-        spacing = tuple(float(s) for s in header["spacings"])
-    elif "space directions" in header:
-        dirs = np.asarray(header["space directions"], dtype=float)
-        if dirs.ndim == 2 and np.all(np.isfinite(dirs)):
-            spacing = tuple(float(s) for s in np.linalg.norm(dirs, axis=1))
-    if spacing is not None and data.ndim == 3:
-        spacing = spacing[::-1] if len(spacing) == 3 else None  # header lists fastest axis first
-    return data, spacing
+    return data, (nrrd_spacing(header) if data.ndim == 3 else None)
 
 
 def _read_nifti(path: Path) -> tuple[np.ndarray, Any]:
