@@ -19,13 +19,14 @@ __all__ = ["DEMO_CASES", "tripod_flow_case"]
 
 def tripod_flow_case(outdir: Path) -> str:
     """Skeletonize and bend a tripod of capsules (radius 0.5, arms 3); one summary line."""
-    import medialaxis as mx
+    from medialaxis.mesh.deform import deform
+    from medialaxis.mesh.flow import flow_skeleton
     from medialaxis.mesh.flow_samples import segment_distance, tripod_mesh, tripod_segments
 
     mesh = tripod_mesh(radius=0.5, arm=3.0, pitch=0.08)
     mesh.export(outdir / "tripod.ply")
     t0 = time.perf_counter()
-    sk = mx.medial_axis(mesh, method="flow")
+    sk = flow_skeleton(mesh)
     elapsed = time.perf_counter() - t0
     for ext in (".json", ".ply"):
         sk.save(outdir / f"tripod_flow{ext}")
@@ -38,7 +39,7 @@ def tripod_flow_case(outdir: Path) -> str:
     rot = np.array([[np.cos(angle), -np.sin(angle), 0], [np.sin(angle), np.cos(angle), 0], [0, 0, 1.0]])
     new = sk.points.copy()
     new[arm] = (sk.points[arm] - junction) @ rot.T + junction
-    bent = mx.deform(mesh, sk, new)
+    bent = deform(mesh, sk, new)
     bent.export(outdir / "tripod_bent.ply")
     return (
         f"tripod (flow): {len(mesh.vertices)} vertices -> {len(sk.points)} nodes, {len(sk.endpoints)} endpoints, "

@@ -19,13 +19,13 @@ def t_demo(outdir: Path) -> str:
     (lossless) and ``volume_t.png``, and returns a summary with the accuracy
     against the known mid-planes.
     """
-    import medialaxis as mx
     from medialaxis.volume.phantoms import t_phantom
+    from medialaxis.volume.pipeline import midsurface_medial_axis
     from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
 
     ph = t_phantom((70, 120, 120), margin=10)
     t0 = time.perf_counter()
-    ma = mx.medial_axis(ph.volume, method="midsurface", iso=0.5)
+    ma = midsurface_medial_axis(ph.volume, iso=0.5)
     elapsed = time.perf_counter() - t0
     for ext in (".ply", ".vtk", ".json", ".png"):
         ma.save(Path(outdir) / f"volume_t{ext}")
