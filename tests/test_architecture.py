@@ -167,5 +167,4 @@ LINE_LIMIT: dict[str, int] = {
     "medialaxis.core.io": 546,
     "medialaxis.mesh.contract_graph": 433,
     "medialaxis.mesh.flow": 488,
-    "medialaxis.planar.inputs": 557,
 }

@@ -7,7 +7,7 @@ import pytest
 import shapely
 
 import medialaxis as mx
-from medialaxis.planar import inputs, voronoi_medial_axis
+from medialaxis.planar import images, voronoi_medial_axis
 
 
 def test_empty_mask():
@@ -155,7 +155,7 @@ def test_image_too_large_is_refused_before_decoding(tmp_path, monkeypatch):
     path = tmp_path / "big.png"
     Image.fromarray(np.zeros((300, 400), np.uint8)).save(path)
     decoded = []
-    monkeypatch.setattr(inputs, "max_pixels", lambda: 1000)
+    monkeypatch.setattr(images, "max_pixels", lambda: 1000)
     original = Image.Image.load
     monkeypatch.setattr(Image.Image, "load", lambda self: decoded.append(1) or original(self))
     with pytest.raises(mx.ResourceLimitError, match="120,000 pixels"):
@@ -164,7 +164,7 @@ def test_image_too_large_is_refused_before_decoding(tmp_path, monkeypatch):
 
 
 def test_array_too_large_is_refused(monkeypatch):
-    monkeypatch.setattr(inputs, "max_pixels", lambda: 100)
+    monkeypatch.setattr(images, "max_pixels", lambda: 100)
     with pytest.raises(mx.ResourceLimitError):
         mx.medial_axis(np.zeros((20, 20), bool))
 
