@@ -118,7 +118,7 @@ def test_load_rejects_bad_files(tmp_path):
 
 
 def test_save_is_atomic_on_failure(bracket, tmp_path, monkeypatch):
-    from medialaxis.core import io
+    from medialaxis.core import lossless
 
     path = tmp_path / "a.json"
     path.write_text("old")
@@ -126,7 +126,7 @@ def test_save_is_atomic_on_failure(bracket, tmp_path, monkeypatch):
     def boom(*a, **k):
         raise RuntimeError("disk full")
 
-    monkeypatch.setattr(io.json, "dump", boom)
+    monkeypatch.setattr(lossless.json, "dump", boom)
     with pytest.raises(RuntimeError):
         bracket.save(path)
     assert path.read_text() == "old"
