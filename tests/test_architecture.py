@@ -25,7 +25,7 @@ LAYERS = {
     "planar": 2, "mesh": 2, "volume": 2,
     "_dispatch": 3, "api": 3,
     "compare": 4, "metrics": 4, "gis": 4,
-    "demo": 5, "cli": 5, "cli_batch": 5, "_entry": 5, "__main__": 5, "": 5,
+    "demo": 5, "cli": 5, "cli_compute": 5, "cli_batch": 5, "_entry": 5, "__main__": 5, "": 5,
 }
 DOMAINS = {"planar", "mesh", "volume"}
 #: Modules that sit above their folder's layer (the command line of a part).
@@ -160,7 +160,6 @@ def test_modules_stay_small(name):
 
 #: Modules still over the limit, with their size when this was written: they may shrink, not grow (issue 17).
 LINE_LIMIT: dict[str, int] = {
-    "medialaxis.cli": 462,
     "medialaxis.compare._kernels": 592,
     "medialaxis.compare.distance": 527,
     "medialaxis.compare.signature": 532,

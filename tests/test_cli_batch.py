@@ -103,7 +103,8 @@ def test_first_class_options_reach_the_methods(tmp_path, capsys):
     simple = tmp_path / "box.json"
     assert main(["compute", str(box), "--simplify", "20", "-o", str(simple)]) == 0
     assert len(json.loads(simple.read_text())["points"]) <= 20
-    from medialaxis.cli import _options, build_parser
+    from medialaxis.cli import build_parser
+    from medialaxis.cli_compute import compute_options as _options
 
     args = build_parser().parse_args(["compute", str(box), "--repair", "--thickness", "6"])
     assert _options(args)[0] == {"repair": True, "thickness": 6.0}

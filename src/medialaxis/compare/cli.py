@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis._help import HelpFormatter
+from medialaxis._help import HelpFormatter, UsageError
 
 __all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture"]
 
@@ -61,7 +61,6 @@ def _axis(path: Path) -> Any:
 
 
 def _run_compare(args: argparse.Namespace) -> int:
-    from medialaxis.cli import UsageError
     from medialaxis.compare.distance import match_tour, shape_distance
 
     if args.output is not None:
@@ -157,7 +156,6 @@ def add_search(sub: Any) -> None:
 
 
 def _run_search(args: argparse.Namespace) -> int:
-    from medialaxis.cli import UsageError
     from medialaxis.compare.distance import query_distances, shape_signature
     from medialaxis.errors import InputFileError, MedialAxisError
 

@@ -1,0 +1,263 @@
+"""``medialaxis compute``: one input to its outputs, or many inputs to a folder (:mod:`medialaxis.cli_batch`)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from medialaxis._dispatch import DEFAULT_METHOD, METHODS
+from medialaxis._help import HelpFormatter, UsageError
+from medialaxis._help import print_error as _fail
+from medialaxis.errors import MedialAxisError
+
+__all__ = ["add_compute", "compute_options", "check_outputs"]
+
+
+def _parse_option(text: str) -> tuple[str, Any]:
+    key, sep, value = text.partition("=")
+    if not sep or not key:
+        raise UsageError(f"--option expects KEY=VALUE, got {text!r}")
+    try:
+        return key.replace("-", "_"), json.loads(value)
+    except json.JSONDecodeError:
+        return key.replace("-", "_"), value
+
+
+def check_outputs(
+    inputs: Sequence[Path], outputs: Sequence[Path], formats: Sequence[str] | None = None, option: str = "--output"
+) -> None:
+    """Refuse, before any work, outputs that are an input file, of an unknown format, or not writable."""
+    from medialaxis.core.io import WRITERS, check_writable
+
+    formats = tuple(WRITERS) if formats is None else tuple(formats)
+    existing = [p for p in inputs if p.exists()]
+    for out in outputs:
+        if out.exists() and any(out.samefile(p) for p in existing):
+            raise UsageError(f"refusing to overwrite the input file {str(out)!r}")
+        if out.suffix.lower() not in formats:
+            raise UsageError(
+                f"{option}: unsupported output format {out.suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(formats)}"
+            )
+        check_writable(out)
+
+
+def _summary(ma: Any) -> str:
+    meta = ma.metadata
+    parts = [
+        f"method={meta.get('method')}",
+        f"points={len(ma.points)}",
+        f"edges={len(ma.edges)}",
+        f"faces={len(ma.faces)}",
+    ]
+    if ma.dim == 2 or len(ma.faces) == 0:
+        parts += [f"endpoints={len(ma.endpoints)}", f"junctions={len(ma.junctions)}", f"cycles={ma.n_cycles}"]
+    parts.append(f"components={ma.n_components}")
+    if meta.get("lam") is not None:
+        parts.append(f"lam={meta['lam']:.4g}")
+    if meta.get("thickness") is not None:
+        parts.append(f"thickness={meta['thickness']:.4g}")
+    if len(ma.radii):
+        parts.append(f"radius=[{ma.radii.min():.4g}, {ma.radii.max():.4g}]")
+    return " ".join(parts)
+
+
+def add_compute(sub: Any) -> None:
+    p = sub.add_parser(
+        "compute",
+        help="medial axis of shapes",
+        description="Compute the medial axis of images, polygon files, meshes or volumes. Several inputs (files, "
+                    "glob patterns, folders) write their outputs to --out-dir, one per --format, named after each "
+                    "input; a folder of TIFF or DICOM slices is one volume, any other folder stands for its shape "
+                    "files. A failing input is reported and the others are still done (exit 1 at the end).",
+        formatter_class=HelpFormatter,
+    )
+    p.add_argument("input", type=Path, nargs="+",
+                   help="image, SVG/GeoJSON/WKT, mesh or volume file, folder or glob pattern, or a saved result "
+                        "(.json/.npz)")
+    p.add_argument("-o", "--output", type=Path, action="append", default=[],
+                   help="output file of a single input; the extension picks the format (.json .npz .svg .png "
+                        ".graphml .geojson .ply .obj .vtk .vtu .swc); repeatable")
+    p.add_argument("--out-dir", type=Path, default=None, help="folder for the outputs of each input (created if needed)")
+    p.add_argument("--format", default="json", help="output formats with --out-dir, comma-separated (e.g. json,svg)")
+    p.add_argument("--method", default=None, metavar="METHOD",
+                   help="method within the input's domain: " + "; ".join(
+                       f"{domain} {', '.join(methods)} (default {DEFAULT_METHOD[domain]})" for domain, methods in METHODS.items()))
+    p.add_argument("--lam", type=float, default=None, help="lambda: smallest contact-set diameter kept (output units)")
+    p.add_argument("--threshold", type=float, default=None,
+                   help="grey level of the foreground (default: images, Otsu's threshold; volumes, ISO-50: "
+                        "half-way between the mean grey levels of Otsu's two classes; 0.5 for bool input)")
+    p.add_argument("--spacing", type=float, nargs="+", default=None, help="pixel/voxel size per array axis")
+    p.add_argument("--tolerance", type=float, default=None, help="planar accuracy parameter (output units)")
+    p.add_argument("--detour", type=float, default=None, help="planar pruning detour ratio")
+    p.add_argument("--boundary", choices=["contour", "canny"], default=None, help="planar boundary extraction")
+    p.add_argument("--simplify", type=int, default=None, metavar="N",
+                   help="meshes (voronoi): simplify the medial mesh to N spheres (Q-MAT)")
+    p.add_argument("--thickness", type=float, nargs="+", default=None, metavar="T",
+                   help="volumes: plate thickness; one value (nominal), or MIN MAX (plates in that range); "
+                        "default: every plate, each with its own thickness")
+    p.add_argument("--repair", action="store_true", help="meshes: repair small defects (reported in the metadata)")
+    p.add_argument("--raw-shape", type=int, nargs=3, default=None, metavar=("Z", "Y", "X"),
+                   help="volumes: array shape of a .raw file")
+    p.add_argument("--raw-dtype", default=None, help="volumes: data type of a .raw file (e.g. uint16)")
+    p.add_argument("--chunks", type=int, nargs="+", default=None, metavar="N",
+                   help="volumes: process in blocks of N (or Z Y X) voxels, reading one block at a time; 0 keeps "
+                        "the volume in memory (default: blocks of 256 above 512^3 voxels)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="volumes: run the blocks on a Dask cluster (tcp://host:8786); its workers must see the input")
+    p.add_argument("--jobs", type=int, default=None, metavar="N", help="volumes: local worker threads for the blocks "
+                                                                        "(default: all CPUs)")
+    p.add_argument("--foreground", choices=["auto", "bright", "dark"], default=None,
+                   help="images: which side of the threshold is the shape; auto (the default) takes the side "
+                        "that does not own most of the image border, so a dark shape on light paper works")
+    p.add_argument("--steps", type=Path, default=None,
+                   help="save the pipeline stages: planar, one figure (PNG/SVG/PDF); volume, one mesh file per stage "
+                        "named STEM_<k>_<stage>.<ext> (.ply .vtk .obj .json .npz)")
+    p.add_argument("--frames", type=Path, default=None,
+                   help="mesh flow: write each step to this folder (step_NNNN.ply and flow.html)")
+    p.add_argument("--option", action="append", default=[], metavar="KEY=VALUE",
+                   help="extra method option (value parsed as JSON when possible); repeatable")
+    p.set_defaults(run=_run_compute)
+
+
+def compute_options(args: argparse.Namespace) -> tuple[dict[str, Any], Any]:
+    """Method options and spacing from the command line."""
+    options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
+    for name in ("tolerance", "detour", "boundary", "foreground", "simplify", "raw_shape", "raw_dtype"):
+        value = getattr(args, name)
+        if value is not None:
+            options[name] = value
+    if args.thickness is not None:
+        if len(args.thickness) > 2:
+            raise UsageError(f"--thickness takes one value or MIN MAX, got {len(args.thickness)} values")
+        options["thickness"] = args.thickness[0] if len(args.thickness) == 1 else tuple(args.thickness)
+    if args.repair:
+        options["repair"] = True
+    if args.chunks is not None:
+        if len(args.chunks) not in (1, 3):
+            raise UsageError(f"--chunks takes one size or Z Y X, got {len(args.chunks)} values")
+        options["chunks"] = args.chunks[0] if len(args.chunks) == 1 else tuple(args.chunks)
+    if args.scheduler is not None:
+        options["scheduler"] = args.scheduler
+    if args.jobs is not None:
+        if args.jobs < 1:
+            raise UsageError(f"--jobs must be at least 1, got {args.jobs}")
+        options["n_jobs"] = args.jobs
+    spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
+    return options, spacing
+
+
+def _run_batch(args: argparse.Namespace, inputs: list[Path]) -> int:
+    """Each input computed and written on its own; failures reported per input."""
+    import medialaxis as mx
+    from medialaxis._progress import progress
+    from medialaxis.cli_batch import output_names
+    from medialaxis.core.io import WRITERS, output_batch
+
+    if args.output:
+        raise UsageError("-o names the output of one input; for several inputs use --out-dir DIR --format json,...")
+    if args.steps is not None or args.frames is not None:
+        raise UsageError("--steps and --frames take a single input")
+    if args.out_dir is None:
+        raise UsageError(f"{len(inputs)} inputs: give --out-dir DIR (and --format) for their outputs")
+    formats = ["." + f.strip().lower().lstrip(".") for f in args.format.split(",") if f.strip()]
+    unknown = [f for f in formats if f not in WRITERS]
+    if unknown or not formats:
+        raise UsageError(f"--format: unknown format(s) {', '.join(unknown) or '(none)'}; use some of "
+                         f"{', '.join(w.lstrip('.') for w in WRITERS)}")
+    if args.out_dir.exists() and not args.out_dir.is_dir():
+        raise UsageError(f"--out-dir needs a folder, {str(args.out_dir)!r} is a file")
+    plan = output_names(inputs, args.out_dir, formats)
+    args.out_dir.mkdir(parents=True, exist_ok=True)
+    check_outputs(inputs, [out for outs in plan.values() for out in outs])
+    options, spacing = compute_options(args)
+    failed = 0
+    for path in progress(inputs, desc="inputs"):
+        try:
+            ma = mx.medial_axis(str(path), method=args.method, lam=args.lam, threshold=args.threshold,
+                                spacing=spacing, **options)
+            with output_batch():  # this input's outputs all appear, or none
+                for out in plan[path]:
+                    ma.save(out)
+        except MedialAxisError as exc:
+            failed += 1
+            _fail(f"{path}: {exc}")
+            continue
+        print(f"{path}: {_summary(ma)}")
+        for out in plan[path]:
+            print(f"wrote {out}")
+    if failed:
+        _fail(f"{failed} of {len(inputs)} inputs failed")
+        return 1
+    return 0
+
+
+def _run_compute(args: argparse.Namespace) -> int:
+    import medialaxis as mx
+    from medialaxis.cli_batch import expand_inputs
+
+    inputs = expand_inputs(args.input)
+    if len(inputs) > 1 or args.out_dir is not None:
+        return _run_batch(args, inputs)
+    args.input = inputs[0]
+    outputs = list(args.output) + ([args.steps] if args.steps else [])
+    check_outputs([args.input], list(args.output))
+    domain = mx._dispatch.classify(str(args.input), args.method)
+    if args.method is not None and domain in METHODS and args.method not in METHODS[domain]:
+        raise UsageError(
+            f"--method {args.method!r} does not apply to {domain} input; choose one of {', '.join(METHODS[domain])}"
+        )
+    if args.frames is not None:
+        if domain != "mesh" or args.method != "flow":
+            raise UsageError("--frames is available for meshes with --method flow")
+        if args.frames.exists() and not args.frames.is_dir():
+            raise UsageError(f"--frames needs a folder, {str(args.frames)!r} is a file")
+        from medialaxis.core.io import check_writable
+
+        check_writable(args.frames / "step_0001.ply" if args.frames.is_dir() else args.frames)
+    if args.steps is not None:
+        if domain == mx._dispatch.RESULT:
+            raise UsageError("--steps needs a shape, not a saved result")
+        if domain == "mesh":
+            raise UsageError("--steps is available for planar and volume inputs")
+        if domain == "planar":
+            check_outputs([args.input], [args.steps], formats=(".png", ".svg", ".pdf"), option="--steps")
+        else:
+            check_outputs([args.input], [args.steps], option="--steps")
+    options, spacing = compute_options(args)
+    from medialaxis.core.io import output_batch
+
+    # Every output appears at the end, or none does (a failure or Ctrl-C leaves nothing).
+    with output_batch():
+        if args.steps is not None and domain == "volume":
+            from medialaxis.volume.steps import save_steps, stages_for_method
+
+            stages = stages_for_method(str(args.input), args.method, lam=args.lam, threshold=args.threshold,
+                                       spacing=spacing, **options)
+            ma = stages.result
+            outputs = list(args.output) + save_steps(stages, args.steps)
+        elif args.steps is not None:
+            from medialaxis.planar.pipeline import planar_stages
+            from medialaxis.planar.plotting import save_stages_figure
+
+            stages = planar_stages(str(args.input), lam=args.lam, threshold=args.threshold, spacing=spacing, **options)
+            ma = stages.result
+            save_stages_figure(stages, args.steps)
+        else:
+            writer = None
+            if args.frames is not None:
+                from medialaxis.mesh.flow_frames import FrameWriter
+
+                writer = options["callback"] = FrameWriter(args.frames)
+            ma = mx.medial_axis(str(args.input), method=args.method, lam=args.lam, threshold=args.threshold,
+                                spacing=spacing, **options)
+            if writer is not None:
+                outputs += writer.finish()
+        for out in args.output:
+            ma.save(out)
+    print(f"{args.input}: {_summary(ma)}")
+    for out in outputs:
+        print(f"wrote {out}")
+    return 0
