@@ -163,6 +163,4 @@ LINE_LIMIT: dict[str, int] = {
     "medialaxis.compare._kernels": 592,
     "medialaxis.compare.distance": 527,
     "medialaxis.compare.signature": 532,
-    "medialaxis.mesh.contract_graph": 433,
-    "medialaxis.mesh.flow": 488,
 }

@@ -28,6 +28,7 @@ from scipy.sparse import csgraph
 
 from medialaxis.core import graph as _graph
 from medialaxis.mesh._flow_operators import unique_pairs
+from medialaxis.mesh.graph_shape import extend_leaves, junction_ball, straighten_junction
 
 __all__ = ["SkeletonGraph", "skeleton_graph", "handle_count"]
 
@@ -196,115 +197,6 @@ def _merge(label_of_node: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, np
     return new, e.astype(np.int64)
 
 
-def _branch_chains(adj: sparse.csr_matrix, deg: np.ndarray, j: int) -> list[list[int]]:
-    """Node chains leaving node ``j``, each up to (and including) the next non-degree-2 node."""
-    chains = []
-    for start in adj.indices[adj.indptr[j] : adj.indptr[j + 1]]:
-        chain, prev, cur = [int(start)], j, int(start)
-        while deg[cur] == 2:
-            nxt = [v for v in adj.indices[adj.indptr[cur] : adj.indptr[cur + 1]] if v != prev]
-            if not nxt or nxt[0] == j:
-                break
-            prev, cur = cur, int(nxt[0])
-            chain.append(cur)
-        chains.append(chain)
-    return chains
-
-
-def _straighten_junction(pos: np.ndarray, adj: sparse.csr_matrix, deg: np.ndarray, j: int, radius: float) -> None:
-    """Move junction ``j`` to where its branches' lines meet and put the hub nodes on those lines.
-
-    Near a junction the medial axis of a solid leaves the branches' axes (the
-    hub's medial sheets); a curve skeleton continues each branch straight into
-    the junction. Each branch's line is fitted to its nodes between 1.5 and 4
-    radii from the junction; nodes nearer than 1.5 radii are projected on it.
-    """
-    fits = []
-    for chain in _branch_chains(adj, deg, j):
-        dist = np.linalg.norm(pos[chain] - pos[j], axis=1)
-        far = np.asarray(chain)[(dist >= 1.5 * radius) & (dist <= 4.0 * radius)]
-        if len(far) < 2:
-            continue
-        mean = pos[far].mean(axis=0)
-        direction = np.linalg.svd(pos[far] - mean, full_matrices=False)[2][0]
-        near = np.asarray(chain)[dist < 1.5 * radius]
-        fits.append((mean, direction, near))
-    if len(fits) < 2:
-        return
-    a = np.zeros((3, 3))
-    b = np.zeros(3)
-    for mean, d, _near in fits:
-        proj = np.eye(3) - np.outer(d, d)
-        a += proj
-        b += proj @ mean
-    if np.linalg.cond(a) > 1e6:
-        return
-    x = np.linalg.solve(a, b)
-    if np.linalg.norm(x - pos[j]) > 2.0 * radius:
-        return
-    pos[j] = x
-    for mean, d, near in fits:
-        if len(near):
-            pos[near] = mean + ((pos[near] - mean) @ d)[:, None] * d
-
-
-def _junction_ball(pos: np.ndarray, edges: np.ndarray, radii: np.ndarray, protected: np.ndarray) -> np.ndarray | None:
-    """Nodes inside some junction's ball and connected to it through the ball, junction first.
-
-    Around a junction the flow leaves a small blob (the medial surface of
-    the hub); those nodes are merged into the junction.
-    """
-    deg = _graph.degree(len(pos), edges)
-    for j in np.flatnonzero(deg >= 3):
-        near = np.linalg.norm(pos - pos[j], axis=1) < radii[j]
-        near &= ~protected
-        near[j] = True
-        sub = edges[near[edges[:, 0]] & near[edges[:, 1]]]
-        _, comp = _graph.component_labels(len(pos), sub)
-        ball = np.flatnonzero(near & (comp == comp[j]))
-        if len(ball) > 1:
-            return np.concatenate([[j], ball[ball != j]])
-    return None
-
-
-def _extend_leaves(
-    pos: np.ndarray,
-    adj: sparse.csr_matrix,
-    deg: np.ndarray,
-    node_of_vertex: np.ndarray,
-    contracted: np.ndarray,
-    protected: np.ndarray,
-    top: float = 0.1,
-) -> None:
-    """Move each free endpoint to the far end of the contracted points it holds.
-
-    A node sits at the mean of its group, up to half a cell short of where
-    the contracted branch ends; the endpoint is put at the mean of the
-    ``top`` fraction of its points that reach furthest along the branch.
-    """
-    leaves = np.flatnonzero((deg == 1) & ~protected)
-    if len(leaves) == 0:
-        return
-    order = np.argsort(node_of_vertex, kind="stable")
-    sorted_nodes = node_of_vertex[order]
-    for leaf in leaves:
-        lo, hi = np.searchsorted(sorted_nodes, [leaf, leaf + 1])
-        members = order[lo:hi]
-        if len(members) < 2:
-            continue
-        nbr = adj.indices[adj.indptr[leaf]]
-        direction = pos[leaf] - pos[nbr]
-        norm = np.linalg.norm(direction)
-        if norm == 0:
-            continue
-        reach = contracted[members] @ (direction / norm)
-        k = max(1, int(np.ceil(top * len(members))))
-        far = members[np.argsort(reach)[-k:]]
-        tip = contracted[far].mean(axis=0)
-        if (tip - pos[nbr]) @ direction > norm**2:  # only ever lengthen the branch
-            pos[leaf] = tip
-
-
 def skeleton_graph(
     contracted: np.ndarray,
     original: np.ndarray,
@@ -406,7 +298,7 @@ def skeleton_graph(
                 changed = True
         # 3. nodes inside a junction's ball
         if not changed and len(edges):
-            ball = _junction_ball(pos, edges, radii, protected)
+            ball = junction_ball(pos, edges, radii, protected)
             if ball is not None:
                 target[ball] = ball[0]
                 changed = pruned = True
@@ -428,6 +320,6 @@ def skeleton_graph(
     adj = _graph.adjacency(len(pos), edges)
     pos = pos.copy()
     for j in np.flatnonzero(deg >= 3):
-        _straighten_junction(pos, adj, deg, j, radii[j])
-    _extend_leaves(pos, adj, deg, node_of_vertex, contracted, protected)
+        straighten_junction(pos, adj, deg, j, radii[j])
+    extend_leaves(pos, adj, deg, node_of_vertex, contracted, protected)
     return SkeletonGraph(pos, radii, edges.reshape(-1, 2).astype(np.int64), node_of_vertex.astype(np.int64))
