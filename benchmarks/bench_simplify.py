@@ -21,7 +21,6 @@ import argparse
 import time
 
 import numpy as np
-
 from mat_error import two_sided_error
 from real_models import MODELS, default_cache, fetch_models
 
@@ -53,7 +52,7 @@ def main() -> None:
     names = [m["name"] for m in MODELS if m["name"] != "seahorse"]
     if args.models:
         names = [n for n in names if n in args.models.split(",")]
-    print(f"model          vertices genus | spheres  betti      surface->medial  medial->surface  seconds")
+    print("model          vertices genus | spheres  betti      surface->medial  medial->surface  seconds")
     worst = []
     for name in names:
         if name not in paths:

@@ -4,4 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
 ./scripts/browser.sh
+.venv/bin/ruff check src tests benchmarks  # the rules in pyproject.toml; the layering is tests/test_architecture.py
 exec .venv/bin/python -m pytest -q -p no:cacheprovider "$@"

@@ -7,10 +7,6 @@
 
 from __future__ import annotations
 
-# typing.TYPE_CHECKING without importing typing: the console script's
-# start-up, before its Ctrl-C handler, stays as short as it can be
-TYPE_CHECKING = False
-
 from medialaxis._version import __version__
 from medialaxis.errors import (
     Cancelled,
@@ -24,6 +20,10 @@ from medialaxis.errors import (
     ResourceLimitError,
     UnsupportedFormatError,
 )
+
+# typing.TYPE_CHECKING without importing typing: the console script's
+# start-up, before its Ctrl-C handler, stays as short as it can be
+TYPE_CHECKING = False
 
 __all__ = [
     "__version__",
@@ -53,8 +53,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.api import medial_axis
     from medialaxis.compare import distance_matrix, shape_distance
     from medialaxis.core.io import load
-    from medialaxis.gis import centerlines
     from medialaxis.core.result import Branch, MedialAxis
+    from medialaxis.gis import centerlines
     from medialaxis.mesh.deform import deform
     from medialaxis.metrics import reconstruction_error
 

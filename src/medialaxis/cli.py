@@ -19,11 +19,11 @@ from pathlib import Path
 from typing import Any
 
 from medialaxis._help import HelpFormatter, UsageError
-from medialaxis._help import print_error as _fail
 from medialaxis._help import Parser as _Parser
+from medialaxis._help import print_error as _fail
+from medialaxis._version import __version__
 from medialaxis.cli_compute import add_compute as _add_compute
 from medialaxis.cli_compute import check_outputs as _check_outputs
-from medialaxis._version import __version__
 from medialaxis.errors import Cancelled, MedialAxisError, MedialAxisWarning, UnsupportedFormatError
 
 __all__ = ["main", "SUBCOMMANDS"]

@@ -66,7 +66,7 @@ def _load(path):
 
 
 def _nearest_other_class(query_sig, signatures, labels, label):
-    d = query_distances(query_sig, [s for s, l in zip(signatures, labels) if l != label], n_jobs=1)
+    d = query_distances(query_sig, [s for s, other in zip(signatures, labels) if other != label], n_jobs=1)
     return d.min()
 
 

@@ -28,7 +28,10 @@ def test_delaunay_does_not_depend_on_the_sample_order():
     a = tetrahedralise(points)
     perm = rng.permutation(len(points))
     b = tetrahedralise(points[perm])
-    volume = lambda dt: np.abs(np.linalg.det(dt.points[dt.simplices[:, 1:]] - dt.points[dt.simplices[:, :1]])).sum() / 6
+
+    def volume(dt):
+        return np.abs(np.linalg.det(dt.points[dt.simplices[:, 1:]] - dt.points[dt.simplices[:, :1]])).sum() / 6
+
     assert volume(a) == pytest.approx(volume(b), rel=1e-9)
     assert volume(a) == pytest.approx(trimesh.convex.convex_hull(points).volume, rel=1e-9)
     order = morton_order(points)

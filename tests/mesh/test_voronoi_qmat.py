@@ -7,7 +7,6 @@ import pytest
 import trimesh
 
 import medialaxis as mx
-
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh.qmat import _initial_quadrics, simplify_medial_mesh
 from medialaxis.mesh.voronoi import voronoi_medial_axis

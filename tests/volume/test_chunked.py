@@ -7,7 +7,6 @@ pynrrd, nibabel, zarr, NumPy.
 
 from __future__ import annotations
 
-import gzip
 import subprocess
 import sys
 

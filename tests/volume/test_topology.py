@@ -11,11 +11,11 @@ import pytest
 
 import medialaxis as mx
 from medialaxis.volume import _kernels
-from medialaxis.volume.voxel_table import voxel_table
 from medialaxis.volume.phantoms import member_phantom, t_phantom
 from medialaxis.volume.regions import JUNCTION, sheet_ids
 from medialaxis.volume.repair import _close_boundary_triangles, _close_junction_notches, _drop_double_quads
 from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
+from medialaxis.volume.voxel_table import voxel_table
 
 
 def _truth(ph):

@@ -40,8 +40,9 @@ smaller sample count.
 from __future__ import annotations
 
 import numpy as np
-from medialaxis._jit import njit
 from scipy.optimize import linear_sum_assignment
+
+from medialaxis._jit import njit
 
 __all__ = [
     "pack", "pair_distances", "reference_distance", "reference_match", "path_costs_reference", "EPS",
@@ -132,21 +133,21 @@ def _align(pc, i, k, na, nb, wa, wb, reverse, skip, table):  # pragma: no cover 
     for a in range(1, m + 1):
         table[a, 0] = table[a - 1, 0] + skip * wa[(i + a) % na]
     for b in range(1, n + 1):
-        l = (k - b) % nb if reverse else (k + b) % nb
-        table[0, b] = table[0, b - 1] + skip * wb[l]
+        col = (k - b) % nb if reverse else (k + b) % nb
+        table[0, b] = table[0, b - 1] + skip * wb[col]
     for a in range(1, m + 1):
         j = (i + a) % na
         skip_a = skip * wa[j]
         for b in range(1, n + 1):
             if reverse:
-                l = (k - b) % nb
+                col = (k - b) % nb
             else:
-                l = (k + b) % nb
-            best = table[a - 1, b - 1] + pc[i * na + j, k * nb + l]
+                col = (k + b) % nb
+            best = table[a - 1, b - 1] + pc[i * na + j, k * nb + col]
             alt = table[a - 1, b] + skip_a
             if alt < best:
                 best = alt
-            alt = table[a, b - 1] + skip * wb[l]
+            alt = table[a, b - 1] + skip * wb[col]
             if alt < best:
                 best = alt
             table[a, b] = best

@@ -39,12 +39,12 @@ from typing import Any
 import numpy as np
 
 from medialaxis._progress import progress
-from medialaxis.core.parallel import check_jobs, check_scheduler, dask_client
-from medialaxis.core.result import MedialAxis
-from medialaxis.core.validate import check_number
 from medialaxis.compare import _kernels
 from medialaxis.compare.context import N_ANGULAR
 from medialaxis.compare.signature import DEFAULT_PRUNE, DEFAULT_SAMPLES, Signature, signature
+from medialaxis.core.parallel import check_jobs, check_scheduler, dask_client
+from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
 
 __all__ = [

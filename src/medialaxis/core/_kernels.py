@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from medialaxis._jit import njit
 
 __all__ = ["peel_leaves_kernel", "peel_leaves_reference"]

@@ -152,9 +152,9 @@ def _write_svg(ma: MedialAxis, path: Path) -> None:
 
 
 def _write_png(ma: MedialAxis, path: Path) -> None:
-    from medialaxis.core.plot import plot_axis
-
     import matplotlib
+
+    from medialaxis.core.plot import plot_axis
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt

@@ -13,6 +13,7 @@ from __future__ import annotations
 import heapq
 
 import numpy as np
+
 from medialaxis._jit import njit, prange
 
 __all__ = ["closest_on_candidates", "closest_point_reference", "collapse_facets", "collapse_free_sides", "REGION_FACE"]

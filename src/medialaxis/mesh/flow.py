@@ -56,12 +56,16 @@ from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
 from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.contract_graph import skeleton_graph
-from medialaxis.mesh.flow_refine import centre_on_rings
 from medialaxis.mesh.flow_mesh import (
-    FlowState, curvature_tips, nonmanifold_vertices, prepare_flow_mesh, readonly, smoothed_gaussian_curvature,
+    FlowState,
+    curvature_tips,
+    nonmanifold_vertices,
+    prepare_flow_mesh,
+    readonly,
+    smoothed_gaussian_curvature,
 )
+from medialaxis.mesh.flow_refine import centre_on_rings
 from medialaxis.mesh.refine import refine_coarse
-
 
 __all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices", "smoothed_gaussian_curvature"]
 

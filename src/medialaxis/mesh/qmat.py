@@ -25,9 +25,9 @@ import heapq
 from typing import Any
 
 import numpy as np
-from medialaxis._jit import njit
 from scipy.spatial import cKDTree
 
+from medialaxis._jit import njit
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
 

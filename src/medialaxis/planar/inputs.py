@@ -19,7 +19,14 @@ import shapely
 from medialaxis.core.validate import check_spacing
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
 from medialaxis.planar.images import (
-    FOREGROUNDS, IMAGE_EXTENSIONS, check_foreground, contour_region, image_region, max_pixels, read_image, shape_side,
+    FOREGROUNDS,
+    IMAGE_EXTENSIONS,
+    check_foreground,
+    contour_region,
+    image_region,
+    max_pixels,
+    read_image,
+    shape_side,
 )
 from medialaxis.planar.vectors import loop_polygon, read_vector, validate_polygonal
 

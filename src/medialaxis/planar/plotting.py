@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import Any
 
-
 from medialaxis.planar.pipeline import Stages
 
 __all__ = ["stages_figure", "save_stages_figure"]

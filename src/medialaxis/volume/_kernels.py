@@ -15,8 +15,9 @@ The references (``*_reference``) loop in Python; the tests compare them.
 
 from __future__ import annotations
 
-import numpy as np
 import heapq
+
+import numpy as np
 
 from medialaxis._jit import njit
 from medialaxis.volume.voxel_table import table_find

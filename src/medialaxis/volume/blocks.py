@@ -35,8 +35,22 @@ from scipy.spatial import cKDTree
 
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.distance import Features, boundary_points, nearest_boundary
-from medialaxis.volume.medial import MedialPairs, MedialVoxels, judge_pairs, medial_pairs, medial_voxels, pairs_to_voxels
-from medialaxis.volume.plates import ANTIPODAL_COS, LABEL_RADIUS, PlateThickness, label_shortest, plate_labels, plate_pairs
+from medialaxis.volume.medial import (
+    MedialPairs,
+    MedialVoxels,
+    judge_pairs,
+    medial_pairs,
+    medial_voxels,
+    pairs_to_voxels,
+)
+from medialaxis.volume.plates import (
+    ANTIPODAL_COS,
+    LABEL_RADIUS,
+    PlateThickness,
+    label_shortest,
+    plate_labels,
+    plate_pairs,
+)
 
 __all__ = ["Block", "block_grid", "halo_voxels", "scan_block", "finish_block", "medial_block", "BlockScan", "BlockMedial", "BlockSampler"]
 

@@ -46,7 +46,13 @@ from medialaxis.core.scene3d import Surface
 from medialaxis.core.validate import check_number
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.blocks import (
-    Block, BlockSampler, block_grid, finish_block, halo_voxels, medial_block, scan_block,
+    Block,
+    BlockSampler,
+    block_grid,
+    finish_block,
+    halo_voxels,
+    medial_block,
+    scan_block,
 )
 from medialaxis.volume.distance import Grid
 from medialaxis.volume.inputs import VolumeInput, check_spacing, counted, iso50_counts, value_counts
@@ -54,7 +60,13 @@ from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels
 from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness, nominal_thicknesses, plate_summary
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
 from medialaxis.volume.stages import (
-    assemble, check_range, dents_stage, dropped_report, extension_stage, polygonize_stage, stage_metadata,
+    assemble,
+    check_range,
+    dents_stage,
+    dropped_report,
+    extension_stage,
+    polygonize_stage,
+    stage_metadata,
     thickness_range,
 )
 

@@ -43,7 +43,7 @@ def iso50(grey: np.ndarray) -> float:
 def counted(dtype: np.dtype) -> bool:
     """True for the dtypes whose ISO-50 comes from exact value counts (bool and integers of 1 or 2 bytes)."""
     dtype = np.dtype(dtype)
-    return dtype == bool or (np.issubdtype(dtype, np.integer) and dtype.itemsize <= 2)
+    return dtype.kind == "b" or (np.issubdtype(dtype, np.integer) and dtype.itemsize <= 2)
 
 
 def value_counts(array: np.ndarray, slab: int = 16) -> tuple[np.ndarray, np.ndarray]:
@@ -55,8 +55,8 @@ def value_counts(array: np.ndarray, slab: int = 16) -> tuple[np.ndarray, np.ndar
     counts : (k,) int64 ndarray
     """
     dtype = np.dtype(array.dtype)
-    low = 0 if dtype == bool else int(np.iinfo(dtype).min)
-    size = 2 if dtype == bool else 1 << (8 * dtype.itemsize)
+    low = 0 if dtype.kind == "b" else int(np.iinfo(dtype).min)
+    size = 2 if dtype.kind == "b" else 1 << (8 * dtype.itemsize)
     counts = np.zeros(size, np.int64)
     for z in range(0, array.shape[0], slab):
         part = np.asarray(array[z:z + slab]).ravel()

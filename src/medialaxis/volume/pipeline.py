@@ -29,11 +29,17 @@ from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
 from medialaxis.volume.plates import PlateThickness, plate_thickness
 from medialaxis.volume.polygonize import Polygonization
+from medialaxis.volume.shell import isosurface_shell
 from medialaxis.volume.stages import (
-    assemble, check_range, dents_stage, dropped_report, extension_stage, polygonize_stage, stage_metadata,
+    assemble,
+    check_range,
+    dents_stage,
+    dropped_report,
+    extension_stage,
+    polygonize_stage,
+    stage_metadata,
     thickness_range,
 )
-from medialaxis.volume.shell import isosurface_shell
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
 

@@ -48,6 +48,6 @@ def check_volume(shape: Any, dtype: Any, name: str) -> tuple[tuple[int, int, int
     if min(shape) < 3:
         raise InvalidInputError(f"{name}: a volume needs at least 3 voxels per axis, got shape {shape}")
     dt = np.dtype(dtype)
-    if not (dt == bool or (np.issubdtype(dt, np.number) and not np.issubdtype(dt, np.complexfloating))):
+    if not (dt.kind == "b" or (np.issubdtype(dt, np.number) and not np.issubdtype(dt, np.complexfloating))):
         raise InvalidInputError(f"{name}: a volume must be bool or numeric, got dtype {dt}")
     return shape, dt  # type: ignore[return-value]
