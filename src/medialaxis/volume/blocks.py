@@ -66,6 +66,11 @@ class Block:
     def voxels(self) -> int:
         return int(np.prod(np.subtract(self.hi, self.lo)))
 
+    @property
+    def region(self) -> tuple[slice, slice, slice]:
+        """The core as slices of the volume."""
+        return tuple(slice(a, b) for a, b in zip(self.lo, self.hi))  # type: ignore[return-value]
+
 
 def block_grid(shape: tuple[int, ...], chunks: tuple[int, int, int]) -> list[Block]:
     """The cores of a regular chunking of ``shape`` (C order)."""

@@ -8,23 +8,28 @@ Passes over the blocks:
 1. the iso value, when not given: exact value counts of 8 and 16-bit scans
    (or a 256-bin histogram and the class sums of float scans) give the
    ISO-50 value the whole array gives (:func:`~medialaxis.volume.inputs.iso50_counts`);
-2. unless the thickness is one number: the lengths of the plate-crossing
-   pairs and the deepest voxel of every block, for the part-wide plate
-   thickness (one nominal thickness, or several and per-plate labels) and
-   the halo of the next pass;
-3. the medial voxels of every block's core, identical to the in-memory
-   route's.
+2. one read per block: the lengths of its plate-crossing pairs, its deepest
+   voxel, its foreground box and its candidate medial pairs
+   (:func:`~medialaxis.volume.blocks.scan_block`). The part-wide plate
+   thickness then gives ``lam``, and each block's pairs give its medial
+   voxels (:func:`~medialaxis.volume.blocks.finish_block`), identical to the
+   in-memory route's. With a number ``thickness`` the blocks mark their
+   medial voxels at once; a part with several nominal thicknesses reads each
+   block again to label its plates (:func:`~medialaxis.volume.blocks.medial_block`).
 
 The medial voxels are a thin sheet (a few per thousand voxels of a thin-plate
 part); gathered, they are polygonized, their dents removed and their free
 edges extended to the isosurface as one mesh
-(:func:`~medialaxis.volume.pipeline.polygonize_stage` and the stages after
+(:func:`~medialaxis.volume.stages.polygonize_stage` and the stages after
 it), so the mesh has no seams at all. The extension rays read the grey
 values around their ends block by block.
 
 Memory: each running block holds its box (chunk plus halo) at about 40 bytes
-per voxel plus the per-voxel arrays of its foreground; the gathered medial
-voxels take about 100 bytes each. Nothing else grows with the volume.
+per voxel plus the per-voxel arrays of its foreground. What grows with the
+part is the sheet: the candidate pairs wait in a temporary folder (local
+runs; in the client's memory on a cluster, about 130 bytes per marked voxel)
+and the gathered medial voxels take about 100 bytes each, their
+polygonization about 170 more.
 """
 
 from __future__ import annotations
@@ -127,25 +132,24 @@ def use_chunks(volume: Any, chunks: Any, scheduler: Any, raw_shape: Any = None, 
 
 
 def _value_counts(block: Block, source: Source) -> np.ndarray:
-    region = tuple(slice(a, b) for a, b in zip(block.lo, block.hi))
-    values, counts = value_counts(source.read(region))
+    values, counts = value_counts(source.read(block.region))
     return np.stack([values, counts.astype(np.float64)])
 
 
 def _range(block: Block, source: Source) -> tuple[float, float]:
-    grey = np.asarray(source.read(tuple(slice(a, b) for a, b in zip(block.lo, block.hi))), np.float32)
+    grey = np.asarray(source.read(block.region), np.float32)
     if not np.all(np.isfinite(grey)):
         raise InvalidInputError(f"the volume contains NaN or infinite values (in the block at {block.lo} of {source.name})")
     return float(grey.min()), float(grey.max())
 
 
 def _histogram(block: Block, source: Source, lo: float, hi: float) -> np.ndarray:
-    grey = np.asarray(source.read(tuple(slice(a, b) for a, b in zip(block.lo, block.hi))), np.float32)
+    grey = np.asarray(source.read(block.region), np.float32)
     return np.histogram(grey, bins=256, range=(lo, hi))[0]
 
 
 def _class_sums(block: Block, source: Source, t: float) -> np.ndarray:
-    grey = np.asarray(source.read(tuple(slice(a, b) for a, b in zip(block.lo, block.hi))), np.float32)
+    grey = np.asarray(source.read(block.region), np.float32)
     low = grey <= t
     return np.array([grey[low].sum(dtype=np.float64), low.sum(), grey[~low].sum(dtype=np.float64), (~low).sum()])
 
