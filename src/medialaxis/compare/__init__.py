@@ -33,15 +33,8 @@ pair, and the tour already matches its figures.
 
 from __future__ import annotations
 
-from medialaxis.compare.distance import (
-    DEFAULTS,
-    distance_matrix,
-    match_endpoints,
-    match_tour,
-    query_distances,
-    shape_distance,
-    shape_signature,
-)
+from medialaxis.compare.distance import DEFAULTS, match_endpoints, match_tour, shape_distance, shape_signature
+from medialaxis.compare.matrix import distance_matrix, query_distances
 from medialaxis.compare.retrieval import diffusion_rerank, retrieval_row
 from medialaxis.compare.signature import Signature, signature
 

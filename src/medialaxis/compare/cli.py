@@ -156,7 +156,8 @@ def add_search(sub: Any) -> None:
 
 
 def _run_search(args: argparse.Namespace) -> int:
-    from medialaxis.compare.distance import query_distances, shape_signature
+    from medialaxis.compare.distance import shape_signature
+    from medialaxis.compare.matrix import query_distances
     from medialaxis.errors import InputFileError, MedialAxisError
 
     if args.top < 1:

@@ -1,4 +1,4 @@
-"""Shape distance through medial axes: :func:`shape_distance` and :func:`distance_matrix`.
+"""Shape distance through medial axes: :func:`shape_distance` (many pairs: :mod:`medialaxis.compare.matrix`).
 
 Three terms, all built on the medial axis and its radius function, weighted
 by ``tour``, ``paths`` and ``context``:
@@ -32,25 +32,19 @@ import threading
 import weakref
 from collections import OrderedDict
 from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from medialaxis._progress import progress
-from medialaxis.compare import _kernels
+from medialaxis.compare import _kernels, _path_kernels
 from medialaxis.compare.context import N_ANGULAR
 from medialaxis.compare.signature import DEFAULT_PRUNE, DEFAULT_SAMPLES, Signature, signature
-from medialaxis.core.parallel import check_jobs, check_scheduler, dask_client
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
 
-__all__ = [
-    "shape_distance", "distance_matrix", "query_distances", "match_tour", "match_endpoints", "shape_signature",
-    "DEFAULTS",
-]
+__all__ = ["shape_distance", "match_tour", "match_endpoints", "shape_signature", "DEFAULTS"]
 
 #: Matching parameters. ``tour``, ``paths``, ``context``: weights of the three
 #: terms (see the module docstring). ``gap``: cost of a tour sample left
@@ -212,7 +206,7 @@ def _pack(sigs: Sequence[Signature], params: dict[str, float]) -> dict[str, Any]
     if params["tour"] > 0:
         packed["tour"] = _kernels.pack_tour([s.tour for s in sigs], [s.tour_radii for s in sigs])
     if params["paths"] > 0:
-        packed["paths"] = _kernels.pack(*(list(column) for column in zip(*(_features(s) for s in sigs))))
+        packed["paths"] = _path_kernels.pack(*(list(column) for column in zip(*(_features(s) for s in sigs))))
     if params["context"] > 0:
         packed["context"] = _kernels.pack_context([s.context for s in sigs], [s.context_radii for s in sigs], N_ANGULAR)
     return packed
@@ -347,13 +341,10 @@ def match_endpoints(
     """
     sa, sb, params = _signature_pair(a, b, n_samples, prune, options, paths=1.0)
     _check_samples([sa, sb])
-    return _kernels.reference_match(_features(sa), _features(sb), *(params[k] for k in _PATH_KEYS))
+    return _path_kernels.reference_match(_features(sa), _features(sb), *(params[k] for k in _PATH_KEYS))
 
 
 # --------------------------------------------------------------- matrix
-def _blocks(n_pairs: int, n_blocks: int) -> list[slice]:
-    edges = np.linspace(0, n_pairs, n_blocks + 1).astype(np.int64)
-    return [slice(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:]) if b > a]
 
 
 def _score_block(packed: dict[str, Any], rows: np.ndarray, cols: np.ndarray, params: dict[str, float]) -> np.ndarray:
@@ -363,165 +354,11 @@ def _score_block(packed: dict[str, Any], rows: np.ndarray, cols: np.ndarray, par
         out += params["tour"] * _kernels.tour_distances(*packed["tour"], rows, cols, params["gap"])
     if "paths" in packed:
         path_params = tuple(params[k] for k in _PATH_KEYS)
-        forward = _kernels.pair_distances(*packed["paths"], rows, cols, *path_params)
-        backward = _kernels.pair_distances(*packed["paths"], cols, rows, *path_params)
+        forward = _path_kernels.pair_distances(*packed["paths"], rows, cols, *path_params)
+        backward = _path_kernels.pair_distances(*packed["paths"], cols, rows, *path_params)
         out += params["paths"] * np.minimum(forward, backward)  # equal up to rounding; min makes it exactly symmetric
     if "context" in packed:
         out += params["context"] * _kernels.context_distances(*packed["context"], rows, cols)
     return out
 
 
-def query_distances(
-    query: Any,
-    shapes: Sequence[Any],
-    *,
-    n_jobs: int | None = None,
-    scheduler: Any = None,
-    n_samples: int = DEFAULT_SAMPLES,
-    prune: float = DEFAULT_PRUNE,
-    show_progress: bool | None = None,
-    **options: Any,
-) -> np.ndarray:
-    """Distances from one shape to each of a collection (the search step).
-
-    Parameters are those of :func:`distance_matrix`; returns ``(n,)`` float64.
-
-    Examples
-    --------
-    >>> import numpy as np, medialaxis as mx
-    >>> from medialaxis.compare import query_distances
-    >>> bar = np.zeros((60, 90), bool); bar[20:40, 10:80] = True
-    >>> (query_distances(bar, [bar, bar.T], n_jobs=1) < 0.05).tolist()   # itself, rotated by 90 degrees
-    [True, True]
-    """
-    params, axis_options = _options(options)
-    check_jobs(n_jobs)
-    check_scheduler(scheduler)
-    shapes = list(shapes)
-    sigs = [shape_signature(query, n_samples=n_samples, prune=prune, **axis_options)] + [
-        shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
-        for s in progress(shapes, desc="signatures", total=len(shapes), show=show_progress)
-    ]
-    _check_samples(sigs)
-    if not shapes:
-        return np.zeros(0)
-    cols = np.arange(1, len(sigs))
-    rows = np.zeros_like(cols)
-    return _score_pairs(sigs, rows, cols, params, n_jobs=n_jobs, scheduler=scheduler, show_progress=show_progress)
-
-
-def _score_pairs(
-    sigs: Sequence[Signature],
-    rows: np.ndarray,
-    cols: np.ndarray,
-    params: dict[str, float],
-    *,
-    n_jobs: int | None,
-    scheduler: Any,
-    show_progress: bool | None,
-) -> np.ndarray:
-    """Distances of the signature pairs ``(rows[p], cols[p])``, in blocks on threads or Dask."""
-    packed = _pack(sigs, params)
-    n_pairs = len(rows)
-    workers = (os.cpu_count() or 1) if n_jobs is None else int(n_jobs)
-    if scheduler == "synchronous":
-        workers = 1
-    blocks = _blocks(n_pairs, max(1, min(n_pairs // 500 + 1, 64 * workers)))
-    values = np.empty(n_pairs)
-    if scheduler in (None, "threads", "synchronous"):
-        if workers == 1:
-            for blk in progress(blocks, desc="pairs", total=len(blocks), show=show_progress):
-                values[blk] = _score_block(packed, rows[blk], cols[blk], params)
-        else:
-            with ThreadPoolExecutor(workers) as pool:
-                futures = [(blk, pool.submit(_score_block, packed, rows[blk], cols[blk], params)) for blk in blocks]
-                for blk, fut in progress(futures, desc="pairs", total=len(futures), show=show_progress):
-                    values[blk] = fut.result()
-    else:
-        client, owned = dask_client(scheduler)
-        try:
-            shared = client.scatter(packed, broadcast=True)
-            futures = [client.submit(_score_block, shared, rows[blk], cols[blk], params, pure=False) for blk in blocks]
-            for blk, fut in progress(list(zip(blocks, futures)), desc="pairs", total=len(blocks), show=show_progress):
-                values[blk] = fut.result()
-        finally:
-            if owned:
-                client.close()
-    return values
-
-
-def distance_matrix(
-    shapes: Sequence[Any],
-    *,
-    n_jobs: int | None = None,
-    scheduler: Any = None,
-    n_samples: int = DEFAULT_SAMPLES,
-    prune: float = DEFAULT_PRUNE,
-    show_progress: bool | None = None,
-    **options: Any,
-) -> np.ndarray:
-    """All pairwise :func:`shape_distance` values of a collection.
-
-    Each shape's signature is computed once (and cached); the pairs are
-    scored by compiled kernels in blocks, on threads or on a Dask cluster.
-
-    Parameters
-    ----------
-    shapes : sequence
-        Planar shapes, axes or signatures (as for :func:`shape_distance`).
-    n_jobs : int, optional
-        Worker threads for the local run (default: all CPUs; ``1``: serial).
-    scheduler : None, "threads", "synchronous", dask Client or str
-        ``None``/``"threads"``: local threads; ``"synchronous"``: one thread;
-        a ``dask.distributed.Client`` or a scheduler address such as
-        ``"tcp://host:8786"``: the blocks of pairs run on that cluster.
-    n_samples, prune, **options
-        As for :func:`shape_distance` (matching parameters and options for
-        :func:`medialaxis.medial_axis`).
-    show_progress : bool, optional
-        Progress bars on stderr (default: when stderr is a terminal).
-
-    Returns
-    -------
-    (n, n) float64 ndarray
-        Symmetric, zero diagonal.
-
-    Raises
-    ------
-    InvalidInputError
-        Fewer than one shape, mixed 2D/3D inputs, bad parameters.
-    EmptyShapeError
-        A shape is empty or has no axis after pruning.
-    MissingDependencyError
-        A Dask scheduler was asked for without ``distributed`` installed.
-
-    Examples
-    --------
-    >>> import numpy as np, medialaxis as mx
-    >>> bar = np.zeros((60, 90), bool); bar[20:40, 10:80] = True
-    >>> cross = bar.copy(); cross[5:55, 35:55] = True
-    >>> D = mx.distance_matrix([bar, cross, bar.T], n_jobs=1)
-    >>> D.shape, bool(D[0, 2] < D[0, 1])
-    ((3, 3), True)
-    """
-    params, axis_options = _options(options)
-    if isinstance(shapes, (str, os.PathLike)) or not isinstance(shapes, Sequence):
-        shapes = list(shapes) if not isinstance(shapes, (str, os.PathLike)) else [shapes]
-    n = len(shapes)
-    if n == 0:
-        raise InvalidInputError("distance_matrix needs at least one shape, got an empty collection")
-    check_jobs(n_jobs)
-    check_scheduler(scheduler)
-    sigs = [
-        shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
-        for s in progress(shapes, desc="signatures", total=n, show=show_progress)
-    ]
-    _check_samples(sigs)
-    out = np.zeros((n, n))
-    if n == 1:
-        return out
-    rows, cols = np.triu_indices(n, 1)
-    values = _score_pairs(sigs, rows, cols, params, n_jobs=n_jobs, scheduler=scheduler, show_progress=show_progress)
-    out[rows, cols] = values
-    out[cols, rows] = values
-    return out

@@ -25,17 +25,16 @@ pruning, :mod:`medialaxis.compare.dce`).
 from __future__ import annotations
 
 import dataclasses
-from typing import Any
 
 import numpy as np
-from scipy.sparse import csgraph
 
+from medialaxis.compare.compared_axis import compared_axis
 from medialaxis.compare.context import axis_context
-from medialaxis.compare.dce import convex_dce_vertices, dce_prune
-from medialaxis.compare.tour import rotation_system, tour_context
+from medialaxis.compare.endpoints import endpoint_order, endpoint_paths, endpoint_weights, path_lengths
+from medialaxis.compare.tour import tour_context
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
-from medialaxis.errors import EmptyShapeError, InvalidInputError
+from medialaxis.errors import InvalidInputError
 
 __all__ = ["Signature", "signature", "DEFAULT_SAMPLES", "DEFAULT_PRUNE"]
 
@@ -129,211 +128,6 @@ class Signature:
         return int(len(self.endpoints))
 
 
-def _edge_lengths(points: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    return np.linalg.norm(points[edges[:, 0]] - points[edges[:, 1]], axis=1)
-
-
-def _largest_component(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Keep the component sweeping the largest area; return (node indices, edges renumbered)."""
-    n = len(points)
-    count, labels = _graph.component_labels(n, edges)
-    if count > 1:
-        area = np.pi * radii**2  # an isolated node still sweeps its disc
-        weight = np.zeros(count)
-        np.maximum.at(weight, labels, area)
-        if len(edges):
-            sweep = _edge_lengths(points, edges) * (radii[edges[:, 0]] + radii[edges[:, 1]])
-            np.add.at(weight, labels[edges[:, 0]], sweep)
-        keep = np.flatnonzero(labels == int(np.argmax(weight)))
-    else:
-        keep = np.arange(n)
-    remap = np.full(n, -1, np.int64)
-    remap[keep] = np.arange(len(keep))
-    sub = remap[edges] if len(edges) else edges.reshape(0, 2)
-    if len(sub):
-        sub = sub[(sub >= 0).all(axis=1)]
-    return keep, sub
-
-
-def _scale(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> float:
-    sweep = float((_edge_lengths(points, edges) * (radii[edges[:, 0]] + radii[edges[:, 1]])).sum()) if len(edges) else 0.0
-    return float(np.sqrt(sweep + np.pi * float(radii.max()) ** 2))
-
-
-def _outline(shape: Any) -> np.ndarray | None:
-    """Exterior vertices (first not repeated) of the largest polygon of ``shape``, or None."""
-    geoms = getattr(shape, "geoms", [shape])
-    polys = [g for g in geoms if getattr(g, "geom_type", None) == "Polygon" and not g.is_empty]
-    if not polys:
-        return None
-    coords = np.asarray(max(polys, key=lambda g: g.area).exterior.coords, dtype=np.float64)[:-1]
-    return coords if len(coords) >= 3 else None
-
-
-def _terminal_protrusions(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> list[tuple[np.ndarray, float]]:
-    """Terminal branches (junction first) and how far each protrudes past its junction's disc.
-
-    A terminal branch from junction ``J`` protrudes by
-    ``max_i(|p_i - p_J| + r_i) - r_J``: how far its discs reach past the disc
-    at ``J``.
-    """
-    deg = _graph.degree(len(points), edges)
-    out = []
-    for chain in _graph.branches(len(points), edges):
-        a, b = int(chain[0]), int(chain[-1])
-        if deg[a] == 1 and deg[b] >= 3:
-            chain = chain[::-1]
-        elif not (deg[b] == 1 and deg[a] >= 3):
-            continue
-        junction = int(chain[0])
-        reach = np.linalg.norm(points[chain] - points[junction], axis=1) + radii[chain]
-        out.append((chain, float(reach.max() - radii[junction])))
-    return out
-
-
-def _prune_spurious(
-    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, limit: float, max_endpoints: int
-) -> np.ndarray:
-    """Drop terminal branches that barely leave the disc of their junction.
-
-    Each round removes, all at once, every terminal branch protruding less
-    than ``limit`` (boundary noise), or, when none is but there are more
-    than ``max_endpoints`` endpoints, the least protruding ones (ties
-    together, so symmetric shapes stay symmetric). Rounds repeat on the
-    remaining axis; a round that would leave no edge is not applied.
-    """
-    for _ in range(len(points)):
-        n_ends = int((_graph.degree(len(points), edges) == 1).sum())
-        terminal = _terminal_protrusions(points, radii, edges)
-        if n_ends <= 2 or not terminal:
-            break
-        values = np.array([value for _, value in terminal])
-        drop = values < limit
-        if not drop.any():
-            if n_ends <= max_endpoints:
-                break
-            drop = values <= values.min() * (1 + 1e-6) + 1e-12 * (1 + abs(values).max())
-        nodes = np.concatenate([terminal[k][0][1:] for k in np.flatnonzero(drop)])
-        kept = edges[~np.isin(edges, nodes).any(axis=1)]
-        if not len(kept):
-            break
-        edges = kept
-    return edges
-
-
-def _endpoint_weights(
-    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, ends: np.ndarray, lengths: np.ndarray
-) -> np.ndarray:
-    """Protrusion of the terminal branch of each endpoint (see :func:`_terminal_protrusions`)."""
-    out = np.full(len(ends), lengths.max() / 2 if lengths.size else 0.0)
-    where = {int(e): k for k, e in enumerate(ends)}
-    for chain, value in _terminal_protrusions(points, radii, edges):
-        k = where.get(int(chain[-1]))
-        if k is not None:
-            out[k] = value
-    return out
-
-
-def _boundary_order(points: np.ndarray, edges: np.ndarray, ends: np.ndarray) -> np.ndarray:
-    """Endpoints in the order a walk around the boundary meets them.
-
-    Walks the faces of the axis's planar embedding: arriving at node ``b``
-    from ``a``, leave by the neighbour that follows ``a`` in angular order
-    around ``b``. For a tree this is the walk around the boundary.
-    """
-    nbrs, rank = rotation_system(points, edges)
-    is_end = set(int(e) for e in ends)
-    seen: set[int] = set()
-    out: list[int] = []
-    for start in ends:
-        start = int(start)
-        if start in seen:
-            continue
-        seen.add(start)
-        out.append(start)
-        if not nbrs[start]:
-            continue
-        dart = (start, nbrs[start][0])
-        first = dart
-        for _ in range(4 * len(edges) + 4):
-            a, b = dart
-            if b in is_end and b not in seen:
-                seen.add(b)
-                out.append(b)
-            dart = (b, nbrs[b][(rank[b][a] + 1) % len(nbrs[b])])
-            if dart == first:
-                break
-    return np.asarray(out, np.int64)
-
-
-def _diameter_ends(points: np.ndarray, edges: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """Two far-apart nodes (double sweep) when the axis has fewer than two endpoints."""
-    n = len(points)
-    if not len(edges):
-        return np.array([0, 0], np.int64)
-    graph = _weighted(n, edges, weights)
-    d0 = csgraph.dijkstra(graph, directed=False, indices=0)
-    a = int(np.argmax(np.where(np.isfinite(d0), d0, -1)))
-    da = csgraph.dijkstra(graph, directed=False, indices=a)
-    b = int(np.argmax(np.where(np.isfinite(da), da, -1)))
-    return np.array([a, b], np.int64)
-
-
-def _weighted(n: int, edges: np.ndarray, weights: np.ndarray) -> Any:
-    from scipy import sparse
-
-    w = np.maximum(weights, 1e-300)  # csgraph drops explicit zeros
-    return sparse.coo_matrix((w, (edges[:, 0], edges[:, 1])), shape=(n, n)).tocsr()
-
-
-def _paths(
-    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, ends: np.ndarray, n_samples: int, n_bend: int
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Radius functions, lengths and bend profiles of the geodesic paths between endpoints.
-
-    Returns ``(radii (e, e, n_samples), lengths (e, e), bends (e, e, n_bend))``;
-    the bend profile is the distance from the chord's midpoint of the path
-    points at ``n_bend`` interior arc-length fractions ``k / (n_bend + 1)``.
-    """
-    e = len(ends)
-    out_r = np.zeros((e, e, n_samples))
-    out_l = np.zeros((e, e))
-    out_b = np.zeros((e, e, n_bend))
-    if not len(edges):
-        out_r[:] = radii[ends[0]]
-        return out_r, out_l, out_b
-    n = len(points)
-    weights = _edge_lengths(points, edges)
-    dist, pred = csgraph.dijkstra(_weighted(n, edges, weights), directed=False, indices=ends, return_predecessors=True)
-    t = np.linspace(0.0, 1.0, n_samples)
-    tb = np.arange(1, n_bend + 1) / (n_bend + 1)
-    for i in range(e):
-        for j in range(e):
-            if i == j:
-                out_r[i, j] = radii[ends[i]]
-                continue
-            if j < i:
-                out_r[i, j] = out_r[j, i][::-1]
-                out_l[i, j] = out_l[j, i]
-                out_b[i, j] = out_b[j, i][::-1]
-                continue
-            path = [int(ends[j])]
-            while path[-1] != ends[i]:
-                path.append(int(pred[i, path[-1]]))
-            path.reverse()
-            p = points[path]
-            arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
-            total = arc[-1]
-            out_l[i, j] = total
-            if total > 0:
-                out_r[i, j] = np.interp(t * total, arc, radii[path])
-                along = np.column_stack([np.interp(tb * total, arc, p[:, 0]), np.interp(tb * total, arc, p[:, 1])])
-                out_b[i, j] = np.linalg.norm(along - (p[0] + p[-1]) / 2, axis=1)
-            else:
-                out_r[i, j] = radii[path[0]]
-    return out_r, out_l, out_b
-
-
 def _tour_starts(
     points: np.ndarray, radii: np.ndarray, edges: np.ndarray, ends: np.ndarray, weights: np.ndarray, lengths: np.ndarray
 ) -> np.ndarray:
@@ -350,49 +144,6 @@ def _tour_starts(
     tied = np.flatnonzero(weights >= weights.max() * (1 - 1e-6) - 1e-12)
     reach = lengths[tied].sum(axis=1)
     return ends[tied[reach >= reach.max() * (1 - 1e-6) - 1e-12]]
-
-
-def _compared_axis(
-    ma: MedialAxis, prune: float, max_endpoints: int, dce: float, dce_vertices: int
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-    """``(points, radii, edges, scale)`` of the axis compared: largest component, spurious branches removed."""
-    if len(ma.points) == 0:
-        raise EmptyShapeError("the medial axis is empty (no axis left after pruning): nothing to compare")
-    if not (np.isfinite(ma.points).all() and np.isfinite(ma.radii).all()):
-        raise InvalidInputError("the medial axis has NaN or infinite coordinates or radii")
-    edges = np.asarray(ma.edges)
-    edges = edges[edges[:, 0] != edges[:, 1]] if len(edges) else edges.reshape(0, 2)
-    keep, edges = _largest_component(ma.points, ma.radii, edges)
-    points, radii = np.array(ma.points[keep]), np.array(ma.radii[keep])
-    if radii.max() <= 0:
-        raise EmptyShapeError("the medial axis has no positive radius: the shape has no interior")
-    scale = _scale(points, radii, edges)
-    if dce > 0:
-        outline = _outline(ma.shape)
-        if outline is not None:
-            edges = dce_prune(points, radii, edges, convex_dce_vertices(outline, dce, min_vertices=dce_vertices))
-    edges = _prune_spurious(points, radii, edges, prune * scale, max_endpoints)
-    lone = np.zeros(len(points), bool)
-    if not len(edges):
-        lone[int(np.argmax(radii))] = True  # a disc: its axis is one point
-    keep2, edges = _graph.compact(len(points), edges, lone)
-    return points[keep2], radii[keep2], edges, scale
-
-
-def _endpoint_order(points: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """Endpoints in boundary order, or two far-apart nodes if the axis has fewer than two endpoints."""
-    ends = np.flatnonzero(_graph.degree(len(points), edges) == 1)
-    if len(ends) < 2:
-        return _diameter_ends(points, edges, _edge_lengths(points, edges) if len(edges) else np.empty(0))
-    return _boundary_order(points, edges, ends)
-
-
-def _path_lengths(points: np.ndarray, edges: np.ndarray, ends: np.ndarray) -> np.ndarray:
-    """Geodesic axis distances ``(e, e)`` between the nodes ``ends``."""
-    if not len(edges):
-        return np.zeros((len(ends), len(ends)))
-    graph = _weighted(len(points), edges, _edge_lengths(points, edges))
-    return csgraph.dijkstra(graph, directed=False, indices=ends)[:, ends]
 
 
 def _tour_versions(
@@ -504,10 +255,10 @@ def signature(
     raw = ma.raw if ma.raw is not None and len(ma.raw.points) else None
     if unpruned and raw is not None:
         ma, raw = raw, None
-    points, radii, edges, scale = _compared_axis(ma, prune, int(max_endpoints), dce, int(dce_vertices))
-    order = _endpoint_order(points, edges)
-    path_r, path_l, bends = _paths(points, radii, edges, order, int(n_samples), N_BEND)
-    weights = _endpoint_weights(points, radii, edges, order, path_l)
+    points, radii, edges, scale = compared_axis(ma, prune, int(max_endpoints), dce, int(dce_vertices))
+    order = endpoint_order(points, edges)
+    path_r, path_l, bends = endpoint_paths(points, radii, edges, order, int(n_samples), N_BEND)
+    weights = endpoint_weights(points, radii, edges, order, path_l)
     ends_xy = points[order]
     chords = np.linalg.norm(ends_xy[:, None, :] - ends_xy[None, :, :], axis=2)
     context, context_radii = axis_context(points, radii, edges, scale)
@@ -515,10 +266,10 @@ def signature(
     if raw is not None:
         # The tour of the axis without the method's own pruning (spurious branches removed by
         # ``prune`` alone): the distance keeps the better of the two comparisons.
-        r_points, r_radii, r_edges, r_scale = _compared_axis(raw, prune, int(max_endpoints), dce, int(dce_vertices))
-        r_order = _endpoint_order(r_points, r_edges)
-        r_lengths = _path_lengths(r_points, r_edges, r_order)
-        r_weights = _endpoint_weights(r_points, r_radii, r_edges, r_order, r_lengths)
+        r_points, r_radii, r_edges, r_scale = compared_axis(raw, prune, int(max_endpoints), dce, int(dce_vertices))
+        r_order = endpoint_order(r_points, r_edges)
+        r_lengths = path_lengths(r_points, r_edges, r_order)
+        r_weights = endpoint_weights(r_points, r_radii, r_edges, r_order, r_lengths)
         tours.append(_tour_versions(r_points, r_radii, r_edges, r_scale, r_order, r_weights, r_lengths))
     else:
         tours.append(tours[0])
