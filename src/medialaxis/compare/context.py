@@ -9,6 +9,10 @@ sign), and its own radius. Two shapes are compared by matching their samples
 one-to-one (Hungarian) with chi-squared histogram costs plus the relative
 radius difference; see :mod:`medialaxis.compare._kernels`.
 
+Off by default (weight ``context=0``). Measured on MPEG-7 (35 dev classes, a set
+it was not tuned on): the tour alone 87.59%, with 0.1 context 87.42%, with 0.3
+86.79%: it does not help there.
+
 The descriptor uses only the axis and its radius function: it is the
 shape-context idea (Belongie, Malik and Puzicha, TPAMI 2002) carried over from
 boundary points to medial points, as the path signature carries Bai and

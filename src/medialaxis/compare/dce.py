@@ -10,6 +10,10 @@ endpoints correspond to those vertices: a terminal branch whose tip does not
 reach a convex DCE vertex is removed, from the tips inward, which never
 disconnects the axis.
 
+Off by default. Measured on MPEG-7 (35 dev classes, a set it was not tuned on)
+with the default tour distance: without 87.59%, ``dce=0.01`` 87.54%, ``dce=0.02``
+87.61%: no gain.
+
 References
 ----------
 L. J. Latecki and R. Lakaemper, "Convexity rule for shape decomposition
