@@ -13,6 +13,8 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from typing import Any
 
+import numpy as np
+
 from medialaxis._progress import check_cancel, progress
 from medialaxis.errors import Cancelled, InvalidInputError
 
@@ -35,14 +37,9 @@ def check_scheduler(scheduler: Any) -> None:
 
 def check_jobs(n_jobs: Any) -> None:
     """``n_jobs`` is None or a positive integer."""
-    if n_jobs is not None and (isinstance(n_jobs, bool) or not isinstance(n_jobs, int) or n_jobs < 1):
-        try:
-            import numpy as np
-
-            if isinstance(n_jobs, np.integer) and n_jobs >= 1:
-                return
-        except ImportError:  # pragma: no cover
-            pass
+    if n_jobs is None:
+        return
+    if isinstance(n_jobs, bool) or not isinstance(n_jobs, (int, np.integer)) or n_jobs < 1:
         raise InvalidInputError(f"n_jobs must be a positive integer or None, got {n_jobs!r}")
 
 
@@ -125,7 +122,9 @@ def _next(pending: set[Any]) -> tuple[set[Any], set[Any]]:
 
 def _run_dask(fn: Callable[..., Any], items: Sequence[Any], args: tuple[Any, ...], scheduler: Any, desc: str,
               show_progress: bool | None, callback: Callable[[str], Any] | None) -> list[Any]:
-    distributed = __import__("distributed")
+    from medialaxis._optional import require
+
+    distributed = require("distributed", "medialaxis[dask]")
     client, owned = dask_client(scheduler)
     futures: list[Any] = []
     try:
