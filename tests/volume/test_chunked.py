@@ -276,3 +276,10 @@ def test_a_lazy_array_is_not_read_whole_to_find_its_domain():
 
     lazy = da.zeros((64, 64, 64), chunks=32, dtype=np.uint16).map_blocks(refuse, dtype=np.uint16)
     assert classify(lazy) == "volume"
+
+
+@pytest.mark.parametrize("thickness", [6.0, (4.0, 12.0)])
+def test_a_given_thickness_gives_the_same_voxels(small16, thickness):
+    # a number: the blocks mark their voxels in one pass; a range: the first pass's pairs finish them
+    whole = mx.medial_axis(small16, method="voxels", chunks=0, thickness=thickness)
+    _same_voxels(whole, mx.medial_axis(small16, method="voxels", chunks=24, thickness=thickness, n_jobs=2))
