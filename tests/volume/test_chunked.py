@@ -283,3 +283,9 @@ def test_a_given_thickness_gives_the_same_voxels(small16, thickness):
     # a number: the blocks mark their voxels in one pass; a range: the first pass's pairs finish them
     whole = mx.medial_axis(small16, method="voxels", chunks=0, thickness=thickness)
     _same_voxels(whole, mx.medial_axis(small16, method="voxels", chunks=24, thickness=thickness, n_jobs=2))
+
+
+def test_a_progress_bar_counts_the_blocks(small16, capsys):
+    mx.medial_axis(small16, method="voxels", chunks=24, n_jobs=2, show_progress=True)
+    err = capsys.readouterr().err
+    assert "medial voxels" in err and "/18 " in err  # 40 x 64 x 56 in blocks of 24: 2 x 3 x 3 blocks
