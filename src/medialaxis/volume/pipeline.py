@@ -4,10 +4,15 @@ Stages (each kept by :func:`volume_stages`):
 
 1. binarize at ``iso`` (:mod:`~medialaxis.volume.inputs`);
 2. sub-voxel boundary and nearest-boundary transform (:mod:`~medialaxis.volume.distance`);
-3. medial voxels, the grid lambda-medial axis (:mod:`~medialaxis.volume.medial`);
+3. plate thickness (:mod:`~medialaxis.volume.plates`) and medial voxels, the grid
+   lambda-medial axis (:mod:`~medialaxis.volume.medial`);
 4. sub-sampling polygonization (:mod:`~medialaxis.volume.polygonize`);
 5. dent removal at junctions, eq. (1) (:mod:`~medialaxis.volume.dents`);
 6. extension of the free edges to the isosurface (:mod:`~medialaxis.volume.extension`).
+
+Stages 4-6 are :mod:`~medialaxis.volume.stages`, shared with the route for volumes
+larger than memory (:mod:`~medialaxis.volume.chunked`), which the public functions
+take by themselves for large inputs.
 """
 
 from __future__ import annotations
