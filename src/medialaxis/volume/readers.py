@@ -17,7 +17,7 @@ import numpy as np
 from medialaxis._optional import require
 from medialaxis.core.validate import memory_budget
 from medialaxis.errors import InputFileError, InvalidInputError, ResourceLimitError, UnsupportedFormatError
-from medialaxis.volume.source_files import nrrd_spacing
+from medialaxis.volume.source_files import check_raw_size, nrrd_spacing, raw_layout
 
 __all__ = ["read_volume", "VOLUME_SUFFIXES"]
 
@@ -131,23 +131,9 @@ def _read_npy(path: Path) -> tuple[np.ndarray, Any]:
 
 
 def _read_raw(path: Path, shape: Any, dtype: Any) -> tuple[np.ndarray, Any]:
-    if shape is None or dtype is None:
-        raise InvalidInputError(f"reading raw file {str(path)!r} needs the raw_shape=(Z, Y, X) and raw_dtype options")
-    try:
-        shape = tuple(int(s) for s in shape)
-        dt = np.dtype(dtype)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"bad raw shape {shape!r} or dtype {dtype!r}: {exc}") from None
-    if len(shape) != 3 or min(shape) < 1:
-        raise InvalidInputError(f"raw shape must be 3 positive sizes, got {shape}")
+    shape, dt = raw_layout(path, shape, dtype)
     check_voxels(shape, f"raw file {str(path)!r}")
-    expected = int(np.prod(shape)) * dt.itemsize
-    size = path.stat().st_size
-    if size != expected:
-        raise InputFileError(
-            f"raw file {str(path)!r} has {size} bytes, expected {expected} for shape {shape} and dtype {dt}"
-            + (" (truncated)" if size < expected else "")
-        )
+    check_raw_size(path, shape, dt)
     return np.fromfile(path, dtype=dt).reshape(shape), None
 
 

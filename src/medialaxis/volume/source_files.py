@@ -23,7 +23,7 @@ from medialaxis.errors import InputFileError, InvalidInputError
 from medialaxis.volume.source_base import Region, Source, check_volume
 
 __all__ = ["MappedSource", "TiffSource", "NiftiSource", "HeaderOnly", "npy_source", "raw_source", "nrrd_source",
-           "nrrd_spacing"]
+           "nrrd_spacing", "raw_layout", "check_raw_size"]
 
 
 class MappedSource(Source):
@@ -63,7 +63,8 @@ def npy_source(path: Path) -> MappedSource:
     return MappedSource(path, shape, dtype, offset, repr(str(path)))
 
 
-def raw_source(path: Path, shape: Any, dtype: Any) -> MappedSource:
+def raw_layout(path: Path, shape: Any, dtype: Any) -> tuple[tuple[int, int, int], np.dtype]:
+    """The ``raw_shape`` and ``raw_dtype`` of a raw file, checked (3 positive sizes, a NumPy dtype)."""
     if shape is None or dtype is None:
         raise InvalidInputError(f"reading raw file {str(path)!r} needs the raw_shape=(Z, Y, X) and raw_dtype options")
     try:
@@ -73,6 +74,11 @@ def raw_source(path: Path, shape: Any, dtype: Any) -> MappedSource:
         raise InvalidInputError(f"bad raw shape {shape!r} or dtype {dtype!r}: {exc}") from None
     if len(shape) != 3 or min(shape) < 1:
         raise InvalidInputError(f"raw shape must be 3 positive sizes, got {shape}")
+    return shape, dt  # type: ignore[return-value]
+
+
+def check_raw_size(path: Path, shape: tuple[int, ...], dt: np.dtype) -> None:
+    """Refuse a raw file whose size is not ``shape`` times the item size (truncated or the wrong layout)."""
     expected = int(np.prod(shape, dtype=np.int64)) * dt.itemsize
     size = path.stat().st_size
     if size != expected:
@@ -80,6 +86,11 @@ def raw_source(path: Path, shape: Any, dtype: Any) -> MappedSource:
             f"raw file {str(path)!r} has {size} bytes, expected {expected} for shape {shape} and dtype {dt}"
             + (" (truncated)" if size < expected else "")
         )
+
+
+def raw_source(path: Path, shape: Any, dtype: Any) -> MappedSource:
+    shape, dt = raw_layout(path, shape, dtype)
+    check_raw_size(path, shape, dt)
     return MappedSource(path, shape, dt, 0, f"raw file {str(path)!r}")
 
 
