@@ -19,6 +19,23 @@ __all__ = ["MAX_COORDINATE", "check_coordinates", "check_number", "check_spacing
 MAX_COORDINATE = 1e150
 
 
+def check_finite(value: Any, name: str) -> float:
+    """``float(value)``, required finite (any sign: a grey level, an iso value).
+
+    Examples
+    --------
+    >>> check_finite("-1000", "iso")
+    -1000.0
+    """
+    try:
+        out = float(value)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{name} must be a number, got {value!r}") from None
+    if not np.isfinite(out):
+        raise InvalidInputError(f"{name} must be finite, got {value!r}")
+    return out
+
+
 def check_number(value: Any, name: str, *, positive: bool = False) -> float:
     """``float(value)``, required finite and ``>= 0`` (``> 0`` when ``positive``).
 

@@ -10,7 +10,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from medialaxis.core.images import open_image
-from medialaxis.core.validate import memory_budget
+from medialaxis.core.validate import check_finite, memory_budget
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError, ResourceLimitError
 
 __all__ = ["image_region", "read_image", "contour_region", "shape_side", "check_foreground", "max_pixels",
@@ -81,12 +81,7 @@ def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, 
     with two grey levels.
     """
     if threshold is not None:
-        try:
-            threshold = float(threshold)
-        except (TypeError, ValueError):
-            raise InvalidInputError(f"threshold must be a number, got {threshold!r}") from None
-        if not np.isfinite(threshold):
-            raise InvalidInputError(f"threshold must be finite, got {threshold!r}")
+        threshold = check_finite(threshold, "threshold")
     if image.dtype == bool:
         return image, 0.5
     if threshold is None:

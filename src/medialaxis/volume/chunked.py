@@ -48,7 +48,7 @@ from medialaxis._progress import check_cancel
 from medialaxis.core.parallel import check_jobs, check_scheduler, run_tasks
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.scene3d import Surface
-from medialaxis.core.validate import check_number
+from medialaxis.core.validate import check_finite, check_number
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.blocks import (
     Block,
@@ -157,13 +157,7 @@ def _class_sums(block: Block, source: Source, t: float) -> np.ndarray:
 def _iso(source: Source, blocks: list[Block], iso: Any, run: Callable[..., list[Any]]) -> tuple[float, float]:
     """The iso value (ISO-50 when not given) and the smallest grey value (NaN when not read)."""
     if iso is not None:
-        try:
-            value = float(iso)
-        except (TypeError, ValueError):
-            raise InvalidInputError(f"iso must be a number, got {iso!r}") from None
-        if not np.isfinite(value):
-            raise InvalidInputError(f"iso must be finite, got {iso!r}")
-        return value, math.nan
+        return check_finite(iso, "iso"), math.nan
     if source.dtype == bool:
         return 0.5, 0.0
     if counted(source.dtype):

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.validate import check_finite
 from medialaxis.core.validate import check_spacing as _check_spacing
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 
@@ -190,12 +191,7 @@ def load_volume(
         if lo == hi:
             raise EmptyShapeError(f"the volume is constant ({lo}); nothing to threshold")
         iso = iso50_counts(*value_counts(array)) if counted(array.dtype) else iso50(grey)
-    try:
-        iso = float(iso)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"iso must be a number, got {iso!r}") from None
-    if not np.isfinite(iso):
-        raise InvalidInputError(f"iso must be finite, got {iso!r}")
+    iso = check_finite(iso, "iso")
     mask = grey > iso
     count = int(np.count_nonzero(mask))
     if count == 0:
