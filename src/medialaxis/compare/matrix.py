@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import numpy as np
@@ -16,7 +15,7 @@ import numpy as np
 from medialaxis._progress import progress
 from medialaxis.compare.distance import _check_samples, _options, _pack, _score_block, shape_signature
 from medialaxis.compare.signature import DEFAULT_PRUNE, DEFAULT_SAMPLES, Signature
-from medialaxis.core.parallel import check_jobs, check_scheduler, dask_client
+from medialaxis.core.parallel import check_jobs, check_scheduler, run_tasks
 from medialaxis.errors import InvalidInputError
 
 __all__ = ["distance_matrix", "query_distances"]
@@ -83,28 +82,17 @@ def _score_pairs(
     if scheduler == "synchronous":
         workers = 1
     blocks = _blocks(n_pairs, max(1, min(n_pairs // 500 + 1, 64 * workers)))
+    scores = run_tasks(_score_slice, blocks, packed, rows, cols, params, scheduler=scheduler, n_jobs=workers,
+                       desc="pairs", show_progress=show_progress)
     values = np.empty(n_pairs)
-    if scheduler in (None, "threads", "synchronous"):
-        if workers == 1:
-            for blk in progress(blocks, desc="pairs", total=len(blocks), show=show_progress):
-                values[blk] = _score_block(packed, rows[blk], cols[blk], params)
-        else:
-            with ThreadPoolExecutor(workers) as pool:
-                futures = [(blk, pool.submit(_score_block, packed, rows[blk], cols[blk], params)) for blk in blocks]
-                for blk, fut in progress(futures, desc="pairs", total=len(futures), show=show_progress):
-                    values[blk] = fut.result()
-    else:
-        client, owned = dask_client(scheduler)
-        try:
-            shared = client.scatter(packed, broadcast=True)
-            futures = [client.submit(_score_block, shared, rows[blk], cols[blk], params, pure=False) for blk in blocks]
-            for blk, fut in progress(list(zip(blocks, futures)), desc="pairs", total=len(blocks), show=show_progress):
-                values[blk] = fut.result()
-        finally:
-            if owned:
-                client.close()
+    for blk, score in zip(blocks, scores):
+        values[blk] = score
     return values
 
+
+def _score_slice(blk: slice, packed: dict[str, Any], rows: np.ndarray, cols: np.ndarray,
+                 params: dict[str, float]) -> np.ndarray:
+    return _score_block(packed, rows[blk], cols[blk], params)
 
 def distance_matrix(
     shapes: Sequence[Any],

@@ -128,7 +128,9 @@ def _run_dask(fn: Callable[..., Any], items: Sequence[Any], args: tuple[Any, ...
     client, owned = dask_client(scheduler)
     futures: list[Any] = []
     try:
-        shared = [client.scatter(a, broadcast=True) if _large(a) else a for a in args]
+        # each argument as one object under its own key (a dict or tuple would be split, and
+        # equal values of an earlier call could share a key being released)
+        shared = [client.scatter([a], broadcast=True, hash=False)[0] if _shared(a) else a for a in args]
         futures = [client.submit(fn, item, *shared, pure=False) for item in items]
         index = {f.key: k for k, f in enumerate(futures)}
         results: list[Any] = [None] * len(items)
@@ -145,9 +147,6 @@ def _run_dask(fn: Callable[..., Any], items: Sequence[Any], args: tuple[Any, ...
             client.close()
 
 
-def _large(value: Any) -> bool:
-    nbytes = getattr(value, "nbytes", 0)
-    try:
-        return int(nbytes) > (1 << 20)
-    except (TypeError, ValueError):
-        return False
+def _shared(value: Any) -> bool:
+    """Arguments sent to every worker once (scattered) rather than with each task: all but plain scalars."""
+    return not (value is None or isinstance(value, (bool, int, float, str, np.number)))
