@@ -72,7 +72,6 @@ from medialaxis.volume.stages import (
     extension_stage,
     polygonize_stage,
     stage_metadata,
-    thickness_range,
 )
 
 __all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "chunked_medial_voxels", "chunked_midsurface",
@@ -376,7 +375,8 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
             minimum = state["minimum"] if np.isfinite(state["minimum"]) else state["iso"] - 1.0
             sampler = BlockSampler(source, state["chunks"], minimum)
             extension_stage(state, sampler, state["iso"], state["spacing"], density)
-        metadata = stage_metadata(state["iso"], state, state["spacing"], source.shape)
+        metadata = stage_metadata("midsurface", state["iso"], state["plates"], state["lam"], state["dropped"],
+                                  state["spacing"], source.shape)
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
                          "chunks": list(state["chunks"]), "halo": state["halo"].tolist()})
         shell = shell_of_source(source, state["iso"], state["spacing"])
@@ -396,10 +396,8 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], **options: Any)
         medial, grid, plates = state["medial"], state["grid"], state["plates"]
         dropped = dropped_report(medial, plates, state["lam"])
         kind = classify_voxels(voxel_table(medial.voxels, grid.shape), medial.voxels)
-        metadata = {"method": "voxels", "domain": "volume", "iso": state["iso"], "thickness": plates.value,
-                    "thickness_range": thickness_range(plates), "lam": state["lam"], "dropped": dropped,
-                    "spacing": state["spacing"].tolist(), "image_shape": list(source.shape),
-                    "chunks": list(state["chunks"]), "halo": state["halo"].tolist()}
+        metadata = stage_metadata("voxels", state["iso"], plates, state["lam"], dropped, state["spacing"], source.shape)
+        metadata.update({"chunks": list(state["chunks"]), "halo": state["halo"].tolist()})
         return MedialAxis(
             grid.physical(medial.voxels), medial.radius,
             extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},

@@ -43,7 +43,6 @@ from medialaxis.volume.stages import (
     extension_stage,
     polygonize_stage,
     stage_metadata,
-    thickness_range,
 )
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
@@ -164,7 +163,8 @@ def volume_stages(
             extension_stage(state, src.grey, src.iso, src.spacing, density)
         timings[stage] = time.perf_counter() - t0
     src = state["source"]
-    metadata = stage_metadata(src.iso, state, src.spacing, src.mask.shape)
+    metadata = stage_metadata("midsurface", src.iso, state["plates"], state["lam"], state["dropped"], src.spacing,
+                              src.mask.shape)
     metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density})
     t0 = time.perf_counter()
     shell = isosurface_shell(src)
@@ -375,10 +375,7 @@ def medial_voxel_axis(
     medial = medial_voxels(features, lam_value, plates)
     dropped = dropped_report(medial, plates, lam_value)
     kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
-    metadata = {"method": "voxels", "domain": "volume", "iso": src.iso, "thickness": plates.value,
-                "thickness_range": thickness_range(plates), "lam": lam_value,
-                "dropped": dropped,
-                "spacing": src.spacing.tolist(), "image_shape": list(src.mask.shape)}
+    metadata = stage_metadata("voxels", src.iso, plates, lam_value, dropped, src.spacing, src.mask.shape)
     return MedialAxis(
         features.physical(medial.voxels), medial.radius,
         extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},

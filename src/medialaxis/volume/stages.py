@@ -85,15 +85,17 @@ def dropped_report(medial: MedialVoxels, plates: PlateThickness, lam: float | No
     return info
 
 
-def stage_metadata(iso: float, state: dict[str, Any], spacing: np.ndarray, shape: tuple[int, ...]) -> dict[str, Any]:
+def stage_metadata(method: str, iso: float, plates: PlateThickness, lam: float | None, dropped: Any,
+                   spacing: np.ndarray, shape: tuple[int, ...]) -> dict[str, Any]:
+    """The metadata every volume result carries (``midsurface`` and ``voxels``, in memory or by blocks)."""
     return {
-        "method": "midsurface",
+        "method": method,
         "domain": "volume",
         "iso": iso,
-        "thickness": state["thickness"],
-        "thickness_range": thickness_range(state["plates"]),
-        "lam": state["lam"],
-        "dropped": state["dropped"],
+        "thickness": plates.value,
+        "thickness_range": thickness_range(plates),
+        "lam": lam,
+        "dropped": dropped,
         "spacing": np.asarray(spacing).tolist(),
         "image_shape": list(shape),
     }
