@@ -3,8 +3,8 @@
 Prints, from one run: our retrieval row (ranks 1..10, standard protocol: each
 of the 99 shapes queries the other 98) with the default distance (the axis
 tour) on the shapes read as boolean masks and given as PNG paths, with the
-previous default (skeleton paths plus the unordered axis context) and with
-collection-level re-ranking; the same row for two
+previous default (skeleton paths plus the unordered axis context, moved out of
+the package to ``benchmarks/research/``) and with collection-level re-ranking; the same row for two
 baselines (Hu moments; shape contexts with Hungarian matching), the
 literature's shock-graph row, the time per pair of each, and the time of
 ``distance_matrix`` on a 1,400-shape collection (Kimia-99 signatures
@@ -49,8 +49,8 @@ from skimage import measure
 
 import medialaxis as mx
 from medialaxis.compare import shape_signature, signature
-from medialaxis.compare.distance import DEFAULTS
 from medialaxis.compare.retrieval import diffusion_rerank, retrieval_row
+from research.path_similarity import PATH_PARAMS, path_signature, previous_default, term_matrices
 
 #: Shock-graph matching (Sebastian, Klein, Kimia, TPAMI 2004), as quoted in the issue.
 SHOCK_GRAPH = np.array([99, 99, 99, 98, 98, 97, 96, 95, 93, 82])
@@ -184,47 +184,51 @@ def split_sums(D: np.ndarray, labels: np.ndarray, ranks: int = 10) -> tuple[int,
     return int(hits[odd].sum()), int(hits[~odd].sum())
 
 
-def variants(masks: list[np.ndarray], labels: np.ndarray, jobs: int | None) -> None:
+def variants(axes: list, labels: np.ndarray, jobs: int | None) -> None:
     """Rows of the variants tried (see the module docstring)."""
-    axes = [mx.medial_axis(m) for m in masks]
 
-    def row(name: str, sigs: list, **params: float) -> None:
-        D = mx.distance_matrix(sigs, n_jobs=jobs, **params)
+    def row(name: str, D: np.ndarray) -> None:
         a, b = split_sums(D, labels)
         print(f"  {name:38s}{_fmt(retrieval_row(D, labels))}  A {a} B {b}")
 
+    def tour(sigs: list, **params: float) -> np.ndarray:
+        return mx.distance_matrix(sigs, n_jobs=jobs, **params)
+
+    def terms(params: dict[str, float] | None = None, **options) -> dict[str, np.ndarray]:
+        return term_matrices([path_signature(ax, **options) for ax in axes], n_jobs=jobs, params=params)
+
     print("\nvariants (A: queries of classes 1,3,5,7,9; B: classes 2,4,6,8)")
     sigs = [signature(ax) for ax in axes]
-    row("defaults (tour)", sigs)
+    D = tour(sigs)
+    row("defaults (tour)", D)
     for gap in (0.2, 0.25, 0.35, 0.4):
-        row(f"gap={gap}", sigs, gap=gap)
+        row(f"gap={gap}", tour(sigs, gap=gap))
     for prune in (0.02, 0.045):
-        row(f"prune={prune}", [signature(ax, prune=prune) for ax in axes])
-    row("tour of the axis as pruned only", [signature(dataclasses.replace(ax, raw=None)) for ax in axes])
-    row("tour of the unpruned axis only", [signature(ax, unpruned=True) for ax in axes])
+        row(f"prune={prune}", tour([signature(ax, prune=prune) for ax in axes]))
+    row("tour of the axis as pruned only", tour([signature(dataclasses.replace(ax, raw=None)) for ax in axes]))
+    row("tour of the unpruned axis only", tour([signature(ax, unpruned=True) for ax in axes]))
+    base = terms()
     for weight in (0.05, 0.2):
-        row(f"tour + {weight} paths", sigs, paths=weight)
-        row(f"tour + {weight} context", sigs, context=weight)
-    print("  -- the path term (the main term before the tour)")
-    row("paths alone", sigs, tour=0, paths=1)
-    row("paths + 0.6 context (previous default)", sigs, tour=0, paths=1, context=0.6)
-    row("context alone", sigs, tour=0, context=1)
+        row(f"tour + {weight} paths", D + weight * base["paths"])
+        row(f"tour + {weight} context", D + weight * base["context"])
+    print("  -- the path term (the main term before the tour; benchmarks/research/)")
+    row("paths alone", base["paths"])
+    row("paths + 0.6 context (previous default)", previous_default(base))
+    row("context alone", base["context"])
     for prune in (0.02, 0.045, 0.06):
-        row(f"paths+context, prune={prune}", [signature(ax, prune=prune) for ax in axes], tour=0, paths=1, context=0.6)
+        row(f"paths+context, prune={prune}", previous_default(terms(prune=prune)))
     for detour in (0.2, 0.35):
-        row(f"paths+context, axis detour={detour}", [signature(ax.prune(detour=detour)) for ax in axes],
-            tour=0, paths=1, context=0.6)
-    row("paths+context, n_samples=50", [signature(ax, n_samples=50) for ax in axes], tour=0, paths=1, context=0.6)
+        detoured = term_matrices([path_signature(ax.prune(detour=detour)) for ax in axes], n_jobs=jobs)
+        row(f"paths+context, axis detour={detour}", previous_default(detoured))
+    row("paths+context, n_samples=50", previous_default(terms(n_samples=50)))
     for dce in (0.01, 0.02):
-        row(f"paths+context, dce={dce}", [signature(ax, dce=dce) for ax in axes], tour=0, paths=1, context=0.6)
-    row("paths+context, unpruned", [signature(ax, unpruned=True) for ax in axes], tour=0, paths=1, context=0.6)
+        row(f"paths+context, dce={dce}", previous_default(terms(dce=dce)))
+    row("paths+context, unpruned", previous_default(terms(unpruned=True)))
     for k in (12, 16):
-        dce_sigs = [signature(ax, unpruned=True, dce=1.0, dce_vertices=k) for ax in axes]
-        row(f"paths+context, unpruned, DCE to {k}", dce_sigs, tour=0, paths=1, context=0.6)
-    for key in ("alpha", "beta", "gamma", "skip", "unmatched"):
+        row(f"paths+context, unpruned, DCE to {k}", previous_default(terms(unpruned=True, dce=1.0, dce_vertices=k)))
+    for key, value in PATH_PARAMS.items():
         for factor in (0.5, 2.0):
-            row(f"paths+context, {key}={DEFAULTS[key] * factor:.4g}", sigs, tour=0, paths=1, context=0.6,
-                **{key: DEFAULTS[key] * factor})
+            row(f"paths+context, {key}={value * factor:.4g}", previous_default(terms({**PATH_PARAMS, key: value * factor})))
 
 
 def _fmt(row: np.ndarray) -> str:
@@ -260,14 +264,15 @@ def mpeg7(folder: Path, jobs: int | None, with_shape_context: bool) -> None:
     print(f"MPEG-7 style set {folder}: {len(files)} shapes, {len(classes)} classes")
     mx.distance_matrix([masks[0], masks[1]], n_jobs=1)  # compile before timing
     t0 = time.perf_counter()
-    sigs = [shape_signature(m) for m in masks]
+    axes = [mx.medial_axis(m) for m in masks]
+    sigs = [shape_signature(ax) for ax in axes]
     t_sig = time.perf_counter() - t0
     t0 = time.perf_counter()
     D = mx.distance_matrix(sigs, n_jobs=jobs)
     t_pairs = time.perf_counter() - t0
     rows = [("ours (axis tour, the default)", D), ("ours + diffusion re-ranking (collection-level)", diffusion_rerank(D))]
     t0 = time.perf_counter()
-    rows.append(("before: paths + axis context", mx.distance_matrix(sigs, n_jobs=jobs, tour=0, paths=1, context=0.6)))
+    rows.append(("before: paths + axis context", previous_default(term_matrices([path_signature(ax) for ax in axes], jobs))))
     t_before = time.perf_counter() - t0
     if with_shape_context:
         t0 = time.perf_counter()
@@ -305,14 +310,15 @@ def main() -> None:
 
     mx.distance_matrix([masks[0], masks[1]], n_jobs=1)  # compile (cached on disk) before timing
     t0 = time.perf_counter()
-    sigs = [shape_signature(m) for m in masks]
+    axes = [mx.medial_axis(m) for m in masks]
+    sigs = [shape_signature(ax) for ax in axes]
     t_sig = (time.perf_counter() - t0) / len(sigs)
     t0 = time.perf_counter()
     D = mx.distance_matrix(sigs, n_jobs=1)
     t_pair = (time.perf_counter() - t0) / (len(sigs) * (len(sigs) - 1) / 2)
     ours = retrieval_row(D, labels)
     reranked = retrieval_row(diffusion_rerank(D), labels)
-    before = retrieval_row(mx.distance_matrix(sigs, n_jobs=1, tour=0, paths=1, context=0.6), labels)
+    before = retrieval_row(previous_default(term_matrices([path_signature(ax) for ax in axes], n_jobs=1)), labels)
     # The same files given by path (what `medialaxis search` does): read as grey images and
     # contoured at the threshold, without the staircase smoothing boolean masks get.
     from_files = retrieval_row(mx.distance_matrix([str(p) for p in files], n_jobs=1), labels)
@@ -338,12 +344,12 @@ def main() -> None:
     print(f"ratio ours / shape context, sum    {ours.sum() / sc.sum():.3f} (invariant one: {ours.sum() / sci.sum():.3f})")
     print(f"ratio ours / Hu moments, sum       {ours.sum() / hu.sum():.3f}")
     if args.variants:
-        variants(masks, labels, args.jobs)
+        variants(axes, labels, args.jobs)
     print("\nperturbed shape closer to its original than to any shape of another class (every 2nd shape):")
     for name, share in robustness(masks, sigs, labels, np.random.default_rng(0)).items():
         print(f"  {name:22s} {share}")
     print("\ntimes (single thread; the machine is shared, so pessimistic)")
-    print(f"  ours: signature (axis + tour + paths) {t_sig * 1e3:.1f} ms per shape, pair {t_pair * 1e6:.1f} us")
+    print(f"  ours: signature (axis + tour) {t_sig * 1e3:.1f} ms per shape, pair {t_pair * 1e6:.1f} us")
     print(f"  shape context pair {t_sc * 1e6:.1f} us  -> ratio ours/shape context {t_pair / t_sc:.3f}")
     print(f"  invariant shape context pair {t_sci * 1e6:.1f} us (scipy Hungarian, both mirror images)")
     print(f"  Hu moments pair {t_hu * 1e6:.3f} us")

@@ -1,4 +1,4 @@
-"""Signatures (skeleton paths, tours) on shapes with known axes."""
+"""Signatures (compared axis, endpoints, tours) on shapes with known axes."""
 
 import dataclasses
 
@@ -23,19 +23,17 @@ def test_t_shape_has_three_limbs_in_boundary_order():
     # The three limb tips, whatever the corner branches did.
     tips = {tuple(np.round(p).astype(int)) for p in sig.endpoints}
     assert tips == {(1, 1), (9, 1), (5, 7)}
-    # Path lengths: the arm tips are 8 apart; arm tip to top tip is 4 + 6 less the cut at the junction.
-    L = sig.lengths * sig.scale
-    assert np.allclose(L, L.T)
-    assert np.allclose(np.sort(L[np.triu_indices(3, 1)]), [8, 10, 10], atol=0.25)
-    # Radius along the arms is the half-width 1 away from the junction and the tips.
-    mid = sig.radii[0, 1, len(sig.radii[0, 1]) // 4] * sig.scale
-    assert mid == pytest.approx(1.0, abs=0.02)
+    # Weights: how far each limb's discs reach past the junction disc. The junction is at
+    # (5, 5/4) (as far from the bottom as from the corners (4, 2), (6, 2)), radius 5/4; a tip
+    # disc has the half-width 1 as radius: |tip - J| + 1 - 5/4.
+    reach = np.linalg.norm(sig.endpoints - [5.0, 1.25], axis=1) + 1.0 - 1.25
+    assert np.allclose(sig.weights * sig.scale, reach, atol=0.05)
+    assert np.allclose(np.sort(reach), [3.76, 3.76, 5.5], atol=0.02)
 
 
-def test_paths_are_reverses_and_arrays_read_only():
+def test_arrays_read_only():
     sig = shape_signature(T_SHAPE, prune=0.1)
-    assert np.allclose(sig.radii, sig.radii.transpose(1, 0, 2)[:, :, ::-1])
-    for arr in (sig.radii, sig.lengths, sig.weights, sig.endpoints):
+    for arr in (sig.weights, sig.endpoints, sig.tour, sig.tour_radii, sig.points):
         assert not arr.flags.writeable
     assert (sig.weights > 0).all()
 
@@ -50,8 +48,8 @@ def test_rectangle_is_a_single_path_with_corner_branches_pruned():
 def test_disc_has_a_point_axis():
     sig = shape_signature(Point(0, 0).buffer(3, 64))
     assert sig.n_endpoints == 2
-    assert np.all(sig.lengths == 0)
-    assert np.allclose(sig.radii * sig.scale, 3, rtol=0.01)
+    assert len(sig.points) == 1 and len(sig.edges) == 0
+    assert np.allclose(sig.tour_radii * sig.scale, 3, rtol=0.01)
 
 
 def test_keeps_largest_component():
@@ -100,8 +98,6 @@ def test_errors():
     with pytest.raises(InvalidInputError, match="MedialAxis"):
         signature(np.zeros((3, 2)))
     ma = mx.medial_axis(T_SHAPE)
-    with pytest.raises(InvalidInputError, match="n_samples"):
-        signature(ma, n_samples=1)
     with pytest.raises(InvalidInputError, match="prune"):
         signature(ma, prune=-1)
     with pytest.raises(InvalidInputError, match="prune"):

@@ -12,12 +12,12 @@ pruned and before the method's own pruning, keeping the best.
 
 Why this: it was measured against the alternatives on Kimia-99
 (``benchmarks/bench_compare.py``). Bai and Latecki's path similarity with
-Hungarian endpoint matching (TPAMI 2008), implemented here as the ``paths``
-term, reaches 853 (their paper: 939 with hand-tuned DCE pruning); adding an
-unordered axis context, 912; the ordered tour, 960 (shock graphs: 956), at
-or above the shock-graph row at ranks 3 to 8 and 10, one query short at
-ranks 1, 2 and 9. It needs only the axis and its radius function (what
-:class:`~medialaxis.MedialAxis` holds), tolerates missing or spurious
+Hungarian endpoint matching (TPAMI 2008) reaches 853 there (their paper: 939
+with hand-tuned DCE pruning); adding an unordered axis context, 912; the
+ordered tour, 956 (shock graphs: 956). Those two terms and DCE pruning now
+live in ``benchmarks/research/``: they did not add to the tour on Kimia-99
+nor on MPEG-7, a set they were not tuned on. The tour needs only the axis
+and its radius function (what :class:`~medialaxis.MedialAxis` holds), tolerates missing or spurious
 branches (their samples are skipped at a cost proportional to their
 length), is exactly invariant under similarities (one axis-derived scale,
 angles from the walk, both orientations tried), and its pairwise step is a
@@ -33,7 +33,7 @@ pair, and the tour already matches its figures.
 
 from __future__ import annotations
 
-from medialaxis.compare.distance import DEFAULTS, match_endpoints, match_tour, shape_distance, shape_signature
+from medialaxis.compare.distance import DEFAULTS, match_tour, shape_distance, shape_signature
 from medialaxis.compare.matrix import distance_matrix, query_distances
 from medialaxis.compare.retrieval import diffusion_rerank, retrieval_row
 from medialaxis.compare.signature import Signature, signature
@@ -43,7 +43,6 @@ __all__ = [
     "distance_matrix",
     "query_distances",
     "match_tour",
-    "match_endpoints",
     "shape_signature",
     "signature",
     "Signature",

@@ -1,194 +1,26 @@
-"""Compiled pairwise steps of the shape distance, with NumPy references.
+"""Compiled pairwise step of the shape distance (the axis tour), with a NumPy reference.
 
-Signatures are packed into flat arrays (:func:`pack_tour`, :func:`pack_context`) so that a whole block of pairs is scored in one
-``nogil`` call: threads then run in parallel.
+Signatures are packed into flat arrays (:func:`pack_tour`) so that a whole
+block of pairs is scored in one ``nogil`` call: threads then run in parallel.
 
-The axis-tour term (:func:`tour_distances`, the default distance): the cost
-of matching tour sample ``i`` of A with sample ``k`` of B is half the squared
-Hellinger distance of their histograms plus ``|r - r'| / (r + r')``; B's
-cyclic sequence is aligned to A's, keeping the order, each skipped sample of
-either costing ``gap``, from ``TOUR_SHIFTS`` starting offsets and within
-``TOUR_BAND`` samples of the diagonal; the least total over the pairs of
-versions (tour, mirror image; the axis as pruned, the axis before the
-method's own pruning), divided by the mean sample count.
-
-The skeleton-path term (off by default) is in :mod:`medialaxis.compare._path_kernels`.
-
-The axis-context term (:mod:`medialaxis.compare.context`) has its own kernel,
-:func:`context_distances`: the samples of the two axes matched one-to-one
-(Hungarian) with cost ``0.5 * sum chi(h, h') + |r - r'| / (r + r')``, the
-smaller of B and B's mirror image (angle bins reversed), divided by the
-smaller sample count.
+The cost of matching tour sample ``i`` of A with sample ``k`` of B is half
+the squared Hellinger distance of their histograms plus
+``|r - r'| / (r + r')``; B's cyclic sequence is aligned to A's, keeping the
+order, each skipped sample of either costing ``gap``, from ``TOUR_SHIFTS``
+starting offsets and within ``TOUR_BAND`` samples of the diagonal; the least
+total over the pairs of versions (tour, mirror image; the axis as pruned,
+the axis before the method's own pruning), divided by the mean sample count.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from medialaxis._jit import njit
 
-__all__ = [
-    "EPS", "FORBIDDEN", "assignment", "pack_context", "context_distances", "context_distance_reference",
-    "pack_tour", "tour_distances", "tour_match_reference", "TOUR_SHIFTS", "TOUR_BAND",
-]
+__all__ = ["EPS", "precedes", "pack_tour", "tour_distances", "tour_match_reference", "TOUR_SHIFTS", "TOUR_BAND"]
 
 EPS = 1e-12
-#: Cost of a forbidden assignment (finite so the potentials stay finite).
-FORBIDDEN = 1e12
-
-
-# --------------------------------------------------------------- compiled
-
-
-@njit(cache=True, nogil=True)
-def assignment(cost):  # pragma: no cover - compiled
-    """Minimum total of a one-to-one assignment of the rows of ``cost`` (rows <= cols).
-
-    Shortest augmenting paths with potentials (Kuhn-Munkres, O(n^2 m)).
-    """
-    n, m = cost.shape
-    inf = np.inf
-    u = np.zeros(n + 1)
-    v = np.zeros(m + 1)
-    match = np.zeros(m + 1, np.int64)  # match[j] = row (1-based) assigned to column j
-    way = np.zeros(m + 1, np.int64)
-    minv = np.empty(m + 1)
-    used = np.empty(m + 1, np.bool_)
-    for i in range(1, n + 1):
-        match[0] = i
-        j0 = 0
-        minv[:] = inf
-        used[:] = False
-        while True:
-            used[j0] = True
-            i0 = match[j0]
-            delta = inf
-            j1 = 0
-            for j in range(1, m + 1):
-                if not used[j]:
-                    cur = cost[i0 - 1, j - 1] - u[i0] - v[j]
-                    if cur < minv[j]:
-                        minv[j] = cur
-                        way[j] = j0
-                    if minv[j] < delta:
-                        delta = minv[j]
-                        j1 = j
-            for j in range(m + 1):
-                if used[j]:
-                    u[match[j]] += delta
-                    v[j] -= delta
-                else:
-                    minv[j] -= delta
-            j0 = j1
-            if match[j0] == 0:
-                break
-        while True:
-            j1 = way[j0]
-            match[j0] = match[j1]
-            j0 = j1
-            if j0 == 0:
-                break
-    total = 0.0
-    for j in range(1, m + 1):
-        if match[j] != 0:
-            total += cost[match[j] - 1, j - 1]
-    return total
-
-
-# -------------------------------------------------------------- references
-
-
-# ------------------------------------------------------------ axis context
-def pack_context(
-    histograms: list[np.ndarray], radii: list[np.ndarray], n_angular: int
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Pack per-shape axis contexts (``(k, h)`` histograms, ``(k,)`` radii) for :func:`context_distances`.
-
-    Returns ``(flat_histograms (sum k, h), flat_mirrored (sum k, h), flat_radii (sum k,), offsets (n+1,))``;
-    the mirrored histograms have their ``n_angular`` angle bins reversed.
-    """
-    offsets = np.zeros(len(histograms) + 1, np.int64)
-    offsets[1:] = np.cumsum([len(h) for h in histograms])
-    flat = np.ascontiguousarray(np.concatenate(histograms), np.float64)
-    mirrored = np.ascontiguousarray(flat.reshape(len(flat), -1, n_angular)[:, :, ::-1].reshape(len(flat), -1))
-    return flat, mirrored, np.ascontiguousarray(np.concatenate(radii), np.float64), offsets
-
-
-@njit(cache=True, nogil=True)
-def _context_pair(ha, ra, hb, rb):  # pragma: no cover - compiled
-    """Mean cost of the best one-to-one matching of the samples of A and B."""
-    ka, kb = ha.shape[0], hb.shape[0]
-    n_bins = ha.shape[1]
-    transpose = ka > kb
-    n, m = (kb, ka) if transpose else (ka, kb)
-    cost = np.empty((n, m))
-    for i in range(ka):
-        for k in range(kb):
-            x = 0.0
-            for t in range(n_bins):
-                u = ha[i, t]
-                v = hb[k, t]
-                x += (u - v) * (u - v) / (u + v + EPS)
-            x = 0.5 * x + abs(ra[i] - rb[k]) / (ra[i] + rb[k] + EPS)
-            if transpose:
-                cost[k, i] = x
-            else:
-                cost[i, k] = x
-    return assignment(cost) / n
-
-
-@njit(cache=True, nogil=True)
-def _precedes(hb, rb, ha, ra):  # pragma: no cover - compiled
-    """Content order of two contexts (sample count, then radii, then histograms); False if equal."""
-    if len(rb) != len(ra):
-        return len(rb) < len(ra)
-    for i in range(len(rb)):
-        if rb[i] != ra[i]:
-            return rb[i] < ra[i]
-    for i in range(hb.shape[0]):
-        for t in range(hb.shape[1]):
-            if hb[i, t] != ha[i, t]:
-                return hb[i, t] < ha[i, t]
-    return False
-
-
-@njit(cache=True, nogil=True)
-def context_distances(histograms, mirrored, radii, offsets, rows, cols):  # pragma: no cover - compiled
-    """Axis-context distances of the pairs ``(rows[p], cols[p])``: the smaller of direct and mirrored.
-
-    Each pair is computed in an order fixed by the contents of the two
-    contexts, so the value is exactly symmetric.
-    """
-    out = np.empty(len(rows))
-    for p in range(len(rows)):
-        a, b = rows[p], cols[p]
-        if _precedes(histograms[offsets[b]:offsets[b + 1]], radii[offsets[b]:offsets[b + 1]],
-                     histograms[offsets[a]:offsets[a + 1]], radii[offsets[a]:offsets[a + 1]]):
-            a, b = b, a
-        ha, ra = histograms[offsets[a]:offsets[a + 1]], radii[offsets[a]:offsets[a + 1]]
-        rb = radii[offsets[b]:offsets[b + 1]]
-        direct = _context_pair(ha, ra, histograms[offsets[b]:offsets[b + 1]], rb)
-        mirror = _context_pair(ha, ra, mirrored[offsets[b]:offsets[b + 1]], rb)
-        out[p] = min(direct, mirror)
-    return out
-
-
-def context_distance_reference(
-    ha: np.ndarray, ra: np.ndarray, hb: np.ndarray, rb: np.ndarray, n_angular: int
-) -> float:
-    """NumPy/SciPy version of one :func:`context_distances` value (used by the tests).
-
-    ``ha (ka, h)``, ``ra (ka,)``: histograms and radii of A's samples; same for B.
-    """
-    best = np.inf
-    for hist_b in (hb, hb.reshape(len(hb), -1, n_angular)[:, :, ::-1].reshape(len(hb), -1)):
-        u, v = ha[:, None, :], hist_b[None, :, :]
-        chi = ((u - v) ** 2 / (u + v + EPS)).sum(axis=2)
-        cost = 0.5 * chi + np.abs(ra[:, None] - rb[None, :]) / (ra[:, None] + rb[None, :] + EPS)
-        r, c = linear_sum_assignment(cost)
-        best = min(best, float(cost[r, c].sum()) / min(len(ha), len(hb)))
-    return best
 
 
 # ------------------------------------------------------------- axis tour
@@ -289,9 +121,24 @@ def _tour_pair(roots, radii, norms, oa, ea, ob, eb, gap):  # pragma: no cover - 
 
 
 @njit(cache=True, nogil=True)
+def precedes(hb, rb, ha, ra):  # pragma: no cover - compiled
+    """Content order of two descriptors (sample count, then radii, then histograms); False if equal."""
+    if len(rb) != len(ra):
+        return len(rb) < len(ra)
+    for i in range(len(rb)):
+        if rb[i] != ra[i]:
+            return rb[i] < ra[i]
+    for i in range(hb.shape[0]):
+        for t in range(hb.shape[1]):
+            if hb[i, t] != ha[i, t]:
+                return hb[i, t] < ha[i, t]
+    return False
+
+
+@njit(cache=True, nogil=True)
 def _tour_precedes(roots, radii, oa, ea, ob, eb):  # pragma: no cover - compiled
     """Content order of two packed tours (first version): sample count, radii, histograms; False if equal."""
-    return _precedes(roots[0, ob:eb], radii[0, ob:eb], roots[0, oa:ea], radii[0, oa:ea])
+    return precedes(roots[0, ob:eb], radii[0, ob:eb], roots[0, oa:ea], radii[0, oa:ea])
 
 
 @njit(cache=True, nogil=True)

@@ -27,14 +27,11 @@ def _add_matching_options(p: argparse.ArgumentParser) -> None:
     from medialaxis.compare.signature import DEFAULT_PRUNE
 
     p.add_argument("--gap", type=float, default=DEFAULTS["gap"], help="cost of a tour sample left unaligned")
-    p.add_argument("--tour", type=float, default=DEFAULTS["tour"], help="weight of the axis-tour term")
-    p.add_argument("--paths", type=float, default=DEFAULTS["paths"], help="weight of the skeleton-path term")
-    p.add_argument("--context", type=float, default=DEFAULTS["context"], help="weight of the unordered context term")
     p.add_argument("--prune", type=float, default=DEFAULT_PRUNE, help="drop terminal branches protruding less than this fraction of the shape scale")
 
 
 def _matching(args: argparse.Namespace) -> dict[str, Any]:
-    return {"gap": args.gap, "tour": args.tour, "paths": args.paths, "context": args.context, "prune": args.prune}
+    return {"gap": args.gap, "prune": args.prune}
 
 
 # ------------------------------------------------------------ compare

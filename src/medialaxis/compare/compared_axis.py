@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
-from medialaxis.compare.dce import convex_dce_vertices, dce_prune
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 
-__all__ = ["compared_axis", "edge_lengths", "terminal_protrusions"]
+__all__ = ["compared_axis", "main_component", "drop_spurious", "edge_lengths", "terminal_protrusions"]
 
 
 def edge_lengths(points: np.ndarray, edges: np.ndarray) -> np.ndarray:
@@ -43,16 +40,6 @@ def _largest_component(points: np.ndarray, radii: np.ndarray, edges: np.ndarray)
 def _scale(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> float:
     sweep = float((edge_lengths(points, edges) * (radii[edges[:, 0]] + radii[edges[:, 1]])).sum()) if len(edges) else 0.0
     return float(np.sqrt(sweep + np.pi * float(radii.max()) ** 2))
-
-
-def _outline(shape: Any) -> np.ndarray | None:
-    """Exterior vertices (first not repeated) of the largest polygon of ``shape``, or None."""
-    geoms = getattr(shape, "geoms", [shape])
-    polys = [g for g in geoms if getattr(g, "geom_type", None) == "Polygon" and not g.is_empty]
-    if not polys:
-        return None
-    coords = np.asarray(max(polys, key=lambda g: g.area).exterior.coords, dtype=np.float64)[:-1]
-    return coords if len(coords) >= 3 else None
 
 
 def terminal_protrusions(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> list[tuple[np.ndarray, float]]:
@@ -106,10 +93,8 @@ def _prune_spurious(
     return edges
 
 
-def compared_axis(
-    ma: MedialAxis, prune: float, max_endpoints: int, dce: float, dce_vertices: int
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-    """``(points, radii, edges, scale)`` of the axis compared: largest component, spurious branches removed."""
+def main_component(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """``(points, radii, edges, scale)`` of the axis's component sweeping the largest area (self-loops dropped)."""
     if len(ma.points) == 0:
         raise EmptyShapeError("the medial axis is empty (no axis left after pruning): nothing to compare")
     if not (np.isfinite(ma.points).all() and np.isfinite(ma.radii).all()):
@@ -120,14 +105,22 @@ def compared_axis(
     points, radii = np.array(ma.points[keep]), np.array(ma.radii[keep])
     if radii.max() <= 0:
         raise EmptyShapeError("the medial axis has no positive radius: the shape has no interior")
-    scale = _scale(points, radii, edges)
-    if dce > 0:
-        outline = _outline(ma.shape)
-        if outline is not None:
-            edges = dce_prune(points, radii, edges, convex_dce_vertices(outline, dce, min_vertices=dce_vertices))
+    return points, radii, edges, _scale(points, radii, edges)
+
+
+def drop_spurious(
+    points: np.ndarray, radii: np.ndarray, edges: np.ndarray, scale: float, prune: float, max_endpoints: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(points, radii, edges)`` without the spurious terminal branches, renumbered (see :func:`_prune_spurious`)."""
     edges = _prune_spurious(points, radii, edges, prune * scale, max_endpoints)
     lone = np.zeros(len(points), bool)
     if not len(edges):
         lone[int(np.argmax(radii))] = True  # a disc: its axis is one point
-    keep2, edges = _graph.compact(len(points), edges, lone)
-    return points[keep2], radii[keep2], edges, scale
+    keep, edges = _graph.compact(len(points), edges, lone)
+    return points[keep], radii[keep], edges
+
+
+def compared_axis(ma: MedialAxis, prune: float, max_endpoints: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """``(points, radii, edges, scale)`` of the axis compared: largest component, spurious branches removed."""
+    points, radii, edges, scale = main_component(ma)
+    return (*drop_spurious(points, radii, edges, scale, prune, max_endpoints), scale)

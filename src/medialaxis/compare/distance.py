@@ -1,28 +1,20 @@
 """Shape distance through medial axes: :func:`shape_distance` (many pairs: :mod:`medialaxis.compare.matrix`).
 
-Three terms, all built on the medial axis and its radius function, weighted
-by ``tour``, ``paths`` and ``context``:
+The *axis tour* (:mod:`medialaxis.compare.tour`): samples along the walk
+around the axis, each described by where the axis's swept area lies around
+it and by its radius, aligned cyclically in order with a cost ``gap`` per
+skipped sample, for the axis as pruned and for the axis before the method's
+own pruning, keeping the better. Kimia-99 row 956 (955 with the pruned axis
+alone); MPEG-7, 35 dev classes: bull's-eye 87.59%.
 
-- the *axis tour* (:mod:`medialaxis.compare.tour`, default weight 1): samples
-  along the walk around the axis, each described by where the axis's swept
-  area lies around it and by its radius, aligned cyclically in order with a
-  cost ``gap`` per skipped sample, for the axis as pruned and for the axis
-  before the method's own pruning, keeping the better. Kimia-99 row 960
-  (955 with the pruned axis alone).
-- Bai and Latecki's skeleton path matching (default weight 0): the radius
-  function along the axis path between every two endpoints; endpoints
-  matched one-to-one (Hungarian) with costs from order-keeping alignments of
-  their paths. 853 alone; with the axis context, 912 (the default before the
-  tour term).
-- the *axis context* (:mod:`medialaxis.compare.context`, default weight 0):
-  the same histograms on unordered samples along the branches, matched
-  one-to-one. 889 alone.
-
-Adding either of the last two to the tour does not raise the Kimia-99 row
-(``benchmarks/bench_compare.py --variants``), so they are off by default and
-kept as options (the path term also gives the endpoint correspondence of
-:func:`match_endpoints`). The sum is 0 for a shape and itself, symmetric, and
-invariant under similarity transforms because the signature is.
+Two more terms were options here: Bai and Latecki's skeleton path matching
+(Kimia-99 853 alone; with the axis context 912, the default before the tour)
+and an unordered axis context (889 alone). Neither raised the tour on
+Kimia-99 nor on MPEG-7 (a set they were not tuned on: +0.06 and -0.17
+points), so both moved to ``benchmarks/research/`` (issue 17), where
+``bench_compare.py`` still computes them as the "previous default" row.
+The distance is 0 for a shape and itself, symmetric, and invariant under
+similarity transforms because the signature is.
 """
 
 from __future__ import annotations
@@ -37,31 +29,20 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis.compare import _kernels, _path_kernels
-from medialaxis.compare.context import N_ANGULAR
-from medialaxis.compare.signature import DEFAULT_PRUNE, DEFAULT_SAMPLES, Signature, signature
+from medialaxis.compare import _kernels
+from medialaxis.compare.signature import DEFAULT_PRUNE, Signature, signature
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["shape_distance", "match_tour", "match_endpoints", "shape_signature", "DEFAULTS"]
+__all__ = ["shape_distance", "match_tour", "shape_signature", "DEFAULTS"]
 
-#: Matching parameters. ``tour``, ``paths``, ``context``: weights of the three
-#: terms (see the module docstring). ``gap``: cost of a tour sample left
-#: unaligned; the tour distance is a mean cost per sample, on Kimia-99 a
-#: median 0.23 between shapes of one class and 0.44 between classes (10-90%:
-#: 0.13-0.32 and 0.38-0.53). There 0.2 gives the row 953, 0.25 960, 0.3 960,
-#: 0.35 958, 0.4 959.
-#: Path term: weights of its path-length, chord and bend parts, cost of
-#: skipping a path in an alignment and of an unmatched endpoint (both times
-#: the endpoint's weight), chosen on Kimia-99 when it was the main term.
-#: The weights of the terms were chosen with a class split of Kimia-99
-#: (``benchmarks/bench_compare.py --variants``).
-DEFAULTS = {
-    "tour": 1.0, "gap": 0.3, "paths": 0.0, "context": 0.0,
-    "alpha": 0.1333, "beta": 0.0625, "gamma": 0.175, "skip": 0.2, "unmatched": 0.4,
-}
-_PATH_KEYS = ("alpha", "beta", "gamma", "skip", "unmatched")
+#: Matching parameters. ``gap``: cost of a tour sample left unaligned; the
+#: tour distance is a mean cost per sample, on Kimia-99 a median 0.23
+#: between shapes of one class and 0.44 between classes (10-90%: 0.13-0.32
+#: and 0.38-0.53). There 0.2 gives the row 953, 0.25 960, 0.3 960, 0.35 958,
+#: 0.4 959 (``benchmarks/bench_compare.py --variants``).
+DEFAULTS = {"gap": 0.3}
 
 #: Planar ``tolerance`` for vector inputs, as a fraction of sqrt(area): a
 #: similarity-invariant choice, so distances do not move under rotation.
@@ -73,9 +54,7 @@ _FILE_CACHE_SIZE = 4096
 _LOCK = threading.Lock()
 
 
-def shape_signature(
-    shape: Any, *, n_samples: int = DEFAULT_SAMPLES, prune: float = DEFAULT_PRUNE, **axis_options: Any
-) -> Signature:
+def shape_signature(shape: Any, *, prune: float = DEFAULT_PRUNE, **axis_options: Any) -> Signature:
     """Signature of one shape, computed once and cached.
 
     Parameters
@@ -84,7 +63,7 @@ def shape_signature(
         A signature (returned as is), a planar :class:`MedialAxis` or a
         saved one (``.json``, ``.npz``), or anything
         :func:`medialaxis.medial_axis` takes that is planar.
-    n_samples, prune : see :func:`medialaxis.compare.signature`
+    prune : see :func:`medialaxis.compare.signature`
     **axis_options
         Passed to :func:`medialaxis.medial_axis` (``lam``, ``tolerance``...).
 
@@ -101,12 +80,12 @@ def shape_signature(
     """
     if isinstance(shape, Signature):
         return shape
-    key = (int(n_samples), float(prune))
+    key = (float(prune),)
     if isinstance(shape, MedialAxis):
         with _LOCK:
             hit = _AXIS_CACHE.get(shape, {}).get(key)
         if hit is None:
-            hit = signature(shape, n_samples=n_samples, prune=prune)
+            hit = signature(shape, prune=prune)
             with _LOCK:
                 _AXIS_CACHE.setdefault(shape, {})[key] = hit
         return hit
@@ -141,7 +120,7 @@ def shape_signature(
                 # The planar default follows the bounding box, which rotation changes.
                 options["tolerance"] = VECTOR_TOLERANCE * float(np.sqrt(area))
         ma = medial_axis(shape, **options)
-    sig = signature(ma, n_samples=n_samples, prune=prune)
+    sig = signature(ma, prune=prune)
     if file_key is not None:
         with _LOCK:
             _FILE_CACHE[file_key] = sig
@@ -173,54 +152,28 @@ def _describe(shape: Any) -> str:
 
 def _params(options: dict[str, Any]) -> dict[str, float]:
     """Matching parameters from keyword options (``None``: the default); checked to be numbers >= 0."""
-    out = {k: check_number(DEFAULTS[k] if options.get(k) is None else options[k], k) for k in DEFAULTS}
-    if out["tour"] == out["paths"] == out["context"] == 0:
-        raise InvalidInputError("the weights tour, paths and context are all 0: nothing would be compared")
-    return out
+    return {k: check_number(DEFAULTS[k] if options.get(k) is None else options[k], k) for k in DEFAULTS}
 
 
-def _options(options: dict[str, Any], **fixed: float) -> tuple[dict[str, float], dict[str, Any]]:
-    """Checked matching parameters (``fixed`` overriding) and the options left for :func:`medialaxis.medial_axis`."""
+def _options(options: dict[str, Any]) -> tuple[dict[str, float], dict[str, Any]]:
+    """Checked matching parameters and the options left for :func:`medialaxis.medial_axis`."""
     axis_options = dict(options)
     matching = {k: axis_options.pop(k) for k in list(axis_options) if k in DEFAULTS}
-    return _params({**matching, **fixed}), axis_options
+    return _params(matching), axis_options
 
 
-def _signature_pair(
-    a: Any, b: Any, n_samples: int, prune: float, options: dict[str, Any], **fixed: float
-) -> tuple[Signature, Signature, dict[str, float]]:
+def _signature_pair(a: Any, b: Any, prune: float, options: dict[str, Any]) -> tuple[Signature, Signature, dict[str, float]]:
     """Signatures of ``a`` and ``b`` and the matching parameters, from a public function's keywords."""
-    params, axis_options = _options(options, **fixed)
-    sa = shape_signature(a, n_samples=n_samples, prune=prune, **axis_options)
-    sb = shape_signature(b, n_samples=n_samples, prune=prune, **axis_options)
-    return sa, sb, params
+    params, axis_options = _options(options)
+    return shape_signature(a, prune=prune, **axis_options), shape_signature(b, prune=prune, **axis_options), params
 
 
-def _features(sig: Signature) -> tuple[np.ndarray, ...]:
-    return sig.radii, sig.lengths, sig.chords, sig.bends, sig.weights
+def _pack(sigs: Sequence[Signature]) -> tuple[np.ndarray, ...]:
+    """Pack the signatures' tours for the compiled kernel."""
+    return _kernels.pack_tour([s.tour for s in sigs], [s.tour_radii for s in sigs])
 
 
-def _pack(sigs: Sequence[Signature], params: dict[str, float]) -> dict[str, Any]:
-    """Pack the signatures for the kernels of the terms with a nonzero weight."""
-    packed: dict[str, Any] = {}
-    if params["tour"] > 0:
-        packed["tour"] = _kernels.pack_tour([s.tour for s in sigs], [s.tour_radii for s in sigs])
-    if params["paths"] > 0:
-        packed["paths"] = _path_kernels.pack(*(list(column) for column in zip(*(_features(s) for s in sigs))))
-    if params["context"] > 0:
-        packed["context"] = _kernels.pack_context([s.context for s in sigs], [s.context_radii for s in sigs], N_ANGULAR)
-    return packed
-
-
-def _check_samples(sigs: Sequence[Signature]) -> None:
-    sizes = {s.radii.shape[2] for s in sigs}
-    if len(sizes) > 1:
-        raise InvalidInputError(f"signatures have different n_samples {sorted(sizes)}; compute them alike")
-
-
-def shape_distance(
-    a: Any, b: Any, *, n_samples: int = DEFAULT_SAMPLES, prune: float = DEFAULT_PRUNE, **options: Any
-) -> float:
+def shape_distance(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: Any) -> float:
     """Distance between two planar shapes through their medial axes.
 
     The main term walks around each axis (the order in which the boundary
@@ -228,25 +181,19 @@ def shape_distance(
     each sample is an axis point with its radius and a log-polar histogram of
     where the axis's swept area lies around it (:mod:`medialaxis.compare.tour`);
     it is computed for the axis as pruned and for the axis before the
-    method's own pruning, and the better of the two is kept. Two more terms,
-    off by default, add Bai and Latecki's skeleton path matching (``paths``)
-    and the unordered axis context (``context``). Both orientations (mirror
-    images) are tried.
+    method's own pruning, and the better of the two is kept. Both
+    orientations (mirror images) are tried.
 
     Parameters
     ----------
     a, b : MedialAxis, Signature, path, array or shapely geometry
         Planar shapes (anything :func:`medialaxis.medial_axis` takes) or
         their axes / signatures.
-    n_samples, prune : see :func:`medialaxis.compare.signature`
+    prune : see :func:`medialaxis.compare.signature`
     **options
-        Matching parameters (defaults in ``DEFAULTS``): ``tour``, ``paths``,
-        ``context`` (weights of the three terms, >= 0, not all 0); ``gap``
-        (cost of a tour sample left unaligned); ``alpha``, ``beta``,
-        ``gamma`` (weights of the path-length, chord and bend parts of the
-        path cost), ``skip`` (cost of an unaligned path) and ``unmatched``
-        (of an endpoint without partner). Any other keyword goes to
-        :func:`medialaxis.medial_axis` for inputs that are shapes.
+        ``gap`` (cost of a tour sample left unaligned, >= 0; default in
+        ``DEFAULTS``); any other keyword goes to :func:`medialaxis.medial_axis`
+        for inputs that are shapes.
 
     Returns
     -------
@@ -263,8 +210,9 @@ def shape_distance(
 
     References
     ----------
-    X. Bai and L. J. Latecki, "Path similarity skeleton graph matching",
-    IEEE TPAMI 30(7), 2008; paper 000 (the axis "for comparing two shapes").
+    Paper 000 (the axis "for comparing two shapes"); S. Belongie, J. Malik and
+    J. Puzicha, "Shape matching and object recognition using shape contexts",
+    IEEE TPAMI 24(4), 2002 (the histograms, here of medial mass).
 
     Examples
     --------
@@ -277,20 +225,16 @@ def shape_distance(
     >>> mx.shape_distance(bar, bar.T) < 0.05          # transposed: equal up to pixel noise
     True
     """
-    sa, sb, params = _signature_pair(a, b, n_samples, prune, options)
+    sa, sb, params = _signature_pair(a, b, prune, options)
     if sa is sb:
         return 0.0
-    _check_samples([sa, sb])
-    return float(_score_block(_pack([sa, sb], params), np.array([0]), np.array([1]), params)[0])
+    return float(_score_block(_pack([sa, sb]), np.array([0]), np.array([1]), params)[0])
 
 
-def match_tour(
-    a: Any, b: Any, *, n_samples: int = DEFAULT_SAMPLES, prune: float = DEFAULT_PRUNE, **options: Any
-) -> tuple[float, np.ndarray, np.ndarray]:
+def match_tour(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: Any) -> tuple[float, np.ndarray, np.ndarray]:
     """The tour alignment behind the main term of :func:`shape_distance`.
 
-    Parameters are those of :func:`shape_distance` (only ``gap`` matters
-    among the matching ones).
+    Parameters are those of :func:`shape_distance`.
 
     Returns
     -------
@@ -309,56 +253,15 @@ def match_tour(
     >>> d, len(pa), bool(np.array_equal(pa, pb))
     (0.0, 64, True)
     """
-    sa, sb, params = _signature_pair(a, b, n_samples, prune, options)
+    sa, sb, params = _signature_pair(a, b, prune, options)
     value, va, vb, pairs = _kernels.tour_match_reference(sa.tour, sa.tour_radii, sb.tour, sb.tour_radii, params["gap"])
     index = np.asarray(pairs, np.int64).reshape(-1, 2)
     return value, sa.tour_points[va][index[:, 0]], sb.tour_points[vb][index[:, 1]]
 
 
-def match_endpoints(
-    a: Any, b: Any, *, n_samples: int = DEFAULT_SAMPLES, prune: float = DEFAULT_PRUNE, **options: Any
-) -> tuple[float, list[tuple[int, int]]]:
-    """The endpoint correspondence of the skeleton path term (Bai and Latecki).
-
-    Parameters are those of :func:`shape_distance`; the result does not
-    depend on the term weights.
-
-    Returns
-    -------
-    distance : float
-        The path term alone (computed by the NumPy/SciPy reference).
-    pairs : list of (int, int)
-        Matched endpoints: index into ``signature(a).endpoints`` and into
-        ``signature(b).endpoints``.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from medialaxis.compare import match_endpoints
-    >>> bar = np.zeros((60, 90), bool); bar[20:40, 10:80] = True
-    >>> match_endpoints(bar, bar)[1]
-    [(0, 0), (1, 1), (2, 2), (3, 3)]
-    """
-    sa, sb, params = _signature_pair(a, b, n_samples, prune, options, paths=1.0)
-    _check_samples([sa, sb])
-    return _path_kernels.reference_match(_features(sa), _features(sb), *(params[k] for k in _PATH_KEYS))
-
-
 # --------------------------------------------------------------- matrix
 
 
-def _score_block(packed: dict[str, Any], rows: np.ndarray, cols: np.ndarray, params: dict[str, float]) -> np.ndarray:
-    """Weighted sum of the terms for the pairs ``(rows[p], cols[p])``; each term is exactly symmetric."""
-    out = np.zeros(len(rows))
-    if "tour" in packed:
-        out += params["tour"] * _kernels.tour_distances(*packed["tour"], rows, cols, params["gap"])
-    if "paths" in packed:
-        path_params = tuple(params[k] for k in _PATH_KEYS)
-        forward = _path_kernels.pair_distances(*packed["paths"], rows, cols, *path_params)
-        backward = _path_kernels.pair_distances(*packed["paths"], cols, rows, *path_params)
-        out += params["paths"] * np.minimum(forward, backward)  # equal up to rounding; min makes it exactly symmetric
-    if "context" in packed:
-        out += params["context"] * _kernels.context_distances(*packed["context"], rows, cols)
-    return out
-
-
+def _score_block(packed: tuple[np.ndarray, ...], rows: np.ndarray, cols: np.ndarray, params: dict[str, float]) -> np.ndarray:
+    """Distances of the pairs ``(rows[p], cols[p])``; exactly symmetric."""
+    return _kernels.tour_distances(*packed, rows, cols, params["gap"])

@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 
 from medialaxis._progress import progress
-from medialaxis.compare.distance import _check_samples, _options, _pack, _score_block, shape_signature
-from medialaxis.compare.signature import DEFAULT_PRUNE, DEFAULT_SAMPLES, Signature
+from medialaxis.compare.distance import _options, _pack, _score_block, shape_signature
+from medialaxis.compare.signature import DEFAULT_PRUNE, Signature
 from medialaxis.core.parallel import check_jobs, check_scheduler, run_tasks
 from medialaxis.errors import InvalidInputError
 
@@ -32,7 +32,6 @@ def query_distances(
     *,
     n_jobs: int | None = None,
     scheduler: Any = None,
-    n_samples: int = DEFAULT_SAMPLES,
     prune: float = DEFAULT_PRUNE,
     show_progress: bool | None = None,
     **options: Any,
@@ -53,11 +52,10 @@ def query_distances(
     check_jobs(n_jobs)
     check_scheduler(scheduler)
     shapes = list(shapes)
-    sigs = [shape_signature(query, n_samples=n_samples, prune=prune, **axis_options)] + [
-        shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
+    sigs = [shape_signature(query, prune=prune, **axis_options)] + [
+        shape_signature(s, prune=prune, **axis_options)
         for s in progress(shapes, desc="signatures", total=len(shapes), show=show_progress)
     ]
-    _check_samples(sigs)
     if not shapes:
         return np.zeros(0)
     cols = np.arange(1, len(sigs))
@@ -76,7 +74,7 @@ def _score_pairs(
     show_progress: bool | None,
 ) -> np.ndarray:
     """Distances of the signature pairs ``(rows[p], cols[p])``, in blocks on threads or Dask."""
-    packed = _pack(sigs, params)
+    packed = _pack(sigs)
     n_pairs = len(rows)
     workers = (os.cpu_count() or 1) if n_jobs is None else int(n_jobs)
     if scheduler == "synchronous":
@@ -90,7 +88,7 @@ def _score_pairs(
     return values
 
 
-def _score_slice(blk: slice, packed: dict[str, Any], rows: np.ndarray, cols: np.ndarray,
+def _score_slice(blk: slice, packed: tuple[np.ndarray, ...], rows: np.ndarray, cols: np.ndarray,
                  params: dict[str, float]) -> np.ndarray:
     return _score_block(packed, rows[blk], cols[blk], params)
 
@@ -99,7 +97,6 @@ def distance_matrix(
     *,
     n_jobs: int | None = None,
     scheduler: Any = None,
-    n_samples: int = DEFAULT_SAMPLES,
     prune: float = DEFAULT_PRUNE,
     show_progress: bool | None = None,
     **options: Any,
@@ -119,7 +116,7 @@ def distance_matrix(
         ``None``/``"threads"``: local threads; ``"synchronous"``: one thread;
         a ``dask.distributed.Client`` or a scheduler address such as
         ``"tcp://host:8786"``: the blocks of pairs run on that cluster.
-    n_samples, prune, **options
+    prune, **options
         As for :func:`shape_distance` (matching parameters and options for
         :func:`medialaxis.medial_axis`).
     show_progress : bool, optional
@@ -157,10 +154,9 @@ def distance_matrix(
     check_jobs(n_jobs)
     check_scheduler(scheduler)
     sigs = [
-        shape_signature(s, n_samples=n_samples, prune=prune, **axis_options)
+        shape_signature(s, prune=prune, **axis_options)
         for s in progress(shapes, desc="signatures", total=n, show=show_progress)
     ]
-    _check_samples(sigs)
     out = np.zeros((n, n))
     if n == 1:
         return out

@@ -1,25 +1,18 @@
 """Signature of a planar medial axis: what the shape distance compares, computed once per shape.
 
-Three descriptions of the axis (after removing spurious branches), one per
-term of :func:`medialaxis.shape_distance`: the *axis tour* (samples along
-the walk around the axis with their mass histograms and radii, see
-:mod:`medialaxis.compare.tour`); the *skeleton paths* between every pair of
-axis endpoints (Bai and Latecki: the radius function sampled at
-``n_samples`` points equally spaced along the geodesic path, the path's
-length, chord and bend; endpoints listed in the order a walk around the
-shape's boundary meets them); and the unordered *axis context*
-(:mod:`medialaxis.compare.context`). Everything is divided by one scale, the
-square root of the area swept by the axis, so the signature is invariant
-under similarity transforms (rotation, translation, uniform scaling,
-mirroring).
+The *axis tour* (:mod:`medialaxis.compare.tour`) of the axis after removing
+spurious branches: samples along the walk around the axis with their
+swept-mass histograms and radii, for the shape and its mirror image, and for
+the axis as pruned and before the method's own pruning. The walk starts at
+the endpoint whose branch protrudes most (endpoints listed in the order a
+walk around the shape's boundary meets them). Everything is divided by one
+scale, the square root of the area swept by the axis, so the signature is
+invariant under similarity transforms (rotation, translation, uniform
+scaling, mirroring).
 
-References
-----------
-X. Bai and L. J. Latecki, "Path similarity skeleton graph matching",
-IEEE TPAMI 30(7), 2008. Paper 000 (medial axis "for comparing two shapes").
-X. Bai, L. J. Latecki and W.-Y. Liu, "Skeleton pruning by contour partitioning
-with discrete curve evolution", IEEE TPAMI 29(3), 2007 (the optional ``dce``
-pruning, :mod:`medialaxis.compare.dce`).
+Bai and Latecki's skeleton paths and an unordered axis context were part of
+the signature as two more terms; measured on MPEG-7 they did not add to the
+tour and moved to ``benchmarks/research/`` (issue 17).
 """
 
 from __future__ import annotations
@@ -29,19 +22,14 @@ import dataclasses
 import numpy as np
 
 from medialaxis.compare.compared_axis import compared_axis
-from medialaxis.compare.context import axis_context
-from medialaxis.compare.endpoints import endpoint_order, endpoint_paths, endpoint_weights, path_lengths
+from medialaxis.compare.endpoints import endpoint_order, endpoint_weights, path_lengths
 from medialaxis.compare.tour import tour_context
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["Signature", "signature", "DEFAULT_SAMPLES", "DEFAULT_PRUNE"]
+__all__ = ["Signature", "signature", "DEFAULT_PRUNE"]
 
-#: Radius samples per skeleton path.
-DEFAULT_SAMPLES = 24
-#: Interior samples of each path's bend profile.
-N_BEND = 7
 #: Terminal branches protruding less than this fraction of the shape scale
 #: beyond the disc of their junction are dropped before matching. Chosen with
 #: a class split of Kimia-99 (``benchmarks/bench_compare.py --variants``):
@@ -55,23 +43,11 @@ class Signature:
 
     Attributes
     ----------
-    radii : (e, e, s) float64 ndarray
-        ``radii[i, j]`` is the radius function along the geodesic axis path
-        from endpoint ``i`` to endpoint ``j``, sampled at ``s`` points equally
-        spaced in arc length, divided by ``scale``. ``radii[j, i]`` is its reverse.
-    lengths : (e, e) float64 ndarray
-        Geodesic path lengths divided by ``scale`` (symmetric, zero diagonal).
-    chords : (e, e) float64 ndarray
-        Straight-line distances between endpoints divided by ``scale``.
-    bends : (e, e, b) float64 ndarray
-        Bend profile of each path: distance from the midpoint of its chord of
-        the path points at arc-length fractions ``1/(b+1) ... b/(b+1)``,
-        divided by ``scale`` (0 for a straight path's middle).
     weights : (e,) float64 ndarray
         Significance of each endpoint: how far its terminal branch protrudes
         past the disc of its junction (half the path length for an axis
-        without junction), divided by ``scale``. Leaving an endpoint or a
-        path to it unmatched costs in proportion to it.
+        without junction), divided by ``scale``. The tour starts at an
+        endpoint of largest weight.
     endpoints : (e, 2) float64 ndarray
         Endpoint coordinates (input units), in boundary order.
     scale : float
@@ -80,11 +56,6 @@ class Signature:
     points, radii_at_points, edges : ndarray
         The axis actually used (largest component, spurious branches removed),
         kept for pictures.
-    context : (k, h) float64 ndarray
-        Axis-context histograms of ``k`` samples along that axis (see
-        :func:`medialaxis.compare.context.axis_context`).
-    context_radii : (k,) float64 ndarray
-        Radius at each context sample divided by ``scale``.
     tour : (4, t, h) float64 ndarray
         Tour-context histograms of ``t`` samples along the walk around the
         axis (see :func:`medialaxis.compare.tour.tour_context`) in four
@@ -100,18 +71,12 @@ class Signature:
         Positions of the samples of each version on the axis (input units), for pictures.
     """
 
-    radii: np.ndarray
-    lengths: np.ndarray
-    chords: np.ndarray
-    bends: np.ndarray
     weights: np.ndarray
     endpoints: np.ndarray
     scale: float
     points: np.ndarray
     radii_at_points: np.ndarray
     edges: np.ndarray
-    context: np.ndarray
-    context_radii: np.ndarray
     tour: np.ndarray
     tour_radii: np.ndarray
     tour_points: np.ndarray
@@ -164,45 +129,27 @@ def _tour_versions(
 def signature(
     ma: MedialAxis,
     *,
-    n_samples: int = DEFAULT_SAMPLES,
     prune: float = DEFAULT_PRUNE,
     max_endpoints: int = 24,
-    dce: float = 0.0,
-    dce_vertices: int = 3,
     unpruned: bool = False,
 ) -> Signature:
-    """Signature of a planar medial axis (tour, skeleton paths, axis context).
+    """Signature of a planar medial axis (its tour, in four versions).
 
     Parameters
     ----------
     ma : MedialAxis
         A planar (2D) axis, e.g. from :func:`medialaxis.medial_axis`.
-    n_samples : int
-        Radius samples per endpoint-to-endpoint path (Bai and Latecki use 50;
-        24 keeps the pairwise step fast with the same retrieval on Kimia-99).
     prune : float
         Terminal branches protruding less than ``prune * scale`` beyond the
         disc at their junction are dropped (spurious branches of boundary
         noise). ``0`` keeps every branch.
     max_endpoints : int
         If the axis still has more endpoints, the least protruding terminal
-        branches are dropped until it has this many (bounds the pairwise cost).
-    dce : float
-        If > 0, first prune the axis by Discrete Curve Evolution of the
-        shape's outline (``ma.shape``; skipped if it has none): evolve the
-        largest polygon's exterior until every vertex has relevance at least
-        ``dce`` (or ``dce_vertices`` remain), then keep only terminal
-        branches whose tip reaches a convex surviving vertex (Bai, Latecki
-        and Liu; see :mod:`medialaxis.compare.dce`). ``0`` (default): off,
-        as it did not raise the Kimia-99 row (``benchmarks/bench_compare.py
-        --variants``).
-    dce_vertices : int
-        Least number of vertices the evolution keeps (>= 3); with a large
-        ``dce`` (e.g. 1) it is the fixed vertex count.
+        branches are dropped until it has this many.
     unpruned : bool
         Compare the axis before the method's own pruning (``ma.raw``) when
         the result carries it; the spurious branches are then removed only
-        by ``prune`` (and ``dce``).
+        by ``prune``.
 
     Returns
     -------
@@ -215,18 +162,14 @@ def signature(
     EmptyShapeError
         The axis has no point (nothing left after pruning).
 
-    References
-    ----------
-    Bai and Latecki, "Path similarity skeleton graph matching", TPAMI 2008.
-
     Examples
     --------
     >>> import numpy as np, medialaxis as mx
     >>> from medialaxis.compare import signature
     >>> mask = np.zeros((40, 80), bool); mask[10:30, 10:70] = True
     >>> sig = signature(mx.medial_axis(mask))
-    >>> sig.n_endpoints, sig.radii.shape   # a rectangle: four corner branches
-    (4, (4, 4, 24))
+    >>> sig.n_endpoints, sig.tour.shape[0]   # a rectangle: four corner branches; four tour versions
+    (4, 4)
     """
     if not isinstance(ma, MedialAxis):
         raise InvalidInputError(f"expected a MedialAxis, got {type(ma).__name__}")
@@ -234,8 +177,6 @@ def signature(
         raise InvalidInputError(
             f"shape comparison needs a planar (2D curve) axis, got a {ma.dim}D axis with {len(ma.faces)} faces"
         )
-    if not isinstance(n_samples, (int, np.integer)) or n_samples < 2:
-        raise InvalidInputError(f"n_samples must be an integer >= 2, got {n_samples!r}")
     try:
         prune = float(prune)
     except (TypeError, ValueError):
@@ -244,40 +185,24 @@ def signature(
         raise InvalidInputError(f"prune must be finite and >= 0, got {prune!r}")
     if not isinstance(max_endpoints, (int, np.integer)) or max_endpoints < 2:
         raise InvalidInputError(f"max_endpoints must be an integer >= 2, got {max_endpoints!r}")
-    try:
-        dce = float(dce)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"dce must be a number, got {dce!r}") from None
-    if not np.isfinite(dce) or dce < 0:
-        raise InvalidInputError(f"dce must be finite and >= 0, got {dce!r}")
-    if not isinstance(dce_vertices, (int, np.integer)) or dce_vertices < 3:
-        raise InvalidInputError(f"dce_vertices must be an integer >= 3, got {dce_vertices!r}")
     raw = ma.raw if ma.raw is not None and len(ma.raw.points) else None
     if unpruned and raw is not None:
         ma, raw = raw, None
-    points, radii, edges, scale = compared_axis(ma, prune, int(max_endpoints), dce, int(dce_vertices))
-    order = endpoint_order(points, edges)
-    path_r, path_l, bends = endpoint_paths(points, radii, edges, order, int(n_samples), N_BEND)
-    weights = endpoint_weights(points, radii, edges, order, path_l)
-    ends_xy = points[order]
-    chords = np.linalg.norm(ends_xy[:, None, :] - ends_xy[None, :, :], axis=2)
-    context, context_radii = axis_context(points, radii, edges, scale)
-    tours = [_tour_versions(points, radii, edges, scale, order, weights, path_l)]
-    if raw is not None:
-        # The tour of the axis without the method's own pruning (spurious branches removed by
-        # ``prune`` alone): the distance keeps the better of the two comparisons.
-        r_points, r_radii, r_edges, r_scale = compared_axis(raw, prune, int(max_endpoints), dce, int(dce_vertices))
-        r_order = endpoint_order(r_points, r_edges)
-        r_lengths = path_lengths(r_points, r_edges, r_order)
-        r_weights = endpoint_weights(r_points, r_radii, r_edges, r_order, r_lengths)
-        tours.append(_tour_versions(r_points, r_radii, r_edges, r_scale, r_order, r_weights, r_lengths))
-    else:
-        tours.append(tours[0])
-    t = max(version[0].shape[1] for version in tours)
+    versions = []
+    for axis in (ma, raw):
+        if axis is None:
+            versions.append(versions[0])  # no raw graph: the pruned axis twice
+            continue
+        # The axis before the method's own pruning (spurious branches removed by ``prune``
+        # alone) is the second pair of versions: the distance keeps the better comparison.
+        points, radii, edges, scale = compared_axis(axis, prune, int(max_endpoints))
+        order = endpoint_order(points, edges)
+        lengths = path_lengths(points, edges, order)
+        weights = endpoint_weights(points, radii, edges, order, lengths)
+        tours = _tour_versions(points, radii, edges, scale, order, weights, lengths)
+        versions.append((tours, (weights / scale, points[order], scale, points, radii, edges)))
+    t = max(tours[0].shape[1] for tours, _ in versions)
     # An axis pruned to one point has a one-sample tour: that sample, all along the walk.
-    tours = [tuple(np.repeat(part, t // part.shape[1], axis=1) for part in version) for version in tours]
-    tour, tour_radii, tour_points = (np.concatenate(parts) for parts in zip(*tours))
-    return Signature(
-        path_r / scale, path_l / scale, chords / scale, bends / scale, weights / scale, ends_xy, scale, points, radii,
-        edges, context, context_radii, tour, tour_radii, tour_points,
-    )
+    parts = [tuple(np.repeat(part, t // part.shape[1], axis=1) for part in tours) for tours, _ in versions]
+    tour, tour_radii, tour_points = (np.concatenate(column) for column in zip(*parts))
+    return Signature(*versions[0][1], tour, tour_radii, tour_points)

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from medialaxis.compare.context import RADIAL_CENTRES, along, mass_histograms, pieces
+from medialaxis.compare.histograms import RADIAL_CENTRES, along, mass_histograms, pieces
 
 __all__ = ["tour_context", "rotation_system", "outer_face", "N_TOUR", "N_TOUR_ANGULAR"]
 

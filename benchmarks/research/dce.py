@@ -10,9 +10,10 @@ endpoints correspond to those vertices: a terminal branch whose tip does not
 reach a convex DCE vertex is removed, from the tips inward, which never
 disconnects the axis.
 
-Off by default. Measured on MPEG-7 (35 dev classes, a set it was not tuned on)
-with the default tour distance: without 87.59%, ``dce=0.01`` 87.54%, ``dce=0.02``
-87.61%: no gain.
+Moved out of the package (issue 17). Measured on MPEG-7 (35 dev classes, a
+set it was not tuned on) with the default tour distance: without 87.59%,
+``dce=0.01`` 87.54%, ``dce=0.02`` 87.61%: no gain. On Kimia-99 it did not raise
+the path term's row either (``bench_compare.py --variants``).
 
 References
 ----------
@@ -32,7 +33,7 @@ import numpy as np
 from medialaxis.core import graph as _graph
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["dce", "relevance", "convex_dce_vertices", "dce_prune"]
+__all__ = ["dce", "relevance", "convex_dce_vertices", "dce_prune", "outline"]
 
 #: Ties in relevance (symmetric shapes) within this relative amount are removed together.
 _TIE = 1e-6
@@ -240,3 +241,13 @@ def dce_prune(points: np.ndarray, radii: np.ndarray, edges: np.ndarray, convex: 
             break
         edges = kept
     return edges
+
+
+def outline(shape: Any) -> np.ndarray | None:
+    """Exterior vertices (first not repeated) of the largest polygon of ``shape``, or None."""
+    geoms = getattr(shape, "geoms", [shape])
+    polys = [g for g in geoms if getattr(g, "geom_type", None) == "Polygon" and not g.is_empty]
+    if not polys:
+        return None
+    coords = np.asarray(max(polys, key=lambda g: g.area).exterior.coords, dtype=np.float64)[:-1]
+    return coords if len(coords) >= 3 else None

@@ -1,6 +1,6 @@
-"""Compiled skeleton-path term of the shape distance (Bai and Latecki, TPAMI 2008), with NumPy references.
+"""Compiled skeleton-path term (Bai and Latecki, TPAMI 2008), with NumPy references; moved out of the package.
 
-Off by default (weight ``paths=0``). Per pair:
+Per pair:
 
 1. path cost between path ``(i, j)`` of shape A and path ``(k, l)`` of B, with
    ``chi(x, y) = (x - y)**2 / (x + y)``:
@@ -19,7 +19,11 @@ Off by default (weight ``paths=0``). Per pair:
 
 Measured on MPEG-7 (35 dev classes, not the Kimia-99 set it was tuned on):
 the tour alone 87.59%, with 0.1 paths 87.64%, with 0.3 paths 87.65%: the
-term does not earn its cost there (it is most of the pair time when on).
+term does not earn its cost there (it is most of the pair time when on), so
+it left the package (issue 17); see :mod:`research`.
+
+:func:`assignment` (compiled Hungarian) serves this term and the axis
+context (:mod:`research.axis_context`).
 """
 
 from __future__ import annotations
@@ -28,9 +32,70 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from medialaxis._jit import njit
-from medialaxis.compare._kernels import EPS, FORBIDDEN, assignment
+from medialaxis.compare._kernels import EPS
 
-__all__ = ["pack", "pair_distances", "reference_distance", "reference_match", "path_costs_reference"]
+__all__ = [
+    "FORBIDDEN", "assignment", "pack", "pair_distances", "reference_distance", "reference_match",
+    "path_costs_reference",
+]
+
+#: Cost of a forbidden assignment (finite so the potentials stay finite).
+FORBIDDEN = 1e12
+
+
+@njit(cache=True, nogil=True)
+def assignment(cost):  # pragma: no cover - compiled
+    """Minimum total of a one-to-one assignment of the rows of ``cost`` (rows <= cols).
+
+    Shortest augmenting paths with potentials (Kuhn-Munkres, O(n^2 m)).
+    """
+    n, m = cost.shape
+    inf = np.inf
+    u = np.zeros(n + 1)
+    v = np.zeros(m + 1)
+    match = np.zeros(m + 1, np.int64)  # match[j] = row (1-based) assigned to column j
+    way = np.zeros(m + 1, np.int64)
+    minv = np.empty(m + 1)
+    used = np.empty(m + 1, np.bool_)
+    for i in range(1, n + 1):
+        match[0] = i
+        j0 = 0
+        minv[:] = inf
+        used[:] = False
+        while True:
+            used[j0] = True
+            i0 = match[j0]
+            delta = inf
+            j1 = 0
+            for j in range(1, m + 1):
+                if not used[j]:
+                    cur = cost[i0 - 1, j - 1] - u[i0] - v[j]
+                    if cur < minv[j]:
+                        minv[j] = cur
+                        way[j] = j0
+                    if minv[j] < delta:
+                        delta = minv[j]
+                        j1 = j
+            for j in range(m + 1):
+                if used[j]:
+                    u[match[j]] += delta
+                    v[j] -= delta
+                else:
+                    minv[j] -= delta
+            j0 = j1
+            if match[j0] == 0:
+                break
+        while True:
+            j1 = way[j0]
+            match[j0] = match[j1]
+            j0 = j1
+            if j0 == 0:
+                break
+    total = 0.0
+    for j in range(1, m + 1):
+        if match[j] != 0:
+            total += cost[match[j] - 1, j - 1]
+    return total
 
 
 Packed = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]

@@ -1,11 +1,11 @@
-"""The compiled pairwise step against its NumPy/SciPy reference."""
+"""The compiled path and context kernels (benchmarks/research) against their NumPy/SciPy references."""
 
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 
-from medialaxis.compare import _kernels, _path_kernels
+from research import axis_context, path_kernels
 
 
 def _symmetric_paths(rng, e, s):
@@ -29,9 +29,9 @@ def test_compiled_pair_matches_reference(seed, na, nb):
     rng = np.random.default_rng(seed)
     a, b = _random_features(rng, na), _random_features(rng, nb)
     params = tuple(rng.uniform(0, 1, 5))
-    packed = _path_kernels.pack(*(list(col) for col in zip(a, b)))
-    got = _path_kernels.pair_distances(*packed, np.array([0, 1]), np.array([1, 0]), *params)
-    want = _path_kernels.reference_distance(a, b, *params)
+    packed = path_kernels.pack(*(list(col) for col in zip(a, b)))
+    got = path_kernels.pair_distances(*packed, np.array([0, 1]), np.array([1, 0]), *params)
+    want = path_kernels.reference_distance(a, b, *params)
     assert np.allclose(got, want, rtol=1e-9, atol=1e-12)
 
 
@@ -39,12 +39,12 @@ def test_compiled_pair_matches_reference(seed, na, nb):
 def test_assignment_matches_scipy(seed, n, extra):
     cost = np.random.default_rng(seed).uniform(0, 10, (n, n + extra))
     rows, cols = linear_sum_assignment(cost)
-    assert np.isclose(_kernels.assignment(cost), cost[rows, cols].sum())
+    assert np.isclose(path_kernels.assignment(cost), cost[rows, cols].sum())
 
 
 def test_path_costs_reference_is_zero_on_itself():
     r, L, C, B, _ = _random_features(np.random.default_rng(1), 4)
-    pc = _path_kernels.path_costs_reference(r, L, C, B, r, L, C, B, 0.5, 0.2, 0.3)
+    pc = path_kernels.path_costs_reference(r, L, C, B, r, L, C, B, 0.5, 0.2, 0.3)
     for i in range(4):
         for j in range(4):
             assert pc[i, j, i, j] == 0.0
@@ -61,16 +61,16 @@ def _random_context(rng, k, n_radial=5, n_angular=6):
 def test_compiled_context_matches_reference_and_is_symmetric(seed, ka, kb):
     rng = np.random.default_rng(seed)
     (ha, ra), (hb, rb) = _random_context(rng, ka), _random_context(rng, kb)
-    packed = _kernels.pack_context([ha, hb], [ra, rb], 6)
-    got = _kernels.context_distances(*packed, np.array([0, 1]), np.array([1, 0]))
+    packed = axis_context.pack_context([ha, hb], [ra, rb], 6)
+    got = axis_context.context_distances(*packed, np.array([0, 1]), np.array([1, 0]))
     assert got[0] == got[1]  # exactly symmetric
-    want = min(_kernels.context_distance_reference(ha, ra, hb, rb, 6), _kernels.context_distance_reference(hb, rb, ha, ra, 6))
+    want = min(axis_context.context_distance_reference(ha, ra, hb, rb, 6), axis_context.context_distance_reference(hb, rb, ha, ra, 6))
     assert np.isclose(got[0], want, rtol=1e-9, atol=1e-12)
 
 
 def test_context_is_zero_on_itself_and_mirror_reverses_angle_bins():
     ha, ra = _random_context(np.random.default_rng(3), 6)
     mirrored = ha.reshape(6, 5, 6)[:, :, ::-1].reshape(6, 30)
-    packed = _kernels.pack_context([ha, mirrored[::-1]], [ra, ra[::-1]], 6)
-    got = _kernels.context_distances(*packed, np.array([0, 0]), np.array([0, 1]))
+    packed = axis_context.pack_context([ha, mirrored[::-1]], [ra, ra[::-1]], 6)
+    got = axis_context.context_distances(*packed, np.array([0, 0]), np.array([0, 1]))
     assert got[0] == 0.0 and abs(got[1]) < 1e-12

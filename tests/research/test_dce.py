@@ -8,11 +8,11 @@ from shapely import affinity
 from shapely.geometry import Polygon, box
 
 import medialaxis as mx
-from medialaxis.compare import signature
-from medialaxis.compare.dce import convex_dce_vertices, dce, dce_prune, relevance
 from medialaxis.compare.distance import VECTOR_TOLERANCE
 from medialaxis.core import graph
 from medialaxis.errors import InvalidInputError
+from research.dce import convex_dce_vertices, dce, dce_prune, relevance
+from research.path_similarity import path_signature, previous_default, term_matrices
 
 
 def _reference_dce(v, threshold, min_vertices=3):
@@ -94,11 +94,6 @@ def test_dce_errors():
         dce(np.eye(3)[:, :2], -1.0)
     with pytest.raises(InvalidInputError, match="min_vertices"):
         dce(np.eye(3)[:, :2], 0.1, min_vertices=2)
-    ma = mx.medial_axis(box(0, 0, 4, 1))
-    with pytest.raises(InvalidInputError, match="dce"):
-        signature(ma, dce=-0.1)
-    with pytest.raises(InvalidInputError, match="dce_vertices"):
-        signature(ma, dce=0.1, dce_vertices=1)
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -119,17 +114,17 @@ def test_dce_prune_keeps_the_axis_connected_and_ends_claimed(seed):
     assert claimed.all() or len(ends) == 2
 
 
-def test_signature_with_dce_is_a_similarity_invariant():
+def test_path_signature_with_dce_is_a_similarity_invariant():
     a = Polygon(_blob(np.random.default_rng(3), n=120, noise=0.02))
     b = box(0, 0, 10, 3).union(box(3, 0, 5, 9))
 
     def sig(geom):
         ma = mx.medial_axis(geom, tolerance=VECTOR_TOLERANCE * np.sqrt(geom.area))
-        return signature(ma, dce=1.0, dce_vertices=16, unpruned=True)
+        return path_signature(ma, dce=1.0, dce_vertices=16, unpruned=True)
 
-    base = mx.shape_distance(sig(a), sig(b))
-    assert mx.shape_distance(sig(a), sig(a)) == 0.0
-    for angle, factor, mirror in ((33.0, 2.5, False), (-120.0, 0.3, True)):
-        g = affinity.scale(affinity.rotate(a, angle, origin=(0, 0)), -factor if mirror else factor, factor, origin=(0, 0))
-        got = mx.shape_distance(sig(affinity.translate(g, 7, -3)), sig(b))
-        assert got == pytest.approx(base, rel=1e-6, abs=1e-9)
+    moved = [affinity.translate(affinity.scale(affinity.rotate(a, angle, origin=(0, 0)), -f if mirror else f, f,
+                                               origin=(0, 0)), 7, -3)
+             for angle, f, mirror in ((33.0, 2.5, False), (-120.0, 0.3, True))]
+    D = previous_default(term_matrices([sig(g) for g in (a, b, a, *moved)], n_jobs=1))
+    assert D[0, 2] == 0.0 and D[0, 1] > 0.05
+    assert D[1, 3:] == pytest.approx([D[0, 1]] * 2, rel=1e-6, abs=1e-9)
