@@ -72,3 +72,28 @@ def test_demo_case_writes_match_picture(tmp_path):
     line = run(tmp_path)
     assert title == "compare" and line.startswith("compare:")
     assert (tmp_path / "compare_match.png").stat().st_size > 1000
+
+
+def test_search_draws_the_top_matches_as_a_grid(kimia_dir, tmp_path, capsys):
+    import shutil
+
+    from PIL import Image
+
+    folder = tmp_path / "shapes"
+    folder.mkdir()
+    for name in ("class2_01", "class2_02", "class5_01", "class9_01", "class7_02"):
+        shutil.copy(kimia_dir / f"{name}.png", folder / f"{name}.png")
+    out = tmp_path / "grid.png"
+    query = kimia_dir / "class2_03.png"
+    assert main(["search", str(query), str(folder), "--top", "4", "--columns", "3", "--jobs", "1", "-o", str(out)]) == 0
+    assert len(capsys.readouterr().out.strip().splitlines()) == 4
+    with Image.open(out) as im:  # two rows of three panels: the query and four matches
+        assert im.width > im.height > 300
+        grey = np.asarray(im.convert("L"))
+    assert (grey < 128).mean() > 0.005  # shapes and text drawn, not a blank page
+    # Refused before any work: a picture path that is an input, a bad format, a bad column count.
+    assert main(["search", str(query), str(folder), "-o", str(folder / "class2_01.png")]) == 2
+    assert main(["search", str(query), str(folder), "-o", str(tmp_path / "grid.txt")]) == 2
+    assert main(["search", str(query), str(folder), "--columns", "0"]) == 2
+    assert sorted(p.name for p in folder.iterdir()) == sorted(f"{n}.png" for n in (
+        "class2_01", "class2_02", "class5_01", "class9_01", "class7_02"))

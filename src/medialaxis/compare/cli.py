@@ -16,7 +16,7 @@ import numpy as np
 
 from medialaxis._help import HelpFormatter, UsageError
 
-__all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture"]
+__all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture", "save_search_grid"]
 
 #: File types ``search`` ranks inside a folder.
 PLANAR_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff", ".svg", ".geojson", ".json", ".wkt", ".npz")
@@ -57,17 +57,43 @@ def _axis(path: Path) -> Any:
     return mx.medial_axis(str(path))  # a saved result (.json/.npz) comes back as loaded
 
 
+def _check_picture(output: Path | None, inputs: list[Path]) -> None:
+    """Refuse a picture path that is not .png/.svg/.pdf, is one of the inputs, or cannot be written; before any work."""
+    if output is None:
+        return
+    if output.suffix.lower() not in (".png", ".svg", ".pdf"):
+        raise UsageError(f"--output needs a .png, .svg or .pdf file, got {str(output)!r}")
+    if output.exists() and any(output.resolve() == p.resolve() for p in inputs):
+        raise UsageError(f"refusing to overwrite the input file {str(output)!r}")
+    from medialaxis.core.io import check_writable
+
+    check_writable(output)
+
+
+def _save_figure(fig: Any, path: Path) -> None:
+    """Write a matplotlib figure atomically in the format of ``path``'s suffix and close it."""
+    import matplotlib.pyplot as plt
+
+    from medialaxis.core.io import atomic_write
+
+    with atomic_write(path, "wb") as fh:
+        fig.savefig(fh, format=path.suffix.lower().lstrip("."), dpi=100, bbox_inches="tight")
+    plt.close(fig)
+
+
+def _pyplot() -> Any:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
 def _run_compare(args: argparse.Namespace) -> int:
     from medialaxis.compare.distance import match_tour, shape_distance
 
-    if args.output is not None:
-        if args.output.suffix.lower() not in (".png", ".svg", ".pdf"):
-            raise UsageError(f"--output needs a .png, .svg or .pdf file, got {str(args.output)!r}")
-        if args.output.exists() and any(args.output.resolve() == p.resolve() for p in (args.first, args.second)):
-            raise UsageError(f"refusing to overwrite the input file {str(args.output)!r}")
-        from medialaxis.core.io import check_writable
-
-        check_writable(args.output)  # before any work
+    _check_picture(args.output, [args.first, args.second])
     a, b = _axis(args.first), _axis(args.second)
     options = _matching(args)
     distance = shape_distance(a, b, **options)
@@ -96,16 +122,10 @@ def save_match_picture(
     The colour runs along the walk around the first axis, so matched parts
     of the two shapes show in the same hues.
     """
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
     from medialaxis.compare.distance import shape_signature
-    from medialaxis.core.io import atomic_write
     from medialaxis.core.plot import draw_region
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 5))
+    fig, axes = _pyplot().subplots(1, 2, figsize=(10, 5))
     hue = np.linspace(0.0, 1.0, max(len(points_a), 1))
     for ma, ax, title, matched in zip((a, b), axes, titles, (points_a, points_b)):
         sig = shape_signature(ma, prune=prune)
@@ -128,10 +148,38 @@ def save_match_picture(
         ax.set_title(title)
         ax.set_axis_off()
     fig.suptitle(f"distance {distance:.4g}; aligned samples of the walks around the axes share a colour")
-    fmt = path.suffix.lower().lstrip(".")
-    with atomic_write(path, "wb") as fh:
-        fig.savefig(fh, format=fmt, dpi=100, bbox_inches="tight")
-    plt.close(fig)
+    _save_figure(fig, path)
+
+
+def save_search_grid(query: Path, results: list[tuple[Path, float]], path: Path, *, columns: int = 4) -> None:
+    """Draw the query and its best matches as a grid: each shape with its medial axis, rank and distance."""
+    import medialaxis as mx
+    from medialaxis.core.plot import draw_axis, draw_region
+
+    panels = [(query, "query", "#2c6fbb")] + [
+        (p, f"{rank}. distance {d:.3g}", "#445") for rank, (p, d) in enumerate(results, 1)
+    ]
+    cols = max(1, min(columns, len(panels)))
+    rows = -(-len(panels) // cols)
+    fig, axes = _pyplot().subplots(rows, cols, figsize=(2.6 * cols, 2.9 * rows), squeeze=False)
+    for ax in axes.ravel()[len(panels):]:
+        ax.set_visible(False)
+    for ax, (shape_path, title, colour) in zip(axes.ravel(), panels):
+        ma = mx.medial_axis(str(shape_path))
+        if ma.shape is not None:
+            draw_region(ax, ma, ma.shape)
+        draw_axis(ax, ma, color_by_radius=False, lw=1.0)
+        ax.autoscale_view()
+        ax.set_aspect("equal")
+        if "image_shape" in ma.metadata:
+            ax.invert_yaxis()
+        ax.set_title(f"{title}\n{shape_path.name}", fontsize=9, color=colour)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        for spine in ax.spines.values():
+            spine.set_color(colour)
+    fig.suptitle(f"{query.name}: the {len(results)} nearest by medial-axis distance", fontsize=11)
+    _save_figure(fig, path)
 
 
 # ------------------------------------------------------------- search
@@ -148,6 +196,9 @@ def add_search(sub: Any) -> None:
     p.add_argument("--top", type=int, default=10, help="number of results printed")
     p.add_argument("--jobs", type=int, default=None, help="worker threads (default: all CPUs)")
     p.add_argument("--scheduler", default=None, help="Dask scheduler address (tcp://host:port) to run the pairs on a cluster")
+    p.add_argument("-o", "--output", type=Path, default=None,
+                   help="picture of the query and the top matches as a grid with distances (.png, .svg or .pdf)")
+    p.add_argument("--columns", type=int, default=4, help="panels per row of the --output grid")
     _add_matching_options(p)
     p.set_defaults(run=_run_search)
 
@@ -161,11 +212,14 @@ def _run_search(args: argparse.Namespace) -> int:
         raise UsageError(f"--top must be >= 1, got {args.top}")
     if args.jobs is not None and args.jobs < 1:
         raise UsageError(f"--jobs must be >= 1, got {args.jobs}")
+    if args.columns < 1:
+        raise UsageError(f"--columns must be >= 1, got {args.columns}")
     if not args.folder.is_dir():
         raise InputFileError(f"not a folder: {str(args.folder)!r}")
     files = sorted(p for p in args.folder.iterdir() if p.is_file() and p.suffix.lower() in PLANAR_SUFFIXES)
     if not files:
         raise InputFileError(f"no shape files ({', '.join(PLANAR_SUFFIXES)}) in {str(args.folder)!r}")
+    _check_picture(args.output, [args.query, *files])
     options = _matching(args)
     query = shape_signature(str(args.query), prune=args.prune)
     sigs, kept = [], []
@@ -184,4 +238,7 @@ def _run_search(args: argparse.Namespace) -> int:
     skipped = len(files) - len(kept)
     if skipped:
         print(f"medialaxis: {skipped} file(s) skipped", file=sys.stderr)
+    if args.output is not None:
+        save_search_grid(args.query, [(kept[k], float(distances[k])) for k in order], args.output, columns=args.columns)
+        print(f"wrote {args.output}", file=sys.stderr)
     return 0
