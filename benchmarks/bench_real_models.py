@@ -132,10 +132,11 @@ def main() -> None:
             continue
         secs = time.perf_counter() - t0
         b0, b1, b2 = ma.betti
+        full = ma.raw if ma.raw is not None else ma  # the balls of the full complex (the compact one's are few)
         cover = covered_volume(interior_grid(np.asarray(mesh.vertices), np.asarray(mesh.faces), args.samples),
-                               ma.points, ma.radii)
+                               full.points, full.radii)
         ok = "ok" if (b0, b1) == (shells, solid_b1) and cover >= 0.95 else "MISS"
-        line += f" {b0:5d}/{b1:<3d}/{b2:<3d} {cover:6.1%} {len(ma.faces):8d} {secs:7.1f} {ok:4s} |"
+        line += f" {b0:5d}/{b1:<3d}/{b2:<3d} {cover:6.1%} {len(full.faces):8d} {secs:7.1f} {ok:4s} |"
         if not args.no_flow:
             t0 = time.perf_counter()
             try:

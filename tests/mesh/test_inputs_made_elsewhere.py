@@ -170,8 +170,10 @@ def test_every_medial_ball_of_a_union_lies_inside_it():
     # A faster Delaunay setting once signed a far circumcentre of a near-flat tetrahedron
     # inside: a 'medial ball' of radius 213 on this 6-unit shape.
     hand = _hand()
-    ma = mx.medial_axis(hand, method="voronoi")
+    compact = mx.medial_axis(hand, method="voronoi")
+    ma = compact.raw  # the full complex
     assert ma.radii.max() <= 1.0 + 1e-3  # the body ball is the largest inside (truth: the construction)
     check = np.union1d(np.argsort(ma.radii)[-500:], np.random.default_rng(0).choice(len(ma.points), 1500, replace=False))
     assert (_winding_numbers(hand, ma.points[check]) > 0.5).all()  # inside, by the mesh's own solid angles
-    assert ma.betti == (1, _genus(hand), 0) == (1, 0, 0)
+    assert (_winding_numbers(hand, compact.points) > 0.5).all()
+    assert ma.betti == compact.betti == (1, _genus(hand), 0) == (1, 0, 0)

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
+from mesh_balls import interpolated_balls
 from scipy.spatial import cKDTree
 
 import medialaxis as mx
@@ -56,12 +57,15 @@ def test_the_medial_complex_has_the_solids_topology(model):
     assert ma.betti == (shells, genus, 0)
 
 
-def test_the_balls_cover_the_solid(model):
+@pytest.mark.parametrize("full", [True, False], ids=["full", "compact"])
+def test_the_balls_cover_the_solid(model, full):
     _, mesh, ma = model
     points = _inside_grid(mesh, 0.025 * float(np.linalg.norm(mesh.extents)))
     assert len(points) > 2000
-    big = float(ma.radii.max())
-    lifted = np.column_stack([ma.points, np.sqrt(big**2 - ma.radii**2)])
+    # the full complex: its Voronoi balls; the compact one: the balls interpolated over it
+    centres, radii = (ma.raw.points, ma.raw.radii) if full else interpolated_balls(ma)
+    big = float(radii.max())
+    lifted = np.column_stack([centres, np.sqrt(big**2 - radii**2)])
     dist, _ = cKDTree(lifted).query(np.column_stack([points, np.zeros(len(points))]))
     covered = dist**2 - big**2 <= 1e-9 * big**2  # power distance <= 0: inside some ball
     assert covered.mean() >= 0.95

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import trimesh
+from mesh_balls import interpolated_balls
 
 import medialaxis as mx
 from medialaxis.errors import EmptyShapeError, InvalidInputError
@@ -64,15 +65,44 @@ def torus(torus_mesh):
 
 
 # ------------------------------------------------------------ known answers
-def test_capsule_axis_is_its_segment(capsule):
-    p = capsule.points
+@pytest.mark.parametrize("full", [False, True], ids=["compact", "full"])
+def test_capsule_axis_is_its_segment(capsule, full):
+    ma = capsule.raw if full else capsule
+    p = ma.points
     z = np.clip(p[:, 2], -1.0, 1.0)
     to_segment = np.sqrt(p[:, 0] ** 2 + p[:, 1] ** 2 + (p[:, 2] - z) ** 2)
-    assert len(p) > 100
     assert to_segment.max() <= 0.03 * 0.5
-    assert np.abs(capsule.radii - 0.5).max() <= 0.03 * 0.5
+    assert np.abs(ma.radii - 0.5).max() <= 0.03 * 0.5
     # the whole segment is covered, not only its middle
     assert p[:, 2].min() < -0.9 and p[:, 2].max() > 0.9
+    if full:
+        assert len(p) > 100 and len(ma.faces) > 1000  # the sampling noise: a fan of narrow sheets
+    else:
+        # compact: a polyline with radii (a stray sliver at most), its ends near the cap centres
+        assert len(p) <= 12 and len(ma.faces) <= 2 and ma.metadata["n_curve_edges"] >= 1
+        assert ma.betti == (1, 0, 0)
+
+
+@pytest.mark.parametrize("name", ["capsule", "box", "torus"])
+def test_compact_complex_is_smaller_with_the_same_topology(name, request):
+    ma = request.getfixturevalue(name)
+    mesh = request.getfixturevalue(name + "_mesh")
+    full = ma.raw
+    assert full is not None and not full.metadata.get("compact")
+    assert ma.metadata["full_faces"] == len(full.faces) and ma.metadata["full_points"] == len(full.points)
+    # the solid's topology from its own surface: one piece, genus g = 1 - chi(surface) / 2
+    genus = 1 - mesh.euler_number // 2
+    assert ma.betti == full.betti == (1, genus, 0)
+    assert len(ma.faces) <= 0.01 * len(full.faces) and len(ma.points) <= 0.02 * len(full.points)
+    # kept spheres are spheres of the full complex, with their extras; their radius is the exact
+    # distance to the mesh (brute force), which the full complex's local search may overshoot
+    index = {tuple(p): k for k, p in enumerate(full.points.tolist())}
+    rows = np.array([index[tuple(p)] for p in ma.points.tolist()])
+    assert np.array_equal(ma.contacts, full.contacts[rows])
+    with pytest.raises(InvalidInputError, match="compact"):
+        voronoi_medial_axis(mesh, samples=2000, compact="no")
+    assert np.all(ma.radii <= full.radii[rows])
+    assert np.allclose(ma.radii, closest_point_reference(ma.points, mesh.triangles), rtol=1e-9, atol=1e-12)
 
 
 def test_box_medial_surface_is_its_planar_pieces(box):
@@ -122,14 +152,15 @@ def test_medial_certificate(name, request):
     gap = np.linalg.norm(contacts[:, :, None] - contacts[:, None, :], axis=3).max(axis=(1, 2))
     assert np.all(gap >= lam)
     assert np.all(ma.face_contact_diameter >= lam)
-    # the union of balls covers at least 95 % of the solid
+    # the union of the balls interpolated over the complex covers at least 95 % of the solid
     lo, hi = mesh.bounds
     x = rng.uniform(lo, hi, size=(2500, 3))
     x = x[winding_number(mesh, x) > 0.5]
+    centres, radii = interpolated_balls(ma)
     covered = np.zeros(len(x), bool)
-    for chunk in np.array_split(np.arange(len(ma.points)), 20):
-        d = np.linalg.norm(x[:, None] - ma.points[None, chunk], axis=2)
-        covered |= (d <= ma.radii[chunk]).any(axis=1)
+    for chunk in np.array_split(np.arange(len(centres)), max(1, len(centres) // 2000)):
+        d = np.linalg.norm(x[:, None] - centres[None, chunk], axis=2)
+        covered |= (d <= radii[chunk]).any(axis=1)
     assert covered.mean() >= 0.95
 
 
@@ -244,7 +275,7 @@ def test_dispatch_file_input_and_outputs(tmp_path, capsule_mesh):
     path = tmp_path / "capsule.ply"
     capsule_mesh.export(path)
     ma = mx.medial_axis(str(path), method="voronoi", samples=6000)
-    assert ma.metadata["domain"] == "mesh" and ma.dim == 3 and len(ma.faces)
+    assert ma.metadata["domain"] == "mesh" and ma.dim == 3 and len(ma.edges) and len(ma.raw.faces)
     for ext in (".ply", ".obj", ".npz", ".json"):
         ma.save(tmp_path / f"out{ext}")
         assert (tmp_path / f"out{ext}").stat().st_size > 0

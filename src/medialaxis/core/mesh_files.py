@@ -78,29 +78,39 @@ def _cells(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray]:
 
 
 def write_ply(ma: MedialAxis, fh: object) -> None:
-    """Binary PLY: ``vertex`` (x, y, z and the point fields), ``face`` (triangles,
-    or a curve result's edges as two-point faces)."""
+    """Binary PLY: ``vertex`` (x, y, z and the point fields), ``face`` (the
+    triangles, or a curve result's edges as two-point faces) and, for a
+    complex of triangles and curve pieces, the pieces as the standard ``edge``
+    element (``vertex1``, ``vertex2``). trimesh keeps them
+    (``metadata["_ply_raw"]["edge"]``) and VTK reads the triangles; meshio's
+    PLY reader knows no ``edge`` element: use .vtu or .vtk there."""
     fields = point_fields(ma)
     xyz = points_3d(ma)
     faces = np.asarray(ma.faces, np.int64).reshape(-1, 3)
-    polys = faces if len(faces) else curve_edges(ma)
-    if len(polys) == 0:  # points only
-        polys = faces
-    k = polys.shape[1]
+    curves = curve_edges(ma)
+    parts = [faces] if len(faces) else [curves] if len(curves) else []
+    extra = curves if len(faces) else curves[:0]
     header = ["ply", "format binary_little_endian 1.0", "comment medialaxis result", f"element vertex {len(xyz)}",
               "property double x", "property double y", "property double z"]
     header += [f"property double {name}" for name in fields]
-    header += [f"element face {len(polys)}", "property list uchar int vertex_indices", "end_header"]
+    header += [f"element face {sum(len(part) for part in parts)}", "property list uchar int vertex_indices"]
+    if len(extra):
+        header += [f"element edge {len(extra)}", "property int vertex1", "property int vertex2"]
+    header.append("end_header")
     vert = np.empty(len(xyz), dtype=[(name, "<f8") for name in ("x", "y", "z", *fields)])
     for j, axis in enumerate("xyz"):
         vert[axis] = xyz[:, j]
     for name, values in fields.items():
         vert[name] = values
-    face = np.empty(len(polys), dtype=[("k", "u1"), ("v", "<i4", (k,))])
-    face["k"], face["v"] = k, polys
     fh.write(("\n".join(header) + "\n").encode("ascii"))  # type: ignore[attr-defined]
     fh.write(vert.tobytes())  # type: ignore[attr-defined]
-    fh.write(face.tobytes())  # type: ignore[attr-defined]
+    for part in parts:
+        k = part.shape[1]
+        face = np.empty(len(part), dtype=[("k", "u1"), ("v", "<i4", (k,))])
+        face["k"], face["v"] = k, part
+        fh.write(face.tobytes())  # type: ignore[attr-defined]
+    if len(extra):
+        fh.write(np.ascontiguousarray(extra, "<i4").tobytes())  # type: ignore[attr-defined]
 
 
 def write_vtk(ma: MedialAxis, fh: object) -> None:

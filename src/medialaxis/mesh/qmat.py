@@ -323,7 +323,7 @@ def hausdorff_to_surface(
         inside one of the 16 nearest or 16 largest spheres) to the surface.
     """
     from medialaxis.mesh.sampling import random_surface_points, sample_surface
-    from medialaxis.mesh.voronoi import SignedDistance
+    from medialaxis.mesh.signed_distance import SignedDistance
 
     sph = _interpolated_spheres(centres, radii, faces, edges)
     c, r = sph[:, :3], sph[:, 3]

@@ -24,13 +24,11 @@ import time
 from typing import Any, Literal
 
 import numpy as np
-from scipy import sparse
 from scipy.spatial import cKDTree
 
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError, ResourceLimitError
-from medialaxis.mesh._voronoi_kernels import REGION_FACE, closest_on_candidates
 from medialaxis.mesh.inputs import load_mesh
 from medialaxis.mesh.sampling import (
     PseudoNormals,
@@ -39,6 +37,7 @@ from medialaxis.mesh.sampling import (
     pseudo_normals,
     sample_surface,
 )
+from medialaxis.mesh.signed_distance import SignedDistance
 from medialaxis.mesh.voronoi_complex import THIN_SPACINGS, THIN_SPAN, TOPOLOGY_MODES, medial_complex
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
@@ -57,65 +56,6 @@ MAX_SAMPLES = 2_000_000
 VOLUME_TOLERANCE = 2e-3
 #: Spacing adapts to local feature size within this ratio (finest : coarsest).
 ADAPTIVE_RANGE = 4.0
-
-
-class SignedDistance:
-    """Exact signed distance to a closed mesh near a surface sample.
-
-    Candidate faces of a query are those sharing a vertex with the faces of
-    a few sample points the caller names (for a Voronoi vertex: the four
-    samples of its tetrahedron, which are its nearest samples).
-
-    Parameters
-    ----------
-    mesh : trimesh.Trimesh
-        Closed and outward oriented.
-    normals : PseudoNormals, optional
-    """
-
-    def __init__(self, mesh: Any, normals: PseudoNormals | None = None) -> None:
-        self.vertices = np.asarray(mesh.vertices, np.float64)
-        self.faces = np.asarray(mesh.faces, np.int64)
-        self.normals = pseudo_normals(mesh) if normals is None else normals
-        tri = self.vertices[self.faces]
-        self.corners = tuple(np.ascontiguousarray(tri[:, k]) for k in range(3))
-        nf, nv = len(self.faces), len(self.vertices)
-        incidence = sparse.csr_matrix(
-            (np.ones(3 * nf), (np.repeat(np.arange(nf), 3), self.faces.ravel())), shape=(nf, nv)
-        )
-        ring = (incidence @ incidence.T).tocsr()
-        self.ring_ptr = ring.indptr.astype(np.int64)
-        self.ring_idx = ring.indices.astype(np.int64)
-
-    def query(self, points: np.ndarray, near_faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Signed distance (negative inside) and closest surface point.
-
-        Parameters
-        ----------
-        points : (q, 3) float64 ndarray
-        near_faces : (q, k) int64 ndarray
-            Faces near each query (their vertex rings are searched).
-
-        Returns
-        -------
-        signed : (q,) float64 ndarray
-        closest : (q, 3) float64 ndarray
-        """
-        dist, closest, face, region = closest_on_candidates(
-            np.ascontiguousarray(points, np.float64),
-            *self.corners,
-            np.ascontiguousarray(near_faces, np.int64),
-            self.ring_ptr,
-            self.ring_idx,
-        )
-        pn = self.normals
-        normal = pn.face[face].copy()
-        vert = region < 3
-        normal[vert] = pn.vertex[self.faces[face[vert], region[vert]]]
-        edge = (region >= 3) & (region < REGION_FACE)
-        normal[edge] = pn.edge[pn.face_edges[face[edge], region[edge] - 3]]
-        side = np.einsum("ij,ij->i", points - closest, normal)
-        return np.where(side < 0, -dist, dist), closest
 
 
 def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | None = None) -> int:
@@ -216,6 +156,7 @@ def voronoi_medial_axis(
     topology: Literal["preserve", "lambda"] = "preserve",
     repair: bool = False,
     rng: Any = 0,
+    compact: bool = True,
 ) -> MedialAxis:
     """Lambda-medial surface of a closed mesh from the Voronoi diagram of a surface sample.
 
@@ -256,6 +197,16 @@ def voronoi_medial_axis(
         ``fill_holes``) instead of refusing it.
     rng : int or numpy.random.Generator
         Seed of the random check points used to measure epsilon.
+    compact : bool
+        ``True`` (default): the compact complex
+        (:func:`medialaxis.mesh.compact.compact_medial_axis`): edges are
+        contracted while the spheres left stay within the sampling error
+        (``COMPACT_TOLERANCE * epsilon``) of the contacts and features they
+        replace, keeping the homotopy type, so sheets thinner than the
+        sampling error become curves (a capsule's axis is a polyline, a
+        box's its few planar sheets) and flat sheets take few triangles;
+        ``ma.raw`` is the full complex. ``False``: the full complex, every
+        Voronoi facet kept. ``simplify`` starts from the full complex.
 
     Returns
     -------
@@ -281,7 +232,10 @@ def voronoi_medial_axis(
         bounding-box diagonal standing for the diameter: a worst-case bound,
         usually larger than the shape, hence the practical default ``lam``),
         ``euler_characteristic``, ``n_filling_faces``, ``timings`` (seconds
-        per step) and ``delaunay_share``.
+        per step) and ``delaunay_share``. The compact complex keeps a subset
+        of these points (extras follow them) and adds ``compact`` (the
+        collapse rule that ran), ``compact_tolerance``, ``full_points`` and
+        ``full_faces``.
 
     Raises
     ------
@@ -321,6 +275,8 @@ def voronoi_medial_axis(
     lam_given = None if lam is None else check_number(lam, "lam", positive=True)
     if topology not in TOPOLOGY_MODES:
         raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
+    if not isinstance(compact, (bool, np.bool_)):
+        raise InvalidInputError(f"compact must be True or False, got {compact!r}")
     if simplify is not None:
         from medialaxis.mesh.qmat import check_simplify
 
@@ -411,6 +367,13 @@ def voronoi_medial_axis(
         "contacts": dt.points[dt.simplices[used]],
     }
     result = MedialAxis(points, radii, edges, faces, extras=extras, metadata=metadata, shape=src.mesh)
+    if simplify is None and compact:
+        from medialaxis.mesh.compact import COMPACT_TOLERANCE, compact_medial_axis
+
+        t0 = time.perf_counter()
+        result = compact_medial_axis(result, COMPACT_TOLERANCE * eps, exact=sd.exact)
+        timings["compact"] = time.perf_counter() - t0
+        timings["total"] = time.perf_counter() - t_start
     if simplify is None:
         return result
     from medialaxis.mesh.qmat import simplify_medial_mesh

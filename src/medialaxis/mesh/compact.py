@@ -1,0 +1,359 @@
+"""Compact medial complexes: sheets thinner than the sampling error collapse to curves.
+
+The Voronoi medial complex of a surface sample carries the sampling noise:
+the axis of a capsule comes out as a fan of narrow sheets around its segment,
+a box's planar sheets as tens of thousands of small triangles. This step
+contracts edges of the complex, cheapest first, while the result stays
+within ``tolerance`` of what it replaces, and never changes its homotopy type:
+
+- *half-edge collapses*: a vertex ``j`` is merged into a neighbour ``i``,
+  whose sphere stays where it is, so every kept point is a Voronoi vertex
+  of the full complex with its exact radius and extras;
+- the *cost* of merging ``j`` into ``i`` is the larger of (a) the root mean
+  square distance from sphere ``i`` to the tangent planes at the contacts
+  ``j`` stands for (the spherical quadric error of Q-MAT, accumulated over
+  earlier merges and divided by their number) and (b) how far the merge
+  moves the complex's features: nothing for a vertex inside a sheet; for a
+  vertex on a feature line (a curve, a sheet's free border or a junction of
+  three sheets or more: the edges not shared by exactly two triangles) moved
+  along it, its distance to the line that replaces it; otherwise the
+  distance moved. Feature moves add up over successive merges. A sheet
+  narrower than the tolerance therefore collapses onto its spine (a curve),
+  while a wide sheet keeps its outline and a straight curve its ends;
+- a collapse is done only when it passes the *link condition* (the common
+  neighbours of ``i`` and ``j`` are exactly the apexes of the triangles on
+  edge ``ij``, and no two of those apexes are joined), which makes it a
+  homotopy equivalence (Dey, Edelsbrunner, Guha and Nekhayev, "Topology
+  preserving edge contraction", 1999);
+- collapses run in rounds: each round takes, cheapest first, edges whose
+  endpoints' neighbourhoods are untouched by the others taken, so the link
+  conditions tested at the start of the round still hold when it is applied.
+
+References
+----------
+Li et al., "Q-MAT: Computing medial axis transform by quadratic error
+minimization", ACM TOG 34(4), 2015 (spherical quadrics); Garland and
+Heckbert, "Surface simplification using quadric error metrics", 1997.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+
+from medialaxis._jit import njit
+from medialaxis.core.homology import betti_numbers
+from medialaxis.core.result import MedialAxis
+
+__all__ = ["Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE"]
+
+#: Default tolerance of the compact complex, times the measured sampling density epsilon.
+COMPACT_TOLERANCE = 1.0
+
+#: Most rounds of collapses (each halves the remaining candidates or more in practice).
+MAX_ROUNDS = 400
+
+
+@dataclasses.dataclass(frozen=True)
+class Compacted:
+    """A compacted complex over a subset of the input points.
+
+    ``keep`` (p,): input index of each output point; ``faces`` (k, 3) and
+    ``edges`` (m, 2) over the output points (curve pieces first, ``n_curve``
+    of them, then triangle sides on a free border or a junction);
+    ``face_origin`` (k,): the input triangle each output triangle comes from.
+    """
+
+    keep: np.ndarray
+    faces: np.ndarray
+    face_origin: np.ndarray
+    edges: np.ndarray
+    n_curve: int
+    rounds: int
+
+
+def sphere_quadrics(points: np.ndarray, contacts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Spherical quadrics ``(A (n, 4, 4), b (n, 4), c (n,))`` of the tangent planes at each point's contacts.
+
+    The plane at contact ``p`` has the normal ``n`` from the sphere's centre
+    to ``p``; the signed distance of a sphere ``s = (x, r)`` to it is
+    ``n.(p - x) - r``, so its square is ``s.A.s - 2 b.s + c``.
+    """
+    normal = contacts - points[:, None, :]
+    normal /= np.maximum(np.linalg.norm(normal, axis=2, keepdims=True), 1e-300)
+    a = np.concatenate([normal, np.ones(normal.shape[:2] + (1,))], axis=2)
+    d = np.einsum("ijk,ijk->ij", normal, contacts)
+    return np.einsum("ijk,ijl->ikl", a, a), np.einsum("ijk,ij->ik", a, d), (d * d).sum(axis=1)
+
+
+def complex_edges(faces: np.ndarray, edges: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """All edges ``(u < v)`` of a complex (curve pieces and triangle sides), sorted, and their triangle counts."""
+    sides = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]) if len(faces) else np.empty((0, 2), np.int64)
+    sides = np.sort(sides, axis=1)
+    keys, counts = np.unique(sides[:, 0] * n + sides[:, 1], return_counts=True)
+    extra = np.sort(np.asarray(edges, np.int64).reshape(-1, 2), axis=1)
+    extra = extra[extra[:, 0] != extra[:, 1]]
+    all_keys = np.unique(np.concatenate([keys, extra[:, 0] * n + extra[:, 1]]))
+    count = np.zeros(len(all_keys), np.int64)
+    count[np.searchsorted(all_keys, keys)] = counts
+    return np.c_[all_keys // n, all_keys % n], count
+
+
+def _adjacency(n: int, edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """CSR adjacency (sorted neighbour lists) of an undirected edge list."""
+    src = np.concatenate([edges[:, 0], edges[:, 1]])
+    dst = np.concatenate([edges[:, 1], edges[:, 0]])
+    order = np.lexsort((dst, src))
+    ptr = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(src, minlength=n), out=ptr[1:])
+    return ptr, dst[order].astype(np.int64)
+
+
+@njit(cache=True, nogil=True)
+def _has(ptr, idx, a, b):  # pragma: no cover - compiled
+    lo, hi = ptr[a], ptr[a + 1]
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if idx[mid] < b:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo < ptr[a + 1] and idx[lo] == b
+
+
+@njit(cache=True, nogil=True)
+def _link_ok(edges, ptr, idx, apex_ptr, apex):  # pragma: no cover - compiled
+    """Link condition of each edge: common neighbours == apexes of its triangles, no two apexes joined."""
+    out = np.zeros(len(edges), np.bool_)
+    for e in range(len(edges)):
+        u, v = edges[e, 0], edges[e, 1]
+        i, j = ptr[u], ptr[v]
+        common = 0
+        while i < ptr[u + 1] and j < ptr[v + 1]:
+            if idx[i] == idx[j]:
+                common += 1
+                i += 1
+                j += 1
+            elif idx[i] < idx[j]:
+                i += 1
+            else:
+                j += 1
+        t0, t1 = apex_ptr[e], apex_ptr[e + 1]
+        ok = common == t1 - t0
+        if ok and t1 - t0 >= 2:
+            for a in range(t0, t1):
+                for b in range(a + 1, t1):
+                    if _has(ptr, idx, apex[a], apex[b]):
+                        ok = False
+        out[e] = ok
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _select(order, src, dst, ptr, idx, n):  # pragma: no cover - compiled
+    """Greedy choice of collapses ``src -> dst`` (in ``order``) whose closed neighbourhoods do not meet."""
+    marked = np.zeros(n, np.bool_)
+    chosen = np.zeros(len(src), np.bool_)
+    for k in order:
+        a, b = src[k], dst[k]
+        free = not (marked[a] or marked[b])
+        if free:
+            for v in (a, b):
+                for p in range(ptr[v], ptr[v + 1]):
+                    if marked[idx[p]]:
+                        free = False
+                        break
+        if not free:
+            continue
+        chosen[k] = True
+        for v in (a, b):
+            marked[v] = True
+            for p in range(ptr[v], ptr[v + 1]):
+                marked[idx[p]] = True
+    return chosen
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    ab = b - a
+    t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
+    return np.linalg.norm(p - (a + t[:, None] * ab), axis=1)
+
+
+def _costs(
+    src: np.ndarray, dst: np.ndarray, spheres: np.ndarray, quad: tuple[np.ndarray, ...], count: np.ndarray,
+    moved: np.ndarray, edges: np.ndarray, feature: np.ndarray, n: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Cost of merging ``src[k]`` into ``dst[k]`` (see the module docstring) and the feature move it makes."""
+    qa, qb, qc = quad
+    s = spheres[dst]
+    sqem = np.einsum("ij,ijk,ik->i", s, qa[src], s) - 2.0 * np.einsum("ij,ij->i", qb[src], s) + qc[src]
+    sqem = np.sqrt(np.maximum(sqem, 0.0) / count[src])
+    # features: the edges not shared by exactly two triangles; a vertex with two of them lies on a line
+    fe = edges[feature]
+    ends = np.concatenate([fe[:, 0], fe[:, 1]])
+    other = np.concatenate([fe[:, 1], fe[:, 0]])
+    degree = np.bincount(ends, minlength=n)
+    order = np.argsort(ends, kind="stable")
+    first = np.full(n, -1, np.int64)
+    second = np.full(n, -1, np.int64)
+    starts = np.cumsum(degree) - degree
+    first[degree > 0] = other[order][starts[degree > 0]]
+    two = degree == 2
+    second[two] = other[order][starts[two] + 1]
+    xyz = spheres[:, :3]
+    shift = np.linalg.norm(xyz[src] - xyz[dst], axis=1)
+    along = two[src] & ((first[src] == dst) | (second[src] == dst))
+    if along.any():
+        j = src[along]
+        far = np.where(first[j] == dst[along], second[j], first[j])
+        shift[along] = _segment_distance(xyz[j], xyz[dst[along]], xyz[far])
+    move = np.where(degree[src] == 0, 0.0, np.maximum(moved[src], shift))
+    return np.maximum(sqem, move), move
+
+
+def compact_complex(
+    points: np.ndarray, radii: np.ndarray, faces: np.ndarray, edges: np.ndarray, contacts: np.ndarray,
+    tolerance: float,
+    strict: bool = True,
+) -> Compacted:
+    """Contract the complex while it stays within ``tolerance`` (see the module docstring).
+
+    Parameters
+    ----------
+    points, radii : (n, 3), (n,) float64 ndarray
+        Medial spheres.
+    faces : (k, 3) int ndarray
+        Triangles.
+    edges : (m, 2) int ndarray
+        Edges not on any triangle (curve pieces); triangle sides may be listed too.
+    contacts : (n, c, 3) float64 ndarray
+        Surface points on each sphere (their tangent planes give the quadrics).
+    tolerance : float
+        Largest cost of a collapse, in the units of ``points``.
+
+    Returns
+    -------
+    Compacted
+    """
+    n = len(points)
+    faces = np.asarray(faces, np.int64).reshape(-1, 3)
+    spheres = np.c_[points, radii].astype(np.float64)
+    qa, qb, qc = sphere_quadrics(np.asarray(points, np.float64), np.asarray(contacts, np.float64))
+    count = np.full(n, float(contacts.shape[1]))
+    moved = np.zeros(n)
+    origin = np.arange(len(faces))
+    alive = np.ones(n, bool)
+    all_edges, tri_count = complex_edges(faces, edges, n)
+    rounds = 0
+    while rounds < MAX_ROUNDS:
+        rounds += 1
+        ptr, idx = _adjacency(n, all_edges)
+        key = all_edges[:, 0] * n + all_edges[:, 1]
+        if len(faces):
+            sides = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+            owner = np.searchsorted(key, sides[:, 0] * n + sides[:, 1])
+            apex_of = np.concatenate([faces[:, 2], faces[:, 0], faces[:, 1]])
+            by_edge = np.argsort(owner, kind="stable")
+            apex = apex_of[by_edge]
+        else:
+            owner = np.empty(0, np.int64)
+            apex = np.empty(0, np.int64)
+        apex_ptr = np.zeros(len(all_edges) + 1, np.int64)
+        np.cumsum(np.bincount(owner, minlength=len(all_edges)), out=apex_ptr[1:])
+        tri_count = np.diff(apex_ptr)
+        ok = _link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
+        cand = np.flatnonzero(ok)
+        if not len(cand):
+            break
+        src = np.concatenate([all_edges[cand, 0], all_edges[cand, 1]])
+        dst = np.concatenate([all_edges[cand, 1], all_edges[cand, 0]])
+        cost, move = _costs(src, dst, spheres, (qa, qb, qc), count, moved, all_edges, tri_count != 2, n)
+        half = len(cand)
+        better = np.where(cost[:half] <= cost[half:], 0, half) + np.arange(half)
+        src, dst, cost, move = src[better], dst[better], cost[better], move[better]
+        within = np.flatnonzero(cost <= tolerance)
+        if not len(within):
+            break
+        order = within[np.lexsort((src[within], cost[within]))]
+        chosen = np.flatnonzero(_select(order, src, dst, ptr, idx, n))
+        j, i = src[chosen], dst[chosen]
+        qa[i] += qa[j]
+        qb[i] += qb[j]
+        qc[i] += qc[j]
+        count[i] += count[j]
+        moved[i] = np.maximum(moved[i], move[chosen])
+        alive[j] = False
+        to = np.arange(n)
+        to[j] = i
+        faces = to[faces]
+        flat = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+        faces, origin = faces[~flat], origin[~flat]
+        if not strict:
+            _, first = np.unique(np.sort(faces, axis=1), axis=0, return_index=True)
+            first.sort()
+            faces, origin = faces[first], origin[first]
+        mapped = np.sort(to[all_edges], axis=1)
+        mapped = mapped[mapped[:, 0] != mapped[:, 1]]
+        all_edges = np.unique(mapped, axis=0)
+    keep = np.flatnonzero(alive)
+    new = np.full(n, -1, np.int64)
+    new[keep] = np.arange(len(keep))
+    faces_out = new[faces]
+    all_edges, tri_count = complex_edges(faces, all_edges, n)
+    curve = all_edges[tri_count == 0]
+    border = all_edges[(tri_count != 0) & (tri_count != 2)]
+    edges_out = new[np.concatenate([curve, border])].reshape(-1, 2)
+    return Compacted(keep, faces_out, origin, edges_out, int(len(curve)), rounds)
+
+
+def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None) -> MedialAxis:
+    """The compact form of a Voronoi medial complex (``ma.raw`` is the full one).
+
+    Collapses run first without the link condition, which the foam of small
+    facets around a sampled axis blocks almost everywhere (a capsule's
+    complex stops at a quarter of its points with it); the Betti numbers of
+    the result are then compared with those of the full complex, and if they
+    differ the collapses are redone with the link condition, which cannot
+    change them. ``metadata["compact"]`` says which ran.
+
+    Per-point extras are those of the kept points (the spheres do not move);
+    per-triangle extras (``face_*``) those of the triangle each one comes from.
+    ``exact(points, bound)``, if given, returns the signed distance and the
+    closest surface point of the kept points with an exhaustive search (the
+    full complex's radii come from a local one): the few spheres left get
+    their exact radius and closest point.
+    """
+    contacts = ma.extras["contacts"] if "contacts" in ma.extras else ma.points[:, None, :]
+    full_betti = betti_numbers(len(ma.points), ma.edges, ma.faces)
+    mode = "relaxed"
+    c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, strict=False)
+    betti = betti_numbers(len(c.keep), c.edges, c.faces)
+    if betti != full_betti:
+        mode = "link condition"
+        c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, strict=True)
+        betti = betti_numbers(len(c.keep), c.edges, c.faces)
+    extras = {}
+    for name, value in ma.extras.items():
+        if name.startswith("face_") and len(value) == len(ma.faces):
+            extras[name] = np.asarray(value)[c.face_origin]
+        elif len(value) == len(ma.points):
+            extras[name] = np.asarray(value)[c.keep]
+    metadata = dict(ma.metadata)
+    metadata.update(
+        compact=mode, compact_tolerance=float(tolerance), compact_rounds=c.rounds,
+        full_points=int(len(ma.points)), full_faces=int(len(ma.faces)), n_curve_edges=c.n_curve,
+        euler_characteristic=int(betti[0] - betti[1] + betti[2]),
+    )
+    radii = ma.radii[c.keep]
+    if exact is not None and len(c.keep):
+        signed, closest = exact(ma.points[c.keep], radii)
+        radii = np.minimum(np.abs(signed), radii)
+        extras["closest"] = np.where((np.abs(signed) <= ma.radii[c.keep])[:, None], closest, extras.get("closest", closest))
+    if "face_certified" in extras:
+        metadata["n_filling_faces"] = int((~extras["face_certified"]).sum())
+    if "inside" in extras:
+        metadata["n_outside_points"] = int((~extras["inside"]).sum())
+    return MedialAxis(ma.points[c.keep], radii, c.edges, c.faces, extras=extras, metadata=metadata,
+                      shape=ma.shape, raw=ma)

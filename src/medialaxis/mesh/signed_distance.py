@@ -1,0 +1,110 @@
+"""Exact signed distance to a closed mesh near its surface samples (the inside test of the Voronoi route)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from scipy import sparse
+from scipy.spatial import cKDTree
+
+from medialaxis.mesh._voronoi_kernels import REGION_FACE, closest_on_candidates
+from medialaxis.mesh.sampling import PseudoNormals, pseudo_normals
+
+__all__ = ["SignedDistance"]
+
+
+class SignedDistance:
+    """Exact signed distance to a closed mesh near a surface sample.
+
+    Candidate faces of a query are those sharing a vertex with the faces of
+    a few sample points the caller names (for a Voronoi vertex: the four
+    samples of its tetrahedron, which are its nearest samples).
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+        Closed and outward oriented.
+    normals : PseudoNormals, optional
+    """
+
+    def __init__(self, mesh: Any, normals: PseudoNormals | None = None) -> None:
+        self.vertices = np.asarray(mesh.vertices, np.float64)
+        self.faces = np.asarray(mesh.faces, np.int64)
+        self.normals = pseudo_normals(mesh) if normals is None else normals
+        tri = self.vertices[self.faces]
+        self.corners = tuple(np.ascontiguousarray(tri[:, k]) for k in range(3))
+        nf, nv = len(self.faces), len(self.vertices)
+        incidence = sparse.csr_matrix(
+            (np.ones(3 * nf), (np.repeat(np.arange(nf), 3), self.faces.ravel())), shape=(nf, nv)
+        )
+        ring = (incidence @ incidence.T).tocsr()
+        self.ring_ptr = ring.indptr.astype(np.int64)
+        self.ring_idx = ring.indices.astype(np.int64)
+
+    def query(self, points: np.ndarray, near_faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Signed distance (negative inside) and closest surface point.
+
+        Parameters
+        ----------
+        points : (q, 3) float64 ndarray
+        near_faces : (q, k) int64 ndarray
+            Faces near each query (their vertex rings are searched).
+
+        Returns
+        -------
+        signed : (q,) float64 ndarray
+        closest : (q, 3) float64 ndarray
+        """
+        dist, closest, face, region = closest_on_candidates(
+            np.ascontiguousarray(points, np.float64),
+            *self.corners,
+            np.ascontiguousarray(near_faces, np.int64),
+            self.ring_ptr,
+            self.ring_idx,
+        )
+        pn = self.normals
+        normal = pn.face[face].copy()
+        vert = region < 3
+        normal[vert] = pn.vertex[self.faces[face[vert], region[vert]]]
+        edge = (region >= 3) & (region < REGION_FACE)
+        normal[edge] = pn.edge[pn.face_edges[face[edge], region[edge] - 3]]
+        side = np.einsum("ij,ij->i", points - closest, normal)
+        return np.where(side < 0, -dist, dist), closest
+
+    def exact(self, points: np.ndarray, bound: np.ndarray, budget: int = 4_000_000) -> tuple[np.ndarray, np.ndarray]:
+        """Signed distance and closest point with every face that may be nearer than ``bound`` searched.
+
+        The local search of :meth:`query` can stop at a face a little farther
+        than the nearest one where many faces are nearly equidistant (the
+        centre of a faceted cap). Here the candidates of a point are all the
+        faces whose circumscribing ball (around the centroid) comes within
+        ``bound`` of it, so the answer is exact when ``bound`` is at least the
+        distance (e.g. the radius found by :meth:`query`). For a few points:
+        the candidate lists can be long; ``budget`` bounds their total per batch.
+        """
+        points = np.asarray(points, np.float64)
+        if not hasattr(self, "_centroid_tree"):
+            tri = np.stack(self.corners, axis=1)
+            centroid = tri.mean(axis=1)
+            self._centroid_tree = cKDTree(centroid)
+            self._reach = float(np.linalg.norm(tri - centroid[:, None], axis=2).max())
+        lists = self._centroid_tree.query_ball_point(points, np.asarray(bound, np.float64) * (1 + 1e-9) + self._reach)
+        signed = np.empty(len(points))
+        closest = np.empty((len(points), 3))
+        start = 0
+        while start < len(points):
+            stop, total = start, 0
+            while stop < len(points) and (stop == start or total + len(lists[stop]) <= budget):
+                total += max(len(lists[stop]), 1)
+                stop += 1
+            width = max(max(len(lists[k]) for k in range(start, stop)), 1)
+            near = np.zeros((stop - start, width), np.int64)
+            for row, k in enumerate(range(start, stop)):
+                faces = lists[k] or [0]
+                near[row, : len(faces)] = faces
+                near[row, len(faces):] = faces[0]
+            signed[start:stop], closest[start:stop] = self.query(points[start:stop], near)
+            start = stop
+        return signed, closest
+
