@@ -28,7 +28,6 @@ from scipy.sparse import csgraph
 
 from medialaxis.compare.compared_axis import drop_spurious, edge_lengths, main_component
 from medialaxis.compare.endpoints import endpoint_order, endpoint_weights, weighted_graph
-from medialaxis.compare.signature import DEFAULT_PRUNE
 from medialaxis.core.parallel import run_tasks
 from medialaxis.core.result import MedialAxis
 
@@ -51,6 +50,8 @@ N_BEND = 7
 PATH_PARAMS = {"alpha": 0.1333, "beta": 0.0625, "gamma": 0.175, "skip": 0.2, "unmatched": 0.4}
 #: Weight of the axis context in the previous default (``paths + 0.6 context``).
 PREVIOUS_CONTEXT = 0.6
+#: Spurious-branch pruning of the previous default (the package's default was 0.03 then).
+PREVIOUS_PRUNE = 0.03
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -132,7 +133,7 @@ def path_signature(
     ma: MedialAxis,
     *,
     n_samples: int = DEFAULT_SAMPLES,
-    prune: float = DEFAULT_PRUNE,
+    prune: float = PREVIOUS_PRUNE,
     max_endpoints: int = 24,
     dce: float = 0.0,
     dce_vertices: int = 3,

@@ -63,18 +63,22 @@ def test_keeps_largest_component():
 def test_tour_versions_of_both_prunings():
     ma = mx.medial_axis(np.pad(np.ones((30, 80), bool), 10))  # a raster rectangle: its raw axis has pixel spurs
     sig = signature(ma)
-    assert sig.tour.shape == (4, 64, 60) and sig.tour_radii.shape == (4, 64) and sig.tour_points.shape == (4, 64, 2)
+    assert sig.tour.shape == (8, 64, 60) and sig.tour_radii.shape == (8, 64) and sig.tour_points.shape == (8, 64, 2)
     assert np.allclose(sig.tour.sum(axis=2), 1.0)
-    assert not np.allclose(sig.tour[:2], sig.tour[2:])  # the raw axis is walked differently
+    assert not np.allclose(sig.tour[:2], sig.tour[2:4])  # the raw axis is walked differently
     # Mirror versions: the same sample positions met in the other direction.
-    for g in (0, 2):
+    for g in (0, 2, 4, 6):
         assert np.allclose(np.sort(sig.tour_radii[g]), np.sort(sig.tour_radii[g + 1]))
-    # Without a raw graph (e.g. a saved and reloaded axis), the second pruning repeats the first.
+    # Versions 4-7: the same, pruned at the coarse level; with prune above it, both levels are one.
+    high = signature(ma, prune=0.1)
+    assert np.array_equal(high.tour[:4], high.tour[4:])
+    assert np.array_equal(signature(ma, prune=0.045).tour[:4], sig.tour[4:])
+    # Without a raw graph (e.g. a saved and reloaded axis), each level's second pair repeats its first.
     bare = signature(dataclasses.replace(ma, raw=None))
-    assert np.array_equal(bare.tour[:2], bare.tour[2:]) and np.array_equal(bare.tour[:2], sig.tour[:2])
+    assert np.array_equal(bare.tour[:2], bare.tour[2:4]) and np.array_equal(bare.tour[:2], sig.tour[:2])
     # unpruned=True compares the raw axis throughout: both pairs of versions are its tour.
     raw = signature(ma, unpruned=True)
-    assert np.array_equal(raw.tour[:2], raw.tour[2:]) and np.array_equal(raw.tour[:2], sig.tour[2:])
+    assert np.array_equal(raw.tour[:2], raw.tour[2:4]) and np.array_equal(raw.tour[:2], sig.tour[2:4])
 
 
 def test_input_axis_not_modified():
