@@ -27,7 +27,9 @@ within ``tolerance`` of what it replaces, and never changes its homotopy type:
   preserving edge contraction", 1999);
 - collapses run in rounds: each round takes, cheapest first, edges whose
   endpoints' neighbourhoods are untouched by the others taken, so the link
-  conditions tested at the start of the round still hold when it is applied.
+  conditions tested at the start of the round still hold when it is applied
+  (without the link condition, edges whose removed vertices' neighbourhoods
+  are apart: the costs stay valid, as kept spheres never move).
 
 References
 ----------
@@ -47,7 +49,9 @@ from medialaxis._jit import njit
 from medialaxis.core.homology import betti_numbers
 from medialaxis.core.result import MedialAxis
 
-__all__ = ["Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE"]
+__all__ = [
+    "Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE", "RULES",
+]
 
 #: Default tolerance of the compact complex, times the measured sampling density epsilon.
 COMPACT_TOLERANCE = 1.0
@@ -152,27 +156,57 @@ def _link_ok(edges, ptr, idx, apex_ptr, apex):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True)
-def _select(order, src, dst, ptr, idx, n):  # pragma: no cover - compiled
-    """Greedy choice of collapses ``src -> dst`` (in ``order``) whose closed neighbourhoods do not meet."""
+def _select(order, src, dst, ptr, idx, n, apart):  # pragma: no cover - compiled
+    """Greedy choice of collapses ``src -> dst`` (in ``order``), kept apart by ``apart``.
+
+    ``0``: no two share a vertex (a matching); ``1``: no two meet in the
+    closed neighbourhood of the vertex removed; ``2``: in the closed
+    neighbourhoods of both endpoints (the link conditions tested before the
+    round stay true).
+    """
     marked = np.zeros(n, np.bool_)
     chosen = np.zeros(len(src), np.bool_)
     for k in order:
         a, b = src[k], dst[k]
-        free = not (marked[a] or marked[b])
-        if free:
-            for v in (a, b):
-                for p in range(ptr[v], ptr[v + 1]):
-                    if marked[idx[p]]:
-                        free = False
-                        break
+        if marked[a] or marked[b]:
+            continue
+        free = True
+        for v in (a, b):
+            if apart == 0 or (apart == 1 and v == b):
+                continue
+            for p in range(ptr[v], ptr[v + 1]):
+                if marked[idx[p]]:
+                    free = False
+                    break
         if not free:
             continue
         chosen[k] = True
+        marked[a] = True
+        marked[b] = True
         for v in (a, b):
-            marked[v] = True
+            if apart == 0 or (apart == 1 and v == b):
+                continue
             for p in range(ptr[v], ptr[v + 1]):
                 marked[idx[p]] = True
     return chosen
+
+
+#: Collapse rules, fastest first: (link condition tested, how far apart the collapses of a round are).
+RULES = {"matching": (False, 0), "apart": (False, 1), "link condition": (True, 2)}
+
+
+def _first_of_each(rows: np.ndarray) -> np.ndarray:
+    """Indices (ascending) of the first occurrence of each distinct row (what ``np.unique(axis=0)`` gives, faster)."""
+    if not len(rows):
+        return np.arange(0)
+    order = np.lexsort(rows.T[::-1])
+    ordered = rows[order]
+    new = np.ones(len(rows), bool)
+    new[1:] = (ordered[1:] != ordered[:-1]).any(axis=1)
+    group = np.cumsum(new) - 1
+    first = np.full(int(group[-1]) + 1, len(rows), np.int64)
+    np.minimum.at(first, group, order)
+    return np.sort(first)
 
 
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -216,7 +250,7 @@ def _costs(
 def compact_complex(
     points: np.ndarray, radii: np.ndarray, faces: np.ndarray, edges: np.ndarray, contacts: np.ndarray,
     tolerance: float,
-    strict: bool = True,
+    rule: str = "link condition",
 ) -> Compacted:
     """Contract the complex while it stays within ``tolerance`` (see the module docstring).
 
@@ -232,11 +266,17 @@ def compact_complex(
         Surface points on each sphere (their tangent planes give the quadrics).
     tolerance : float
         Largest cost of a collapse, in the units of ``points``.
+    rule : {"matching", "apart", "link condition"}
+        ``"link condition"``: every collapse passes it (the homotopy type is
+        kept); the others do not test it and keep the collapses of a round
+        apart by a shared vertex or by the removed vertex's neighbourhood
+        (faster; the caller checks the Betti numbers).
 
     Returns
     -------
     Compacted
     """
+    strict, apart = RULES[rule]
     n = len(points)
     faces = np.asarray(faces, np.int64).reshape(-1, 3)
     spheres = np.c_[points, radii].astype(np.float64)
@@ -277,7 +317,7 @@ def compact_complex(
         if not len(within):
             break
         order = within[np.lexsort((src[within], cost[within]))]
-        chosen = np.flatnonzero(_select(order, src, dst, ptr, idx, n))
+        chosen = np.flatnonzero(_select(order, src, dst, ptr, idx, n, apart))
         j, i = src[chosen], dst[chosen]
         qa[i] += qa[j]
         qb[i] += qb[j]
@@ -291,12 +331,12 @@ def compact_complex(
         flat = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
         faces, origin = faces[~flat], origin[~flat]
         if not strict:
-            _, first = np.unique(np.sort(faces, axis=1), axis=0, return_index=True)
-            first.sort()
+            first = _first_of_each(np.sort(faces, axis=1))
             faces, origin = faces[first], origin[first]
         mapped = np.sort(to[all_edges], axis=1)
         mapped = mapped[mapped[:, 0] != mapped[:, 1]]
-        all_edges = np.unique(mapped, axis=0)
+        keys = np.unique(mapped[:, 0] * n + mapped[:, 1])
+        all_edges = np.c_[keys // n, keys % n]
     keep = np.flatnonzero(alive)
     new = np.full(n, -1, np.int64)
     new[keep] = np.arange(len(keep))
@@ -313,10 +353,11 @@ def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None) -> 
 
     Collapses run first without the link condition, which the foam of small
     facets around a sampled axis blocks almost everywhere (a capsule's
-    complex stops at a quarter of its points with it); the Betti numbers of
-    the result are then compared with those of the full complex, and if they
-    differ the collapses are redone with the link condition, which cannot
-    change them. ``metadata["compact"]`` says which ran.
+    complex stops at a quarter of its points with it), as a matching per
+    round, then (if the Betti numbers of the result differ from those of the
+    full complex) with the removed vertices' neighbourhoods apart, then with
+    the link condition, which cannot change them. ``metadata["compact"]``
+    names the rule whose result was kept.
 
     Per-point extras are those of the kept points (the spheres do not move);
     per-triangle extras (``face_*``) those of the triangle each one comes from.
@@ -327,13 +368,11 @@ def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None) -> 
     """
     contacts = ma.extras["contacts"] if "contacts" in ma.extras else ma.points[:, None, :]
     full_betti = betti_numbers(len(ma.points), ma.edges, ma.faces)
-    mode = "relaxed"
-    c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, strict=False)
-    betti = betti_numbers(len(c.keep), c.edges, c.faces)
-    if betti != full_betti:
-        mode = "link condition"
-        c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, strict=True)
+    for mode in RULES:
+        c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, rule=mode)
         betti = betti_numbers(len(c.keep), c.edges, c.faces)
+        if betti == full_betti:
+            break
     extras = {}
     for name, value in ma.extras.items():
         if name.startswith("face_") and len(value) == len(ma.faces):
