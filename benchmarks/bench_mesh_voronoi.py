@@ -67,7 +67,9 @@ def speed(n_vertices: int) -> None:
     md = ma.metadata
     timing = ", ".join(f"{k} {v:.2f}" for k, v in md["timings"].items())
     print(f"ours: {ours:.2f} s ({md['n_samples']} samples, {md['n_tetrahedra']} tetrahedra; {timing})")
-    print(f"  Delaunay share {md['delaunay_share']:.1%}; {len(ma.points)} points, {len(ma.faces)} faces")
+    print(f"  Delaunay share {md['delaunay_share']:.1%}; {len(ma.points)} points, {len(ma.faces)} faces "
+          f"(compact complex; the full one, ma.raw: {len(ma.raw.points)} points, {len(ma.raw.faces)} faces; "
+          f"full complex alone {ours - md['timings'].get('compact', 0.0):.2f} s)")
     print(f"  euler characteristic {md['euler_characteristic']} (solid: {md['mesh_euler_characteristic'] // 2}),"
           f" components {ma.n_components}, epsilon {md['epsilon']:.4g}, lam {md['lam']:.4g}")
     t0 = time.perf_counter()
