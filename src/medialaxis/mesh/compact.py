@@ -17,7 +17,8 @@ within ``tolerance`` of what it replaces, and never changes its homotopy type:
   vertex on a feature line (a curve, a sheet's free border or a junction of
   three sheets or more: the edges not shared by exactly two triangles) moved
   along it, its distance to the line that replaces it; otherwise the
-  distance moved. Feature moves add up over successive merges. A sheet
+  distance moved; a kept vertex carries the largest feature move merged into
+  it, and later merges of it pay at least that. A sheet
   narrower than the tolerance therefore collapses onto its spine (a curve),
   while a wide sheet keeps its outline and a straight curve its ends;
 - a collapse is done only when it passes the *link condition* (the common
@@ -270,7 +271,7 @@ def compact_complex(
         ``"link condition"``: every collapse passes it (the homotopy type is
         kept); the others do not test it and keep the collapses of a round
         apart by a shared vertex or by the removed vertex's neighbourhood
-        (faster; the caller checks the Betti numbers).
+        (faster; :func:`compact_medial_axis` checks the result's topology).
 
     Returns
     -------

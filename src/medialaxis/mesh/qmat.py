@@ -30,6 +30,7 @@ from scipy.spatial import cKDTree
 from medialaxis._jit import njit
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
+from medialaxis.mesh.compact import sphere_quadrics
 
 __all__ = ["simplify_medial_mesh", "check_simplify", "hausdorff_to_surface", "REGULARISATION"]
 
@@ -60,17 +61,8 @@ def check_simplify(simplify: Any) -> None:
 
 def _initial_quadrics(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per-vertex SQEM ``(A, b, c)`` with error ``s.A.s - 2 b.s + c`` from the contacts."""
-    c = ma.points
     contacts = ma.contacts if "contacts" in ma.extras else ma.points[:, None, :]
-    n = contacts - c[:, None, :]
-    n /= np.maximum(np.linalg.norm(n, axis=2, keepdims=True), 1e-300)
-    # plane error: n.(p - c) - r = a.s - d with a = (n, 1), d = n.p
-    a = np.concatenate([n, np.ones(n.shape[:2] + (1,))], axis=2)
-    d = np.einsum("ijk,ijk->ij", n, contacts)
-    quad_a = np.einsum("ijk,ijl->ikl", a, a)
-    quad_b = np.einsum("ijk,ij->ik", a, d)
-    quad_c = (d * d).sum(axis=1)
-    return quad_a, quad_b, quad_c
+    return sphere_quadrics(ma.points, contacts)
 
 
 @njit(cache=True, nogil=True)
