@@ -42,7 +42,7 @@ __all__ = ["shape_distance", "match_tour", "shape_signature", "DEFAULTS"]
 #: tour distance is a mean cost per sample, on Kimia-99 a median 0.23
 #: between shapes of one class and 0.44 between classes (10-90%: 0.13-0.32
 #: and 0.38-0.53). There 0.2 gives the row 953, 0.25 960, 0.3 960, 0.35 958,
-#: 0.4 959 (``benchmarks/bench_compare.py --variants``).
+#: 0.4 959 (``benchmarks/bench_compare.py --variants``, one pruning level).
 DEFAULTS = {"gap": 0.3}
 
 #: Planar ``tolerance`` for vector inputs, as a fraction of sqrt(area): a
