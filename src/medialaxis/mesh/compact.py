@@ -4,7 +4,7 @@ The Voronoi medial complex of a surface sample carries the sampling noise:
 the axis of a capsule comes out as a fan of narrow sheets around its segment,
 a box's planar sheets as tens of thousands of small triangles. This step
 contracts edges of the complex, cheapest first, while the result stays
-within ``tolerance`` of what it replaces, and never changes its homotopy type:
+within ``tolerance`` of what it replaces, keeping its topology:
 
 - *half-edge collapses*: a vertex ``j`` is merged into a neighbour ``i``,
   whose sphere stays where it is, so every kept point is a Voronoi vertex
@@ -21,16 +21,19 @@ within ``tolerance`` of what it replaces, and never changes its homotopy type:
   it, and later merges of it pay at least that. A sheet
   narrower than the tolerance therefore collapses onto its spine (a curve),
   while a wide sheet keeps its outline and a straight curve its ends;
-- a collapse is done only when it passes the *link condition* (the common
-  neighbours of ``i`` and ``j`` are exactly the apexes of the triangles on
-  edge ``ij``, and no two of those apexes are joined), which makes it a
-  homotopy equivalence (Dey, Edelsbrunner, Guha and Nekhayev, "Topology
-  preserving edge contraction", 1999);
+- under the ``"link condition"`` rule a collapse is done only when it
+  passes the link condition (the common neighbours of ``i`` and ``j`` are
+  exactly the apexes of the triangles on edge ``ij``, and no two of those
+  apexes are joined), which makes it a homotopy equivalence (Dey,
+  Edelsbrunner, Guha and Nekhayev, "Topology preserving edge contraction",
+  1999); the faster rules do not test it, and :func:`compact_medial_axis`
+  keeps their result only if its components and Euler characteristic are
+  those of the full complex (it falls back to the link condition otherwise);
 - collapses run in rounds: each round takes, cheapest first, edges whose
   endpoints' neighbourhoods are untouched by the others taken, so the link
   conditions tested at the start of the round still hold when it is applied
-  (without the link condition, edges whose removed vertices' neighbourhoods
-  are apart: the costs stay valid, as kept spheres never move).
+  (the faster rules keep apart only the collapses' vertices, or the removed
+  vertices' neighbourhoods: the costs stay valid, as kept spheres never move).
 
 References
 ----------
