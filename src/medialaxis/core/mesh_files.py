@@ -88,12 +88,12 @@ def write_ply(ma: MedialAxis, fh: object) -> None:
     xyz = points_3d(ma)
     faces = np.asarray(ma.faces, np.int64).reshape(-1, 3)
     curves = curve_edges(ma)
-    parts = [faces] if len(faces) else [curves] if len(curves) else []
+    polys = faces if len(faces) or not len(curves) else curves  # triangles, else the curve as two-point faces
     extra = curves if len(faces) else curves[:0]
     header = ["ply", "format binary_little_endian 1.0", "comment medialaxis result", f"element vertex {len(xyz)}",
               "property double x", "property double y", "property double z"]
     header += [f"property double {name}" for name in fields]
-    header += [f"element face {sum(len(part) for part in parts)}", "property list uchar int vertex_indices"]
+    header += [f"element face {len(polys)}", "property list uchar int vertex_indices"]
     if len(extra):
         header += [f"element edge {len(extra)}", "property int vertex1", "property int vertex2"]
     header.append("end_header")
@@ -104,11 +104,10 @@ def write_ply(ma: MedialAxis, fh: object) -> None:
         vert[name] = values
     fh.write(("\n".join(header) + "\n").encode("ascii"))  # type: ignore[attr-defined]
     fh.write(vert.tobytes())  # type: ignore[attr-defined]
-    for part in parts:
-        k = part.shape[1]
-        face = np.empty(len(part), dtype=[("k", "u1"), ("v", "<i4", (k,))])
-        face["k"], face["v"] = k, part
-        fh.write(face.tobytes())  # type: ignore[attr-defined]
+    k = polys.shape[1]
+    face = np.empty(len(polys), dtype=[("k", "u1"), ("v", "<i4", (k,))])
+    face["k"], face["v"] = k, polys
+    fh.write(face.tobytes())  # type: ignore[attr-defined]
     if len(extra):
         fh.write(np.ascontiguousarray(extra, "<i4").tobytes())  # type: ignore[attr-defined]
 
