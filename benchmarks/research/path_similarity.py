@@ -28,6 +28,7 @@ from scipy.sparse import csgraph
 
 from medialaxis.compare.compared_axis import drop_spurious, edge_lengths, main_component
 from medialaxis.compare.endpoints import endpoint_order, endpoint_weights, weighted_graph
+from medialaxis.compare.matrix import _blocks
 from medialaxis.core.parallel import run_tasks
 from medialaxis.core.result import MedialAxis
 
@@ -187,8 +188,7 @@ def term_matrices(
               pack_context([s.context for s in sigs], [s.context_radii for s in sigs], N_ANGULAR))
     rows, cols = np.triu_indices(n, 1)
     workers = n_jobs or os.cpu_count() or 1
-    cuts = np.linspace(0, len(rows), min(len(rows) // 500 + 1, 64 * workers) + 1).astype(np.int64)
-    blocks = [slice(int(a), int(b)) for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
+    blocks = _blocks(len(rows), max(1, min(len(rows) // 500 + 1, 64 * workers)))
     values = tuple((params or PATH_PARAMS)[k] for k in PATH_PARAMS)
     scored = run_tasks(_score, blocks, packed, rows, cols, values, n_jobs=workers, desc="path pairs")
     out = {"paths": np.zeros((n, n)), "context": np.zeros((n, n))}

@@ -289,7 +289,7 @@ def compact_complex(
     moved = np.zeros(n)
     origin = np.arange(len(faces))
     alive = np.ones(n, bool)
-    all_edges, tri_count = complex_edges(faces, edges, n)
+    all_edges, _ = complex_edges(faces, edges, n)
     rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
