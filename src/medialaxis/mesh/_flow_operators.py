@@ -13,6 +13,8 @@ import numpy as np
 from scipy import sparse
 from scipy.spatial import cKDTree
 
+from medialaxis.core.arrays import unique_ints
+
 __all__ = [
     "cotangent_laplacian",
     "vertex_areas",
@@ -36,7 +38,7 @@ def unique_pairs(pairs: np.ndarray) -> np.ndarray:
     if len(pairs) == 0:
         return pairs
     base = int(pairs.max()) + 1
-    keys = np.unique(pairs[:, 0] * base + pairs[:, 1])
+    keys = unique_ints(pairs[:, 0] * base + pairs[:, 1])
     return np.column_stack([keys // base, keys % base])
 
 

@@ -50,6 +50,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis._jit import njit
+from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers
 from medialaxis.core.result import MedialAxis
 
@@ -103,7 +104,7 @@ def complex_edges(faces: np.ndarray, edges: np.ndarray, n: int) -> tuple[np.ndar
     keys, counts = np.unique(sides[:, 0] * n + sides[:, 1], return_counts=True)
     extra = np.sort(np.asarray(edges, np.int64).reshape(-1, 2), axis=1)
     extra = extra[extra[:, 0] != extra[:, 1]]
-    all_keys = np.unique(np.concatenate([keys, extra[:, 0] * n + extra[:, 1]]))
+    all_keys = unique_ints(np.concatenate([keys, extra[:, 0] * n + extra[:, 1]]))
     count = np.zeros(len(all_keys), np.int64)
     count[np.searchsorted(all_keys, keys)] = counts
     return np.c_[all_keys // n, all_keys % n], count
@@ -339,7 +340,7 @@ def compact_complex(
             faces, origin = faces[first], origin[first]
         mapped = np.sort(to[all_edges], axis=1)
         mapped = mapped[mapped[:, 0] != mapped[:, 1]]
-        keys = np.unique(mapped[:, 0] * n + mapped[:, 1])
+        keys = unique_ints(mapped[:, 0] * n + mapped[:, 1])
         all_edges = np.c_[keys // n, keys % n]
     keep = np.flatnonzero(alive)
     new = np.full(n, -1, np.int64)

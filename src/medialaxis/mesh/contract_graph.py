@@ -27,6 +27,7 @@ from scipy import sparse
 from scipy.sparse import csgraph
 
 from medialaxis.core import graph as _graph
+from medialaxis.core.arrays import unique_ints
 from medialaxis.mesh._flow_operators import unique_pairs
 from medialaxis.mesh.graph_shape import extend_leaves, junction_ball, straighten_junction
 
@@ -66,14 +67,14 @@ def handle_count(n_vertices: int, faces: np.ndarray) -> int:
     base = n_vertices
     keys, counts = np.unique(e[:, 0] * base + e[:, 1], return_counts=True)
     edges = np.column_stack([keys // base, keys % base])
-    used = np.unique(faces)
+    used = unique_ints(faces)
     ncomp, label = _graph.component_labels(n_vertices, edges)
     v = np.bincount(label[used], minlength=ncomp)
     ne = np.bincount(label[edges[:, 0]], minlength=ncomp)
     nf = np.bincount(label[faces[:, 0]], minlength=ncomp)
     boundary = edges[counts == 1]
     if len(boundary):
-        nodes = np.unique(boundary)
+        nodes = unique_ints(boundary)
         remap = np.full(n_vertices, -1)
         remap[nodes] = np.arange(len(nodes))
         nb, blabel = _graph.component_labels(len(nodes), remap[boundary])
@@ -111,7 +112,7 @@ def _cluster(points: np.ndarray, edges: np.ndarray, use: np.ndarray, cell: float
     _, label = _graph.component_labels(n, edges[same])
     label = label.astype(np.int64)
     label[~use] = -1
-    keep = np.unique(label[use])
+    keep = unique_ints(label[use])
     remap = np.full(label.max() + 2, -1, dtype=np.int64)
     remap[keep] = np.arange(len(keep))
     return np.where(use, remap[label], -1)
@@ -146,7 +147,7 @@ def _absorb_stragglers(
     target = np.arange(m)
     target[pairs[order[first], 0]] = pairs[order[first], 1]
     new = np.where(label >= 0, target[np.maximum(label, 0)], -1)
-    keep = np.unique(new[new >= 0])
+    keep = unique_ints(new[new >= 0])
     remap = np.full(m, -1, dtype=np.int64)
     remap[keep] = np.arange(len(keep))
     return np.where(new >= 0, remap[np.maximum(new, 0)], -1)

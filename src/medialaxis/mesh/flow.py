@@ -51,6 +51,7 @@ from scipy.sparse import linalg as splinalg
 
 from medialaxis._progress import check_cancel, progress
 from medialaxis.core import graph as _graph
+from medialaxis.core.arrays import unique_ints
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
@@ -214,7 +215,7 @@ def flow_skeleton(
         if fp.size and (fp.min() < 0 or fp.max() >= n_input):
             bad = fp[(fp < 0) | (fp >= n_input)][0]
             raise InvalidInputError(f"fixed_points index {int(bad)} out of range for a mesh of {n_input} vertices")
-        fixed = np.unique(vertex_map[fp])
+        fixed = unique_ints(vertex_map[fp])
     use = np.ones(n, dtype=bool)
     if region is not None:
         box = _check_box(region)

@@ -12,6 +12,7 @@ from scipy import sparse
 from scipy.spatial import cKDTree
 
 from medialaxis.core import graph as _graph
+from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.inputs import _read, load_mesh
@@ -151,7 +152,7 @@ def curvature_tips(
     inner = edges[hot[edges[:, 0]] & hot[edges[:, 1]]]
     _, label = _graph.component_labels(len(points), inner)
     rim_edges = edges[hot[edges[:, 0]] != hot[edges[:, 1]]]
-    rim = np.unique(rim_edges[hot[rim_edges]]) if len(rim_edges) else np.zeros(0, dtype=np.int64)
+    rim = unique_ints(rim_edges[hot[rim_edges]]) if len(rim_edges) else np.zeros(0, dtype=np.int64)
     length = np.linalg.norm(points[inner[:, 0]] - points[inner[:, 1]], axis=1) + 1e-300
     adj = sparse.coo_matrix((length, (inner[:, 0], inner[:, 1])), shape=(len(points),) * 2).tocsr()
     depth = csgraph.dijkstra(adj, directed=False, indices=rim, min_only=True) if len(rim) else np.zeros(len(points))

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis._optional import require
+from medialaxis.core.arrays import unique_ints
 from medialaxis.core.validate import check_coordinates
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError, UnsupportedFormatError
 
@@ -149,7 +150,7 @@ def check_shells(mesh: Any) -> None:
         signed = float(np.einsum("ij,ij->i", shell[:, 0], np.cross(shell[:, 1], shell[:, 2])).sum()) / 6.0
         if signed <= 0:
             continue  # a cavity
-        vertices = np.unique(mesh.faces[faces])
+        vertices = unique_ints(mesh.faces[faces])
         pick = np.linspace(0, len(vertices) - 1, min(SHELL_PROBES, len(vertices))).astype(int)
         probes = np.asarray(mesh.vertices)[vertices[pick]]
         # Only shells whose boxes meet this one's can hold its vertices; the
@@ -305,7 +306,7 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> Me
             if len(welded.vertices) < len(work.vertices):
                 repairs.append(f"welded {len(work.vertices) - len(welded.vertices)} coincident vertices")
             work = welded
-    unused = len(work.vertices) - len(np.unique(work.faces))
+    unused = len(work.vertices) - len(unique_ints(work.faces))
     if unused:
         work.remove_unreferenced_vertices()
         repairs.append(f"dropped {unused} vertices used by no face")

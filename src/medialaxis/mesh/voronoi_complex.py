@@ -28,6 +28,7 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 
+from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
@@ -230,7 +231,7 @@ def _minor_groups(dt: Tetrahedralisation, flag: np.ndarray, volume: np.ndarray, 
     first = np.r_[True, key_point[order[1:]] != key_point[order[:-1]]]
     largest = np.zeros(len(keys), bool)
     largest[order[first]] = True
-    return np.unique(tets[~largest[group_of]])
+    return unique_ints(tets[~largest[group_of]])
 
 
 def _gaps(flag: np.ndarray) -> list[np.ndarray]:
@@ -353,7 +354,7 @@ def medial_complex(
     keys, side_count = np.unique(sides[:, 0] * n_tets + sides[:, 1], return_counts=True)
     border = keys[side_count != 2]
     border = np.c_[border // n_tets, border % n_tets]
-    used = np.unique(np.concatenate([ring_tets, curve.ravel()]))
+    used = unique_ints(np.concatenate([ring_tets, curve.ravel()]))
     new_index = np.full(n_tets, -1, np.int64)
     new_index[used] = np.arange(len(used))
     edges = new_index[np.concatenate([curve, border]).astype(np.int64)].reshape(-1, 2)

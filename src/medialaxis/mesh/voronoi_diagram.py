@@ -16,7 +16,7 @@ import numpy as np
 from scipy.spatial import Delaunay, QhullError
 
 from medialaxis.errors import ComputationError
-from medialaxis.mesh._voronoi_kernels import walk_edge_rings
+from medialaxis.mesh._voronoi_kernels import all_edge_rings
 
 __all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings", "morton_order", "TET_EDGES"]
 
@@ -40,9 +40,6 @@ class Tetrahedralisation:
         Longest edge of each tetrahedron.
     neighbors : (t, 4) int64 ndarray
         Tetrahedron opposite each vertex (-1 on the hull).
-    hull_edges : (h,) int64 ndarray
-        Sorted keys ``i * p + j`` (``i < j``) of the convex hull's edges, whose
-        Voronoi facets are unbounded.
     """
 
     points: np.ndarray
@@ -51,7 +48,6 @@ class Tetrahedralisation:
     radii: np.ndarray
     longest: np.ndarray
     neighbors: np.ndarray
-    hull_edges: np.ndarray
 
 
 def circumspheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -106,7 +102,7 @@ def morton_order(points: np.ndarray, bits: int = 21) -> np.ndarray:
 
 
 def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
-    """Delaunay tetrahedralisation (SciPy's Qhull) with circumspheres and hull edges.
+    """Delaunay tetrahedralisation (SciPy's Qhull) with circumspheres and neighbours.
 
     Qhull runs with joggled input (``QJ``): samples of planes and spheres
     are highly degenerate (co-planar, co-spherical), which without it cost
@@ -136,12 +132,7 @@ def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
     longest = np.zeros(len(simplices))
     for i, j, _, _ in TET_EDGES:
         longest = np.maximum(longest, np.linalg.norm(p[:, i] - p[:, j], axis=1))
-    hull = order[np.asarray(tri.convex_hull, np.int64)]
-    n = len(points)
-    he = np.concatenate([hull[:, [0, 1]], hull[:, [1, 2]], hull[:, [2, 0]]])
-    he.sort(axis=1)
-    hull_edges = np.unique(he[:, 0] * n + he[:, 1])
-    return Tetrahedralisation(points, simplices, centres, radii, longest, np.asarray(tri.neighbors, np.int64), hull_edges)
+    return Tetrahedralisation(points, simplices, centres, radii, longest, np.asarray(tri.neighbors, np.int64))
 
 
 def edge_rings(
@@ -153,9 +144,10 @@ def edge_rings(
     ----------
     dt : Tetrahedralisation
     tets : (s,) int64 ndarray
-        The tetrahedra to consider. A facet is complete only if every
-        tetrahedron around its edge is in ``tets`` (true when ``tets`` holds
-        all tetrahedra with an edge of at least ``min_length``).
+        The tetrahedra to consider. A facet is returned when the tetrahedron
+        of lowest index around its edge is in ``tets``: every facet of an
+        edge at least ``min_length`` long when ``tets`` holds all tetrahedra
+        with such an edge.
     min_length : float
 
     Returns
@@ -169,30 +161,6 @@ def edge_rings(
     length : (e,) float64 ndarray
         Length of each facet's Delaunay edge (the contact-set lower bound).
     """
-    n = len(dt.points)
-    s = dt.simplices[tets]
-    inc_tet = np.repeat(tets, 6)
-    loc = np.tile(TET_EDGES, (len(tets), 1))
-    rows = np.repeat(np.arange(len(tets)), 6)
-    i, j = s[rows, loc[:, 0]], s[rows, loc[:, 1]]
-    lo, hi = np.minimum(i, j), np.maximum(i, j)
-    pi, pj = dt.points[lo], dt.points[hi]
-    length = np.linalg.norm(pj - pi, axis=1)
-    keep = length >= min_length
-    lo, hi, inc_tet, length = lo[keep], hi[keep], inc_tet[keep], length[keep]
-    key = lo * n + hi
-    order = np.argsort(key, kind="stable")
-    key, inc_tet, length = key[order], inc_tet[order], length[order]
-    starts = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
-    counts = np.diff(np.r_[starts, len(key)])
-    ukey = key[starts]
-    ring, valid = walk_edge_rings(
-        dt.simplices, dt.neighbors, ukey // n, ukey % n, inc_tet[starts], counts.astype(np.int64)
-    )
-    valid &= ~np.isin(ukey, dt.hull_edges)
-    ring_ptr = np.r_[0, np.cumsum(counts[valid])].astype(np.int64)
-    ring = ring[np.repeat(valid, counts)]
-    ukey = ukey[valid]
-    edge_ij = np.c_[ukey // n, ukey % n]
-    return edge_ij, ring_ptr, ring, length[starts[valid]]
+    tets = np.sort(np.asarray(tets, np.int64))
+    return all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, float(min_length))
 

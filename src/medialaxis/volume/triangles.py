@@ -13,6 +13,7 @@ import itertools
 
 import numpy as np
 
+from medialaxis.core.arrays import unique_ints
 from medialaxis.volume.voxel_table import VoxelTable, table_lookup
 
 __all__ = ["region_triangles", "pair_keys", "has_keys"]
@@ -43,7 +44,7 @@ def _region_edges(table: VoxelTable, voxels: np.ndarray, label: np.ndarray, n: i
             sa, sb = sheet[i], sheet[j]
             touch &= (sa == sb) | (sa == -1) | (sb == -1)
         keys.append(pair_keys(a[touch], b[touch], n))
-    return np.unique(np.concatenate(keys))
+    return unique_ints(np.concatenate(keys))
 
 
 def has_keys(keys: np.ndarray, query: np.ndarray) -> np.ndarray:
@@ -79,7 +80,7 @@ def _batch_labels(table: VoxelTable, voxels: np.ndarray, label: np.ndarray, shee
     origins = (voxels[:, None, :] - corners[None, :, :]).reshape(-1, 3)
     shape = table.shape
     origins = origins[np.all((origins >= 0) & (origins < shape - 1), axis=1)]
-    flat = np.unique(np.ravel_multi_index(origins.T, tuple(shape)))
+    flat = unique_ints(np.ravel_multi_index(origins.T, tuple(shape)))
     origins = np.stack(np.unravel_index(flat, tuple(shape)), axis=1)
     cells = origins[:, None, :] + corners[None, :, :]
     rows = table_lookup(table, cells.reshape(-1, 3)).reshape(-1, 8)
