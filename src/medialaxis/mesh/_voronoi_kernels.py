@@ -377,3 +377,84 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
         edge_ij[k, 0], edge_ij[k, 1] = min(i, j), max(i, j)
         length[k] = np.sqrt(((points[i] - points[j]) ** 2).sum())
     return edge_ij, ring_ptr, ring, length
+
+
+@njit(cache=True, nogil=True)
+def _root(parent, a):  # type: ignore[no-untyped-def]
+    while parent[a] != a:
+        parent[a] = parent[parent[a]]
+        a = parent[a]
+    return a
+
+
+@njit(cache=True, nogil=True)
+def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull):  # type: ignore[no-untyped-def]
+    """Flagged tetrahedra in a group that is not the largest of some point's star.
+
+    Around each sample point, two flagged tetrahedra are in one group when a
+    chain of flagged tetrahedra, each sharing a triangle through the point
+    with the next, joins them (union-find over one node per tetrahedron
+    corner). With ``hull``, the region beyond the convex hull counts as one
+    flagged cell around each hull point, of infinite volume. A group's size
+    is the volume of its tetrahedra; ties go to the group met first.
+
+    Returns
+    -------
+    (t,) bool ndarray
+        The flagged tetrahedra outside the largest group at one of their corners.
+    """
+    n_tets = simplices.shape[0]
+    rank = np.full(n_tets, -1, np.int64)
+    m = 0
+    for t in range(n_tets):
+        if flag[t]:
+            rank[t] = m
+            m += 1
+    n_nodes = 4 * m + (n_points if hull else 0)
+    parent = np.arange(n_nodes)
+    for t in range(n_tets):
+        if not flag[t]:
+            continue
+        for k in range(4):
+            nb = neighbors[t, k]
+            if nb >= 0 and (nb < t or not flag[nb]):
+                continue
+            for c in range(4):
+                if c == k:
+                    continue
+                a = _root(parent, 4 * rank[t] + c)
+                if nb < 0:
+                    if not hull:
+                        continue
+                    b = _root(parent, 4 * m + simplices[t, c])
+                else:
+                    point = simplices[t, c]
+                    other = 0
+                    while simplices[nb, other] != point:
+                        other += 1
+                    b = _root(parent, 4 * rank[nb] + other)
+                if a != b:
+                    parent[max(a, b)] = min(a, b)
+    size = np.zeros(n_nodes)
+    for t in range(n_tets):
+        if flag[t]:
+            for c in range(4):
+                size[_root(parent, 4 * rank[t] + c)] += volume[t]
+    if hull:
+        for p in range(n_points):
+            size[_root(parent, 4 * m + p)] = np.inf
+    best = np.full(n_points, -1, np.int64)
+    for t in range(n_tets):
+        if flag[t]:
+            for c in range(4):
+                p = simplices[t, c]
+                r = _root(parent, 4 * rank[t] + c)
+                if best[p] < 0 or size[r] > size[best[p]]:
+                    best[p] = r
+    minor = np.zeros(n_tets, np.bool_)
+    for t in range(n_tets):
+        if flag[t]:
+            for c in range(4):
+                if _root(parent, 4 * rank[t] + c) != best[simplices[t, c]]:
+                    minor[t] = True
+    return minor

@@ -25,12 +25,10 @@ import dataclasses
 from typing import Literal
 
 import numpy as np
-from scipy import sparse
-from scipy.sparse.csgraph import connected_components
 
 from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
-from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides
+from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides, minor_star_groups
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 
 __all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "TOPOLOGY_MODES"]
@@ -146,11 +144,11 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
         pinched = np.flatnonzero((rises >= 2) & (size > 0))
         # around a point, the inner tetrahedra must be one group and the
         # outer ones one group: drop inner strays, fill outer pockets
-        stray = _minor_groups(dt, inner, volume, hull=False)
+        stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False)
         inner[stray] = False
-        pocket = _minor_groups(dt, ~inner, volume, hull=True)
+        pocket = minor_star_groups(dt.simplices, dt.neighbors, ~inner, volume, len(dt.points), True)
         inner[pocket] = True
-        if len(pinched) == 0 and len(stray) == 0 and len(pocket) == 0:
+        if len(pinched) == 0 and not stray.any() and not pocket.any():
             break
         for k in pinched:
             ring = ring_tets[ring_ptr[k] : ring_ptr[k + 1]]
@@ -162,76 +160,6 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
                 if g != largest:
                     inner[ring[rows]] = False
     return inner
-
-
-def _star_groups(dt: Tetrahedralisation, flag: np.ndarray,
-                 hull: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Groups of flagged tetrahedra around each sample point.
-
-    Two flagged tetrahedra around a point are in one group when a chain of
-    flagged tetrahedra, each sharing a triangle through the point with the
-    next, joins them. With ``hull``, the region beyond the convex hull counts
-    as one flagged cell around each hull point (of infinite volume).
-
-    Returns
-    -------
-    tets : (k,) int64 ndarray
-        Each (tetrahedron, corner) of the flagged tetrahedra, by tetrahedron ...
-    point : (k,) int64 ndarray
-        ... and point,
-    group : (k,) int64 ndarray
-        with its group number (shared by all the nodes of one group; groups of
-        different points differ),
-    on_hull : (k,) bool ndarray
-        and whether its group reaches beyond the convex hull.
-    """
-    n_points = len(dt.points)
-    tets = np.flatnonzero(flag)
-    node = np.full((len(dt.simplices), 4), -1, np.int64)
-    node[tets] = np.arange(4 * len(tets)).reshape(-1, 4)
-    m = 4 * len(tets) + (n_points if hull else 0)  # hull nodes: one per point
-    t = np.repeat(tets, 4)
-    k = np.tile(np.arange(4), len(tets))
-    nb = dt.neighbors[t, k]
-    rows, cols = [], []
-    for j in range(1, 4):  # the three corners of the triangle opposite corner k
-        corner = (k + j) % 4
-        point = dt.simplices[t, corner]
-        inside = nb >= 0
-        pair = inside & (nb > t) & flag[np.maximum(nb, 0)]
-        other = np.argmax(dt.simplices[nb[pair]] == point[pair][:, None], axis=1)
-        rows.append(node[t[pair], corner[pair]])
-        cols.append(node[nb[pair], other])
-        if hull:
-            out = ~inside
-            rows.append(node[t[out], corner[out]])
-            cols.append(4 * len(tets) + point[out])
-    rows_all, cols_all = np.concatenate(rows), np.concatenate(cols)
-    graph = sparse.coo_matrix((np.ones(len(rows_all)), (rows_all, cols_all)), shape=(m, m))
-    _, label = connected_components(graph, directed=False)
-    point = dt.simplices[tets].ravel()
-    group = label[: 4 * len(tets)]
-    on_hull = group == label[4 * len(tets) + point] if hull else np.zeros(len(group), bool)
-    return np.repeat(tets, 4), point, group, on_hull
-
-
-def _minor_groups(dt: Tetrahedralisation, flag: np.ndarray, volume: np.ndarray, hull: bool) -> np.ndarray:
-    """Flagged tetrahedra in a group that is not the largest (by volume; a
-    hull group counts as infinite) of some point's star."""
-    tets, point, group, on_hull = _star_groups(dt, flag, hull)
-    if len(tets) == 0:
-        return tets
-    span = int(group.max()) + 1
-    keys, group_of = np.unique(point * span + group, return_inverse=True)
-    group_of = group_of.ravel()
-    key_point = keys // span
-    size = np.bincount(group_of, weights=volume[tets])
-    size[group_of[on_hull]] = np.inf
-    order = np.lexsort((-size, key_point))
-    first = np.r_[True, key_point[order[1:]] != key_point[order[:-1]]]
-    largest = np.zeros(len(keys), bool)
-    largest[order[first]] = True
-    return unique_ints(tets[~largest[group_of]])
 
 
 def _gaps(flag: np.ndarray) -> list[np.ndarray]:
