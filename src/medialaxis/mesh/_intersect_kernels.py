@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from medialaxis._jit import njit
+from medialaxis._jit import njit, prange
 
 __all__ = ["first_crossing", "first_crossing_reference", "segment_crosses_triangle"]
 
@@ -49,16 +49,36 @@ def _crosses(t: np.ndarray, u: np.ndarray, tol: float) -> bool:
 
 
 @njit(cache=True, nogil=True)
+def _boxes_apart(t: np.ndarray, u: np.ndarray) -> bool:
+    for a in range(3):
+        if max(t[0, a], t[1, a], t[2, a]) < min(u[0, a], u[1, a], u[2, a]):
+            return True
+        if max(u[0, a], u[1, a], u[2, a]) < min(t[0, a], t[1, a], t[2, a]):
+            return True
+    return False
+
+
+@njit(cache=True, nogil=True, parallel=True)
 def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> int:
-    """Index of the first pair ``(i, j)`` of ``pairs`` whose triangles share no vertex and cross, or -1."""
-    for k in range(len(pairs)):
+    """Index of the first pair ``(i, j)`` of ``pairs`` whose triangles share no vertex and cross, or -1.
+
+    Pairs whose bounding boxes are apart are skipped at once; the others
+    are tested on all cores.
+    """
+    hit = np.zeros(len(pairs), np.bool_)
+    for k in prange(len(pairs)):
         i, j = pairs[k, 0], pairs[k, 1]
+        if _boxes_apart(triangles[i], triangles[j]):
+            continue
         share = False
         for a in range(3):
             for b in range(3):
                 if faces[i, a] == faces[j, b]:
                     share = True
         if not share and _crosses(triangles[i], triangles[j], tol):
+            hit[k] = True
+    for k in range(len(pairs)):
+        if hit[k]:
             return k
     return -1
 

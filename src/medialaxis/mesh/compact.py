@@ -49,7 +49,7 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis._jit import njit
+from medialaxis._jit import njit, prange
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers
 from medialaxis.core.result import MedialAxis
@@ -214,42 +214,73 @@ def _first_of_each(rows: np.ndarray) -> np.ndarray:
     return np.sort(first)
 
 
-def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    ab = b - a
-    t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0.0, 1.0)
-    return np.linalg.norm(p - (a + t[:, None] * ab), axis=1)
+@njit(cache=True, nogil=True)
+def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second):  # pragma: no cover - compiled
+    """Cost of merging ``j`` into ``i`` and the feature move it makes (see the module docstring)."""
+    quad = qc[j]
+    for a in range(4):
+        quad -= 2.0 * qb[j, a] * spheres[i, a]
+        for b in range(4):
+            quad += spheres[i, a] * qa[j, a, b] * spheres[i, b]
+    sqem = np.sqrt(max(quad, 0.0) / count[j])
+    if degree[j] == 0:
+        return sqem, 0.0
+    far = -1
+    if degree[j] == 2 and first[j] == i:
+        far = second[j]
+    elif degree[j] == 2 and second[j] == i:
+        far = first[j]
+    shift = 0.0
+    if far < 0:  # off its line: the distance moved
+        for a in range(3):
+            shift += (spheres[j, a] - spheres[i, a]) ** 2
+    else:  # along its line: the distance to the segment that replaces it
+        ab = 0.0
+        ap = 0.0
+        for a in range(3):
+            ab += (spheres[far, a] - spheres[i, a]) ** 2
+            ap += (spheres[j, a] - spheres[i, a]) * (spheres[far, a] - spheres[i, a])
+        t = min(max(ap / max(ab, 1e-300), 0.0), 1.0)
+        for a in range(3):
+            shift += (spheres[j, a] - spheres[i, a] - t * (spheres[far, a] - spheres[i, a])) ** 2
+    move = max(moved[j], np.sqrt(shift))
+    return max(sqem, move), move
 
 
-def _costs(
-    src: np.ndarray, dst: np.ndarray, spheres: np.ndarray, quad: tuple[np.ndarray, ...], count: np.ndarray,
-    moved: np.ndarray, edges: np.ndarray, feature: np.ndarray, n: int,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Cost of merging ``src[k]`` into ``dst[k]`` (see the module docstring) and the feature move it makes."""
-    qa, qb, qc = quad
-    s = spheres[dst]
-    sqem = np.einsum("ij,ijk,ik->i", s, qa[src], s) - 2.0 * np.einsum("ij,ij->i", qb[src], s) + qc[src]
-    sqem = np.sqrt(np.maximum(sqem, 0.0) / count[src])
-    # features: the edges not shared by exactly two triangles; a vertex with two of them lies on a line
-    fe = edges[feature]
-    ends = np.concatenate([fe[:, 0], fe[:, 1]])
-    other = np.concatenate([fe[:, 1], fe[:, 0]])
-    degree = np.bincount(ends, minlength=n)
-    order = np.argsort(ends, kind="stable")
+@njit(cache=True, nogil=True, parallel=True)
+def _costs(edges, cand, spheres, qa, qb, qc, count, moved, feature):  # pragma: no cover - compiled
+    """Cheaper direction of merging each candidate edge: ``src -> dst``, its cost and feature move.
+
+    Features are the edges not shared by exactly two triangles; a vertex
+    with two of them lies on a line (ties go to merging the first end into the second).
+    """
+    n = spheres.shape[0]
+    degree = np.zeros(n, np.int64)
     first = np.full(n, -1, np.int64)
     second = np.full(n, -1, np.int64)
-    starts = np.cumsum(degree) - degree
-    first[degree > 0] = other[order][starts[degree > 0]]
-    two = degree == 2
-    second[two] = other[order][starts[two] + 1]
-    xyz = spheres[:, :3]
-    shift = np.linalg.norm(xyz[src] - xyz[dst], axis=1)
-    along = two[src] & ((first[src] == dst) | (second[src] == dst))
-    if along.any():
-        j = src[along]
-        far = np.where(first[j] == dst[along], second[j], first[j])
-        shift[along] = _segment_distance(xyz[j], xyz[dst[along]], xyz[far])
-    move = np.where(degree[src] == 0, 0.0, np.maximum(moved[src], shift))
-    return np.maximum(sqem, move), move
+    for e in range(edges.shape[0]):
+        if feature[e]:
+            for s in range(2):
+                u, w = edges[e, s], edges[e, 1 - s]
+                if degree[u] == 0:
+                    first[u] = w
+                elif degree[u] == 1:
+                    second[u] = w
+                degree[u] += 1
+    m = cand.shape[0]
+    src = np.empty(m, np.int64)
+    dst = np.empty(m, np.int64)
+    cost = np.empty(m)
+    move = np.empty(m)
+    for k in prange(m):
+        u, v = edges[cand[k], 0], edges[cand[k], 1]
+        c_uv, m_uv = _merge_cost(u, v, spheres, qa, qb, qc, count, moved, degree, first, second)
+        c_vu, m_vu = _merge_cost(v, u, spheres, qa, qb, qc, count, moved, degree, first, second)
+        if c_uv <= c_vu:
+            src[k], dst[k], cost[k], move[k] = u, v, c_uv, m_uv
+        else:
+            src[k], dst[k], cost[k], move[k] = v, u, c_vu, m_vu
+    return src, dst, cost, move
 
 
 def compact_complex(
@@ -312,12 +343,7 @@ def compact_complex(
         cand = np.flatnonzero(ok)
         if not len(cand):
             break
-        src = np.concatenate([all_edges[cand, 0], all_edges[cand, 1]])
-        dst = np.concatenate([all_edges[cand, 1], all_edges[cand, 0]])
-        cost, move = _costs(src, dst, spheres, (qa, qb, qc), count, moved, all_edges, tri_count != 2, n)
-        half = len(cand)
-        better = np.where(cost[:half] <= cost[half:], 0, half) + np.arange(half)
-        src, dst, cost, move = src[better], dst[better], cost[better], move[better]
+        src, dst, cost, move = _costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2)
         within = np.flatnonzero(cost <= tolerance)
         if not len(within):
             break
