@@ -110,14 +110,69 @@ def complex_edges(faces: np.ndarray, edges: np.ndarray, n: int) -> tuple[np.ndar
     return np.c_[all_keys // n, all_keys % n], count
 
 
-def _adjacency(n: int, edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """CSR adjacency (sorted neighbour lists) of an undirected edge list."""
-    src = np.concatenate([edges[:, 0], edges[:, 1]])
-    dst = np.concatenate([edges[:, 1], edges[:, 0]])
-    order = np.lexsort((dst, src))
+@njit(cache=True, nogil=True)
+def _structure(n, edges, faces):  # pragma: no cover - compiled
+    """Neighbour lists and triangle apexes of a complex, in one pass over its sorted edges.
+
+    ``edges`` (m, 2) are sorted by ``(u, v)`` with ``u < v``. Returns the
+    CSR adjacency ``ptr, idx`` (each list ascending: the lower neighbours
+    come in edge order, then the higher ones) and, per edge, the apexes of
+    the triangles on it (``apex[apex_ptr[e]:apex_ptr[e + 1]]``).
+    """
+    m = edges.shape[0]
     ptr = np.zeros(n + 1, np.int64)
-    np.cumsum(np.bincount(src, minlength=n), out=ptr[1:])
-    return ptr, dst[order].astype(np.int64)
+    for e in range(m):
+        ptr[edges[e, 0] + 1] += 1
+        ptr[edges[e, 1] + 1] += 1
+    for v in range(n):
+        ptr[v + 1] += ptr[v]
+    fill = ptr[:-1].copy()
+    idx = np.empty(2 * m, np.int64)
+    for e in range(m):  # lower neighbours w of u, for edges (w, u): w ascending
+        u = edges[e, 1]
+        idx[fill[u]] = edges[e, 0]
+        fill[u] += 1
+    for e in range(m):  # then the higher ones
+        u = edges[e, 0]
+        idx[fill[u]] = edges[e, 1]
+        fill[u] += 1
+    owner = np.empty(3 * faces.shape[0], np.int64)
+    apex_ptr = np.zeros(m + 1, np.int64)
+    for f in range(faces.shape[0]):
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            u, v = min(a, b), max(a, b)
+            lo = ptr[u]
+            hi = ptr[u + 1]
+            while lo < hi:  # v's position in u's (ascending) list
+                mid = (lo + hi) // 2
+                if idx[mid] < v:
+                    lo = mid + 1
+                else:
+                    hi = mid
+            owner[3 * f + k] = lo
+    # positions of higher neighbours in the lists -> their edges
+    edge_at = np.full(2 * m, -1, np.int64)
+    fill = ptr[:-1].copy()
+    for e in range(m):
+        fill[edges[e, 1]] += 1
+    for e in range(m):
+        u = edges[e, 0]
+        edge_at[fill[u]] = e
+        fill[u] += 1
+    for r in range(owner.shape[0]):
+        owner[r] = edge_at[owner[r]]
+        apex_ptr[owner[r] + 1] += 1
+    for e in range(m):
+        apex_ptr[e + 1] += apex_ptr[e]
+    fill = apex_ptr[:-1].copy()
+    apex = np.empty(owner.shape[0], np.int64)
+    for f in range(faces.shape[0]):
+        for k in range(3):
+            e = owner[3 * f + k]
+            apex[fill[e]] = faces[f, (k + 2) % 3]
+            fill[e] += 1
+    return ptr, idx, apex_ptr, apex
 
 
 @njit(cache=True, nogil=True)
@@ -325,19 +380,7 @@ def compact_complex(
     rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
-        ptr, idx = _adjacency(n, all_edges)
-        key = all_edges[:, 0] * n + all_edges[:, 1]
-        if len(faces):
-            sides = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
-            owner = np.searchsorted(key, sides[:, 0] * n + sides[:, 1])
-            apex_of = np.concatenate([faces[:, 2], faces[:, 0], faces[:, 1]])
-            by_edge = np.argsort(owner, kind="stable")
-            apex = apex_of[by_edge]
-        else:
-            owner = np.empty(0, np.int64)
-            apex = np.empty(0, np.int64)
-        apex_ptr = np.zeros(len(all_edges) + 1, np.int64)
-        np.cumsum(np.bincount(owner, minlength=len(all_edges)), out=apex_ptr[1:])
+        ptr, idx, apex_ptr, apex = _structure(n, all_edges, faces)
         tri_count = np.diff(apex_ptr)
         ok = _link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
         cand = np.flatnonzero(ok)
