@@ -94,49 +94,63 @@ def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):
     point = np.zeros((nq, 3))
     face = np.full(nq, -1, np.int64)
     region = np.full(nq, -1, np.int64)
-    for i in prange(nq):
-        p = query[i]
-        best = np.inf
-        # scan the rings of the given faces, then walk: scan the ring of the
-        # best face found until it no longer changes (local descent on the mesh)
-        n_near = near.shape[1]
-        scanned = -1
-        for a in range(n_near + MAX_WALK):
-            if a < n_near:
-                g = near[i, a]
-                seen = False
-                for b in range(a):
-                    if near[i, b] == g:
-                        seen = True
-                if seen:
-                    continue
-            else:
-                g = face[i]
-                if g == scanned:
-                    break
-                if a == n_near:  # the best face may be one of those given: its ring is scanned
-                    given = False
-                    for b in range(n_near):
-                        if near[i, b] == g:
-                            given = True
-                    if given:
-                        break
-                scanned = g
-            for k in range(ring_ptr[g], ring_ptr[g + 1]):
-                f = ring_idx[k]
-                a_, b_, c_ = tri_a[f], tri_b[f], tri_c[f]
-                v, w, r = _closest_on_triangle(p[0], p[1], p[2], a_, b_, c_)
-                x0 = a_[0] + v * (b_[0] - a_[0]) + w * (c_[0] - a_[0])
-                x1 = a_[1] + v * (b_[1] - a_[1]) + w * (c_[1] - a_[1])
-                x2 = a_[2] + v * (b_[2] - a_[2]) + w * (c_[2] - a_[2])
-                d2 = (p[0] - x0) ** 2 + (p[1] - x1) ** 2 + (p[2] - x2) ** 2
-                if d2 < best:
-                    best = d2
-                    point[i, 0], point[i, 1], point[i, 2] = x0, x1, x2
-                    face[i] = f
-                    region[i] = r
-        dist[i] = np.sqrt(best)
+    # the rings of neighbouring faces overlap: each face is tested once per
+    # query, marked in a stamp array per block of queries (one block per task)
+    n_blocks = min(nq, 64)
+    for block in prange(n_blocks):
+        stamp = np.full(tri_a.shape[0], -1, np.int64)
+        for i in range(block * nq // n_blocks, (block + 1) * nq // n_blocks):
+            _closest_one(i, query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx, stamp, point, face, region, dist)
     return dist, point, face, region
+
+
+@njit(cache=True, nogil=True)
+def _closest_one(i, query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx, stamp, point, face, region, dist):  # type: ignore[no-untyped-def]
+    """One query of :func:`closest_on_candidates` (faces with ``stamp == i`` are skipped, then stamped)."""
+    p = query[i]
+    best = np.inf
+    # scan the rings of the given faces, then walk: scan the ring of the
+    # best face found until it no longer changes (local descent on the mesh)
+    n_near = near.shape[1]
+    scanned = -1
+    for a in range(n_near + MAX_WALK):
+        if a < n_near:
+            g = near[i, a]
+            seen = False
+            for b in range(a):
+                if near[i, b] == g:
+                    seen = True
+            if seen:
+                continue
+        else:
+            g = face[i]
+            if g == scanned:
+                break
+            if a == n_near:  # the best face may be one of those given: its ring is scanned
+                given = False
+                for b in range(n_near):
+                    if near[i, b] == g:
+                        given = True
+                if given:
+                    break
+            scanned = g
+        for k in range(ring_ptr[g], ring_ptr[g + 1]):
+            f = ring_idx[k]
+            if stamp[f] == i:
+                continue
+            stamp[f] = i
+            a_, b_, c_ = tri_a[f], tri_b[f], tri_c[f]
+            v, w, r = _closest_on_triangle(p[0], p[1], p[2], a_, b_, c_)
+            x0 = a_[0] + v * (b_[0] - a_[0]) + w * (c_[0] - a_[0])
+            x1 = a_[1] + v * (b_[1] - a_[1]) + w * (c_[1] - a_[1])
+            x2 = a_[2] + v * (b_[2] - a_[2]) + w * (c_[2] - a_[2])
+            d2 = (p[0] - x0) ** 2 + (p[1] - x1) ** 2 + (p[2] - x2) ** 2
+            if d2 < best:
+                best = d2
+                point[i, 0], point[i, 1], point[i, 2] = x0, x1, x2
+                face[i] = f
+                region[i] = r
+    dist[i] = np.sqrt(best)
 
 
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
