@@ -5,7 +5,7 @@ import pytest
 import trimesh
 
 from medialaxis.mesh.sampling import sample_surface
-from medialaxis.mesh.voronoi_diagram import morton_order, tetrahedralise
+from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
 
 def _dense_plate(thickness=0.02, size=1.0, subdivisions=5):
@@ -34,5 +34,3 @@ def test_delaunay_does_not_depend_on_the_sample_order():
 
     assert volume(a) == pytest.approx(volume(b), rel=1e-9)
     assert volume(a) == pytest.approx(trimesh.convex.convex_hull(points).volume, rel=1e-9)
-    order = morton_order(points)
-    assert sorted(order.tolist()) == list(range(len(points)))

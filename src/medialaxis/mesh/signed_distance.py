@@ -8,7 +8,7 @@ import numpy as np
 from scipy import sparse
 from scipy.spatial import cKDTree
 
-from medialaxis.mesh._voronoi_kernels import REGION_FACE, closest_on_candidates
+from medialaxis.mesh._closest_kernels import REGION_FACE, closest_on_candidates
 from medialaxis.mesh.sampling import PseudoNormals, pseudo_normals
 
 __all__ = ["SignedDistance"]

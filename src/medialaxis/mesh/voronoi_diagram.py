@@ -13,12 +13,11 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
-from scipy.spatial import Delaunay, QhullError
 
-from medialaxis.errors import ComputationError
 from medialaxis.mesh._voronoi_kernels import all_edge_rings
+from medialaxis.mesh.delaunay import delaunay_tetrahedra
 
-__all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings", "morton_order", "TET_EDGES"]
+__all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings", "TET_EDGES"]
 
 #: Local vertex pairs of the six edges of a tetrahedron, and the two other vertices.
 TET_EDGES = np.array([(0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2), (1, 2, 0, 3), (1, 3, 0, 2), (2, 3, 0, 1)], np.int64)
@@ -84,55 +83,29 @@ def circumspheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray
     return a + offset, radii
 
 
-def morton_order(points: np.ndarray, bits: int = 21) -> np.ndarray:
-    """Order of ``points`` along a Z-order (Morton) curve of their bounding box.
-
-    Inserting points in this order keeps each insertion near the previous
-    ones, so Qhull finds the tetrahedra to replace quickly (2.3 times faster on
-    139k surface samples).
-    """
-    lo = points.min(axis=0)
-    extent = max(float(np.ptp(points, axis=0).max()), 1e-300)
-    cells = np.clip(((points - lo) / extent * ((1 << bits) - 1)).astype(np.int64), 0, (1 << bits) - 1)
-    code = np.zeros(len(points), np.int64)
-    for bit in range(bits):
-        for axis in range(3):
-            code |= ((cells[:, axis] >> bit) & 1) << (3 * bit + axis)
-    return np.argsort(code, kind="stable")
-
-
 def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
-    """Delaunay tetrahedralisation (SciPy's Qhull) with circumspheres and neighbours.
+    """Delaunay tetrahedralisation with circumspheres and neighbours.
 
-    Qhull runs with joggled input (``QJ``): samples of planes and spheres
-    are highly degenerate (co-planar, co-spherical), which without it cost
-    minutes; the joggle is far below the sample spacing, and the
-    circumspheres are computed from the exact points. The points go in in
-    Morton order (:func:`morton_order`): 139k samples of a bumpy torus take
-    5.2 s instead of 9.5 s. (A fixed jitter of 1e-9 with ``Qt`` instead of
-    ``QJ`` took 4.1 s but left near-flat tetrahedra whose far circumcentres
-    were signed inside: a sphere of radius 213 on a 6-unit boolean union.)
+    The tetrahedra come from :func:`~medialaxis.mesh.delaunay.delaunay_tetrahedra`
+    (compiled Bowyer-Watson insertion with exact predicates on a joggled
+    copy of the points: samples of planes and spheres are highly degenerate);
+    the circumspheres are computed from the exact points. 139k samples of a
+    100k-vertex bumpy torus take about 0.9 s; SciPy's Qhull (``QJ``, Morton
+    order) took 5.5-7.7 s for the same triangulation (``benchmarks/bench_delaunay.py``).
 
     Raises
     ------
     ComputationError
-        If Qhull fails (fewer than 5 points, or all coplanar).
+        Fewer than 5 distinct points, or all of them coplanar.
     """
     points = np.ascontiguousarray(points, np.float64)
-    if len(points) < 5:
-        raise ComputationError(f"the 3D Delaunay tetrahedralisation failed: it needs at least 5 points, got {len(points)}")
-    order = morton_order(points)
-    try:
-        tri = Delaunay(points[order], qhull_options="Qbb Qc Q12 QJ")
-    except QhullError as exc:
-        raise ComputationError(f"the 3D Delaunay tetrahedralisation failed: {str(exc).splitlines()[0]}") from exc
-    simplices = order[np.asarray(tri.simplices, np.int64)]
+    simplices, neighbors, _ = delaunay_tetrahedra(points)
     centres, radii = circumspheres(points, simplices)
     p = points[simplices]
     longest = np.zeros(len(simplices))
     for i, j, _, _ in TET_EDGES:
         longest = np.maximum(longest, np.linalg.norm(p[:, i] - p[:, j], axis=1))
-    return Tetrahedralisation(points, simplices, centres, radii, longest, np.asarray(tri.neighbors, np.int64))
+    return Tetrahedralisation(points, simplices, centres, radii, longest, neighbors)
 
 
 def edge_rings(

@@ -1,0 +1,225 @@
+"""Compiled kernels of the compact medial complex (:mod:`medialaxis.mesh.compact`).
+
+Per round of collapses: the neighbour lists and triangle apexes of the
+complex (:func:`structure`), the link condition (:func:`link_ok`), the cost
+of each merge (:func:`costs`) and the greedy choice of collapses kept apart
+(:func:`select`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis._jit import njit, prange
+
+__all__ = ["structure", "link_ok", "select", "costs"]
+
+
+@njit(cache=True, nogil=True)
+def structure(n, edges, faces):  # pragma: no cover - compiled
+    """Neighbour lists and triangle apexes of a complex, in one pass over its sorted edges.
+
+    ``edges`` (m, 2) are sorted by ``(u, v)`` with ``u < v``. Returns the
+    CSR adjacency ``ptr, idx`` (each list ascending: the lower neighbours
+    come in edge order, then the higher ones) and, per edge, the apexes of
+    the triangles on it (``apex[apex_ptr[e]:apex_ptr[e + 1]]``).
+    """
+    m = edges.shape[0]
+    ptr = np.zeros(n + 1, np.int64)
+    for e in range(m):
+        ptr[edges[e, 0] + 1] += 1
+        ptr[edges[e, 1] + 1] += 1
+    for v in range(n):
+        ptr[v + 1] += ptr[v]
+    fill = ptr[:-1].copy()
+    idx = np.empty(2 * m, np.int64)
+    for e in range(m):  # lower neighbours w of u, for edges (w, u): w ascending
+        u = edges[e, 1]
+        idx[fill[u]] = edges[e, 0]
+        fill[u] += 1
+    for e in range(m):  # then the higher ones
+        u = edges[e, 0]
+        idx[fill[u]] = edges[e, 1]
+        fill[u] += 1
+    owner = np.empty(3 * faces.shape[0], np.int64)
+    apex_ptr = np.zeros(m + 1, np.int64)
+    for f in range(faces.shape[0]):
+        for k in range(3):
+            a, b = faces[f, k], faces[f, (k + 1) % 3]
+            u, v = min(a, b), max(a, b)
+            lo = ptr[u]
+            hi = ptr[u + 1]
+            while lo < hi:  # v's position in u's (ascending) list
+                mid = (lo + hi) // 2
+                if idx[mid] < v:
+                    lo = mid + 1
+                else:
+                    hi = mid
+            owner[3 * f + k] = lo
+    # positions of higher neighbours in the lists -> their edges
+    edge_at = np.full(2 * m, -1, np.int64)
+    fill = ptr[:-1].copy()
+    for e in range(m):
+        fill[edges[e, 1]] += 1
+    for e in range(m):
+        u = edges[e, 0]
+        edge_at[fill[u]] = e
+        fill[u] += 1
+    for r in range(owner.shape[0]):
+        owner[r] = edge_at[owner[r]]
+        apex_ptr[owner[r] + 1] += 1
+    for e in range(m):
+        apex_ptr[e + 1] += apex_ptr[e]
+    fill = apex_ptr[:-1].copy()
+    apex = np.empty(owner.shape[0], np.int64)
+    for f in range(faces.shape[0]):
+        for k in range(3):
+            e = owner[3 * f + k]
+            apex[fill[e]] = faces[f, (k + 2) % 3]
+            fill[e] += 1
+    return ptr, idx, apex_ptr, apex
+
+
+@njit(cache=True, nogil=True)
+def _has(ptr, idx, a, b):  # pragma: no cover - compiled
+    lo, hi = ptr[a], ptr[a + 1]
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if idx[mid] < b:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo < ptr[a + 1] and idx[lo] == b
+
+
+@njit(cache=True, nogil=True)
+def link_ok(edges, ptr, idx, apex_ptr, apex):  # pragma: no cover - compiled
+    """Link condition of each edge: common neighbours == apexes of its triangles, no two apexes joined."""
+    out = np.zeros(len(edges), np.bool_)
+    for e in range(len(edges)):
+        u, v = edges[e, 0], edges[e, 1]
+        i, j = ptr[u], ptr[v]
+        common = 0
+        while i < ptr[u + 1] and j < ptr[v + 1]:
+            if idx[i] == idx[j]:
+                common += 1
+                i += 1
+                j += 1
+            elif idx[i] < idx[j]:
+                i += 1
+            else:
+                j += 1
+        t0, t1 = apex_ptr[e], apex_ptr[e + 1]
+        ok = common == t1 - t0
+        if ok and t1 - t0 >= 2:
+            for a in range(t0, t1):
+                for b in range(a + 1, t1):
+                    if _has(ptr, idx, apex[a], apex[b]):
+                        ok = False
+        out[e] = ok
+    return out
+
+
+@njit(cache=True, nogil=True)
+def select(order, src, dst, ptr, idx, n, apart):  # pragma: no cover - compiled
+    """Greedy choice of collapses ``src -> dst`` (in ``order``), kept apart by ``apart``.
+
+    ``0``: no two share a vertex (a matching); ``1``: no two meet in the
+    closed neighbourhood of the vertex removed; ``2``: in the closed
+    neighbourhoods of both endpoints (the link conditions tested before the
+    round stay true).
+    """
+    marked = np.zeros(n, np.bool_)
+    chosen = np.zeros(len(src), np.bool_)
+    for k in order:
+        a, b = src[k], dst[k]
+        if marked[a] or marked[b]:
+            continue
+        free = True
+        for v in (a, b):
+            if apart == 0 or (apart == 1 and v == b):
+                continue
+            for p in range(ptr[v], ptr[v + 1]):
+                if marked[idx[p]]:
+                    free = False
+                    break
+        if not free:
+            continue
+        chosen[k] = True
+        marked[a] = True
+        marked[b] = True
+        for v in (a, b):
+            if apart == 0 or (apart == 1 and v == b):
+                continue
+            for p in range(ptr[v], ptr[v + 1]):
+                marked[idx[p]] = True
+    return chosen
+
+
+@njit(cache=True, nogil=True)
+def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second):  # pragma: no cover - compiled
+    """Cost of merging ``j`` into ``i`` and the feature move it makes (see the module docstring)."""
+    quad = qc[j]
+    for a in range(4):
+        quad -= 2.0 * qb[j, a] * spheres[i, a]
+        for b in range(4):
+            quad += spheres[i, a] * qa[j, a, b] * spheres[i, b]
+    sqem = np.sqrt(max(quad, 0.0) / count[j])
+    if degree[j] == 0:
+        return sqem, 0.0
+    far = -1
+    if degree[j] == 2 and first[j] == i:
+        far = second[j]
+    elif degree[j] == 2 and second[j] == i:
+        far = first[j]
+    shift = 0.0
+    if far < 0:  # off its line: the distance moved
+        for a in range(3):
+            shift += (spheres[j, a] - spheres[i, a]) ** 2
+    else:  # along its line: the distance to the segment that replaces it
+        ab = 0.0
+        ap = 0.0
+        for a in range(3):
+            ab += (spheres[far, a] - spheres[i, a]) ** 2
+            ap += (spheres[j, a] - spheres[i, a]) * (spheres[far, a] - spheres[i, a])
+        t = min(max(ap / max(ab, 1e-300), 0.0), 1.0)
+        for a in range(3):
+            shift += (spheres[j, a] - spheres[i, a] - t * (spheres[far, a] - spheres[i, a])) ** 2
+    move = max(moved[j], np.sqrt(shift))
+    return max(sqem, move), move
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def costs(edges, cand, spheres, qa, qb, qc, count, moved, feature):  # pragma: no cover - compiled
+    """Cheaper direction of merging each candidate edge: ``src -> dst``, its cost and feature move.
+
+    Features are the edges not shared by exactly two triangles; a vertex
+    with two of them lies on a line (ties go to merging the first end into the second).
+    """
+    n = spheres.shape[0]
+    degree = np.zeros(n, np.int64)
+    first = np.full(n, -1, np.int64)
+    second = np.full(n, -1, np.int64)
+    for e in range(edges.shape[0]):
+        if feature[e]:
+            for s in range(2):
+                u, w = edges[e, s], edges[e, 1 - s]
+                if degree[u] == 0:
+                    first[u] = w
+                elif degree[u] == 1:
+                    second[u] = w
+                degree[u] += 1
+    m = cand.shape[0]
+    src = np.empty(m, np.int64)
+    dst = np.empty(m, np.int64)
+    cost = np.empty(m)
+    move = np.empty(m)
+    for k in prange(m):
+        u, v = edges[cand[k], 0], edges[cand[k], 1]
+        c_uv, m_uv = _merge_cost(u, v, spheres, qa, qb, qc, count, moved, degree, first, second)
+        c_vu, m_vu = _merge_cost(v, u, spheres, qa, qb, qc, count, moved, degree, first, second)
+        if c_uv <= c_vu:
+            src[k], dst[k], cost[k], move[k] = u, v, c_uv, m_uv
+        else:
+            src[k], dst[k], cost[k], move[k] = v, u, c_vu, m_vu
+    return src, dst, cost, move
