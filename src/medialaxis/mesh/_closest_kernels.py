@@ -114,23 +114,10 @@ def _closest_one(i, query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx, stamp,
     for a in range(n_near + MAX_WALK):
         if a < n_near:
             g = near[i, a]
-            seen = False
-            for b in range(a):
-                if near[i, b] == g:
-                    seen = True
-            if seen:
-                continue
         else:
             g = face[i]
             if g == scanned:
                 break
-            if a == n_near:  # the best face may be one of those given: its ring is scanned
-                given = False
-                for b in range(n_near):
-                    if near[i, b] == g:
-                        given = True
-                if given:
-                    break
             scanned = g
         for k in range(ring_ptr[g], ring_ptr[g + 1]):
             f = ring_idx[k]

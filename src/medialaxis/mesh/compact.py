@@ -238,7 +238,7 @@ def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None) -> 
 
     Per-point extras are those of the kept points (the spheres do not move);
     per-triangle extras (``face_*``) those of the triangle each one comes from.
-    ``exact(points, bound)``, if given, returns the signed distance and the
+    ``exact(points)``, if given, returns the signed distance and the
     closest surface point of the kept points with an exhaustive search (the
     full complex's radii come from a local one): the few spheres left get
     their exact radius and closest point.
@@ -264,7 +264,7 @@ def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None) -> 
     )
     radii = ma.radii[c.keep]
     if exact is not None and len(c.keep):
-        signed, closest = exact(ma.points[c.keep], radii)
+        signed, closest = exact(ma.points[c.keep])
         radii = np.minimum(np.abs(signed), radii)
         extras["closest"] = np.where((np.abs(signed) <= ma.radii[c.keep])[:, None], closest, extras.get("closest", closest))
     if "face_certified" in extras:

@@ -179,7 +179,7 @@ def sample_surface(
     points = np.concatenate([v, ep, fp])
     normal = np.concatenate([pn.vertex, pn.edge[eo], pn.face[fo]])
     face = np.concatenate([vertex_face, edge_face[eo], fo])
-    # Drop coincident samples (within 1e-9 of the spacing): Qhull would keep both.
+    # Drop coincident samples (within 1e-9 of the spacing): the Delaunay step would join them by slivers.
     grid = np.round(points / (1e-9 * float(np.min(spacing)))).astype(np.int64)
     _, first = np.unique(grid, axis=0, return_index=True)
     first.sort()

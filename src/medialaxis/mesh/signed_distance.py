@@ -72,16 +72,16 @@ class SignedDistance:
         side = np.einsum("ij,ij->i", points - closest, normal)
         return np.where(side < 0, -dist, dist), closest
 
-    def exact(self, points: np.ndarray, bound: np.ndarray, budget: int = 4_000_000) -> tuple[np.ndarray, np.ndarray]:
-        """Signed distance and closest point with every face that may be nearer than ``bound`` searched.
+    def exact(self, points: np.ndarray, k: int = 32) -> tuple[np.ndarray, np.ndarray]:
+        """Signed distance and closest point, exact: every face that may be nearer is searched.
 
         The local search of :meth:`query` can stop at a face a little farther
         than the nearest one where many faces are nearly equidistant (the
-        centre of a faceted cap). Here the candidates of a point are all the
-        faces whose circumscribing ball (around the centroid) comes within
-        ``bound`` of it, so the answer is exact when ``bound`` is at least the
-        distance (e.g. the radius found by :meth:`query`). For a few points:
-        the candidate lists can be long; ``budget`` bounds their total per batch.
+        centre of a faceted cap). Here a point's candidates are its ``k``
+        faces of nearest centroid (and their rings); a face beyond them is at
+        least (``k``-th centroid distance - the largest centroid-to-corner
+        distance) away, and when that is not below the distance found the
+        answer is exact; otherwise ``k`` grows fourfold for that point.
         """
         points = np.asarray(points, np.float64)
         if not hasattr(self, "_centroid_tree"):
@@ -89,22 +89,17 @@ class SignedDistance:
             centroid = tri.mean(axis=1)
             self._centroid_tree = cKDTree(centroid)
             self._reach = float(np.linalg.norm(tri - centroid[:, None], axis=2).max())
-        lists = self._centroid_tree.query_ball_point(points, np.asarray(bound, np.float64) * (1 + 1e-9) + self._reach)
+        n_faces = len(self.faces)
         signed = np.empty(len(points))
         closest = np.empty((len(points), 3))
-        start = 0
-        while start < len(points):
-            stop, total = start, 0
-            while stop < len(points) and (stop == start or total + len(lists[stop]) <= budget):
-                total += max(len(lists[stop]), 1)
-                stop += 1
-            width = max(max(len(lists[k]) for k in range(start, stop)), 1)
-            near = np.zeros((stop - start, width), np.int64)
-            for row, k in enumerate(range(start, stop)):
-                faces = lists[k] or [0]
-                near[row, : len(faces)] = faces
-                near[row, len(faces):] = faces[0]
-            signed[start:stop], closest[start:stop] = self.query(points[start:stop], near)
-            start = stop
+        todo = np.arange(len(points))
+        while len(todo):
+            k = min(k, n_faces)
+            reach, near = self._centroid_tree.query(points[todo], k)
+            reach, near = reach.reshape(len(todo), k), near.reshape(len(todo), k)
+            s, c = self.query(points[todo], near)
+            done = (reach[:, -1] - self._reach >= np.abs(s)) | (k == n_faces)
+            signed[todo[done]], closest[todo[done]] = s[done], c[done]
+            todo = todo[~done]
+            k *= 4
         return signed, closest
-
