@@ -41,8 +41,9 @@ class SignedDistance:
         ring = (incidence @ incidence.T).tocsr()
         self.ring_ptr = ring.indptr.astype(np.int64)
         self.ring_idx = ring.indices.astype(np.int64)
+        self._own_ptr, self._own_idx = np.arange(nf + 1), np.arange(nf)  # each face's "ring" is itself
 
-    def query(self, points: np.ndarray, near_faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def query(self, points: np.ndarray, near_faces: np.ndarray, rings: bool = True) -> tuple[np.ndarray, np.ndarray]:
         """Signed distance (negative inside) and closest surface point.
 
         Parameters
@@ -50,6 +51,8 @@ class SignedDistance:
         points : (q, 3) float64 ndarray
         near_faces : (q, k) int64 ndarray
             Faces near each query (their vertex rings are searched).
+        rings : bool
+            ``False``: only ``near_faces`` themselves are searched.
 
         Returns
         -------
@@ -60,8 +63,7 @@ class SignedDistance:
             np.ascontiguousarray(points, np.float64),
             *self.corners,
             np.ascontiguousarray(near_faces, np.int64),
-            self.ring_ptr,
-            self.ring_idx,
+            *((self.ring_ptr, self.ring_idx) if rings else (self._own_ptr, self._own_idx)),
         )
         pn = self.normals
         normal = pn.face[face].copy()
@@ -72,16 +74,22 @@ class SignedDistance:
         side = np.einsum("ij,ij->i", points - closest, normal)
         return np.where(side < 0, -dist, dist), closest
 
-    def exact(self, points: np.ndarray, k: int = 32) -> tuple[np.ndarray, np.ndarray]:
+    def exact(
+        self, points: np.ndarray, k: int = 32, budget: int = 2_000_000, max_k: int = 2048
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Signed distance and closest point, exact: every face that may be nearer is searched.
 
         The local search of :meth:`query` can stop at a face a little farther
         than the nearest one where many faces are nearly equidistant (the
         centre of a faceted cap). Here a point's candidates are its ``k``
-        faces of nearest centroid (and their rings); a face beyond them is at
+        faces of nearest centroid; a face beyond them is at
         least (``k``-th centroid distance - the largest centroid-to-corner
         distance) away, and when that is not below the distance found the
-        answer is exact; otherwise ``k`` grows fourfold for that point.
+        answer is exact; otherwise ``k`` grows fourfold for that point, up to
+        ``max_k``: beyond it (a point on the axis of a finely faceted surface of
+        revolution is nearly equidistant from whole rings of faces) the best
+        of the ``max_k`` faces is kept. Points go in batches of at most
+        ``budget`` candidate faces in all.
         """
         points = np.asarray(points, np.float64)
         if not hasattr(self, "_centroid_tree"):
@@ -95,11 +103,14 @@ class SignedDistance:
         todo = np.arange(len(points))
         while len(todo):
             k = min(k, n_faces)
-            reach, near = self._centroid_tree.query(points[todo], k)
-            reach, near = reach.reshape(len(todo), k), near.reshape(len(todo), k)
-            s, c = self.query(points[todo], near)
-            done = (reach[:, -1] - self._reach >= np.abs(s)) | (k == n_faces)
-            signed[todo[done]], closest[todo[done]] = s[done], c[done]
-            todo = todo[~done]
+            left = []
+            for batch in np.array_split(todo, max(1, len(todo) * k // budget)):
+                reach, near = self._centroid_tree.query(points[batch], k)
+                reach, near = reach.reshape(len(batch), k), near.reshape(len(batch), k)
+                s, c = self.query(points[batch], near, rings=False)
+                done = (reach[:, -1] - self._reach >= np.abs(s)) | (k == n_faces) | (k >= max_k)
+                signed[batch[done]], closest[batch[done]] = s[done], c[done]
+                left.append(batch[~done])
+            todo = np.concatenate(left)
             k *= 4
         return signed, closest
