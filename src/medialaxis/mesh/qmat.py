@@ -91,7 +91,9 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     ma : MedialAxis
         A 3D medial mesh (``points``, ``radii``, ``faces``/``edges``); the
         ``contacts`` extra of :func:`medialaxis.mesh.voronoi.voronoi_medial_axis`
-        gives the quadrics.
+        gives the quadrics. A compact complex (``metadata["compact"]``) is
+        simplified from its full complex ``ma.raw``, as ``simplify=`` of the
+        Voronoi route does (the compact one may hold fewer spheres than asked).
     simplify : int or float
         ``int``: number of spheres to keep. ``float`` in (0, 1): stop before
         the first collapse whose root quadric error exceeds this fraction of
@@ -103,7 +105,7 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     -------
     MedialAxis
         ``points``, ``radii`` of the kept spheres, ``faces`` and ``edges``
-        (curve pieces not bounding a triangle); ``raw`` is ``ma``. Metadata:
+        (curve pieces not bounding a triangle); ``raw`` is the complex simplified. Metadata:
         ``n_spheres``, ``hausdorff`` (two-sided, input surface vs. the
         boundary of the interpolated spheres), ``hausdorff_surface_to_mat``,
         ``hausdorff_mat_to_surface``, ``diagonal``.
@@ -130,6 +132,8 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     check_simplify(simplify)
     if ma.dim != 3:
         raise InvalidInputError("simplify applies to 3D medial meshes")
+    if "compact" in ma.metadata and ma.raw is not None:
+        ma = ma.raw
     n = len(ma.points)
     spheres = np.c_[ma.points, ma.radii]
     qa, qb, qc = _initial_quadrics(ma)
@@ -264,7 +268,7 @@ def _cover_repair(
     c_list, r_list, e_list = [centres], [radii], [curve]
     n = len(centres)
     start = float(radii.max()) * 2.0 if len(radii) else 1.0
-    for _ in range(extra):
+    while n < len(centres) + extra:  # a point whose medial ball is empty is passed over, not counted
         w = int(np.argmax(gap))
         if gap[w] <= 0:
             break
