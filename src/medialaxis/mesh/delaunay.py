@@ -2,9 +2,9 @@
 
 :func:`delaunay_tetrahedra` returns the Delaunay tetrahedra of a point set,
 their neighbours (SciPy's ``Delaunay.neighbors`` convention) and the convex
-hull's triangles. It is meant to replace Qhull (``scipy.spatial.Delaunay``
-with ``QJ``) on the surface samples of the Voronoi pipeline: 139k samples of
-a bumpy torus take about 0.9 s instead of 5.5 to 7 s.
+hull's triangles. It replaced Qhull (``scipy.spatial.Delaunay`` with ``QJ``)
+in the Voronoi pipeline: 139k samples of a bumpy torus take 0.84 s instead of
+7.2 s (TetGen 0.62 s, CGAL 0.99 s; ``benchmarks/bench_delaunay.py``).
 
 Design (and why)
 ----------------
@@ -79,7 +79,6 @@ tetrahedron. Points closer than the joggle (1e-10 of the extent) are kept,
 but their tetrahedra are those of the joggled points.
 """
 
-
 from __future__ import annotations
 
 import numpy as np
@@ -116,7 +115,6 @@ MAX_POINTS = 20_000_000
 _SLOTS_PER_POINT = 8.5
 _BUFFER = 256
 _HASH = 1024
-
 
 
 def _triangulate(P: np.ndarray, order: np.ndarray, seed: int, jog: float) -> tuple[np.ndarray, int, np.ndarray]:
