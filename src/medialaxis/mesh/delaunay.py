@@ -244,6 +244,17 @@ def _spread16(v):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
+def _morton(x, y, z):  # type: ignore[no-untyped-def]
+    """Morton (Z-order) code of a point of ``[-0.5, 0.5]^3`` on a 2^16 grid per axis."""
+    top = (1 << 16) - 1
+    code = 0
+    for axis, value in enumerate((x, y, z)):
+        c = min(max(int((value + 0.5) * top), 0), top)
+        code |= _spread16(c) << axis
+    return code
+
+
+@njit(cache=True, nogil=True)
 def _brio_order(Q, perm, base):  # type: ignore[no-untyped-def]
     """BRIO insertion order: rounds of ``perm`` positions ``[0, base)``, ``[base, 2 base)``, ... each in Morton order.
 
@@ -251,7 +262,6 @@ def _brio_order(Q, perm, base):  # type: ignore[no-untyped-def]
     """
     m = Q.shape[0]
     key = np.empty(m, np.int64)
-    top = (1 << 16) - 1
     for j in range(m):
         i = perm[j]
         r = 0
@@ -259,13 +269,22 @@ def _brio_order(Q, perm, base):  # type: ignore[no-untyped-def]
         while j >= s:
             r += 1
             s *= 2
-        code = 0
-        for axis in range(3):
-            c = int((Q[i, axis] + 0.5) * top)
-            c = min(max(c, 0), top)
-            code |= _spread16(c) << axis
-        key[i] = (r << 50) | code
+        key[i] = (r << 50) | _morton(Q[i, 0], Q[i, 1], Q[i, 2])
     return np.argsort(key)
+
+
+@njit(cache=True, nogil=True)
+def _centroid_order(Q, simplices):  # type: ignore[no-untyped-def]
+    """Tetrahedra in Morton order of their centroids (``Q`` in ``[-0.5, 0.5]^3``)."""
+    key = np.empty(simplices.shape[0], np.int64)
+    for t in range(simplices.shape[0]):
+        a, b, c, d = simplices[t, 0], simplices[t, 1], simplices[t, 2], simplices[t, 3]
+        key[t] = _morton(
+            0.25 * (Q[a, 0] + Q[b, 0] + Q[c, 0] + Q[d, 0]),
+            0.25 * (Q[a, 1] + Q[b, 1] + Q[c, 1] + Q[d, 1]),
+            0.25 * (Q[a, 2] + Q[b, 2] + Q[c, 2] + Q[d, 2]),
+        )
+    return np.argsort(key, kind="mergesort")
 
 
 # ----------------------------------------------------------------------------
@@ -370,6 +389,14 @@ def _delaunay(
     else:
         raise ComputationError(f"the 3D Delaunay tetrahedralisation failed: {stats[1]} points could not be inserted")
     simplices, neighbors, hull = _extract(tet, nt, m)
+    # numbered along a Z-order curve of their centroids (the insertion leaves them scattered):
+    # walks over neighbours afterwards stay in the cache (the Voronoi route's inside test,
+    # edge rings and compaction: 10.1-10.7 -> 8.5-8.8 s on the 100k-vertex torus)
+    perm = _centroid_order(pts, simplices)
+    rank = np.empty(len(perm), np.int64)
+    rank[perm] = np.arange(len(perm))
+    simplices, neighbors = simplices[perm], neighbors[perm]
+    neighbors = np.where(neighbors >= 0, rank[np.maximum(neighbors, 0)], -1)
     joggled = np.full(x.shape, np.nan)
     joggled[keep] = pts[:m]
     info = {"moved": int(stats[2]), "shrunk": int(stats[3]), "retries": retry, "joggle": jog, "joggled": joggled}

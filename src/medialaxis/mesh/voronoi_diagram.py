@@ -83,17 +83,6 @@ def circumspheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray
     return a + offset, radii
 
 
-def _zorder(x: np.ndarray) -> np.ndarray:
-    """Z-order (Morton) codes of points on a 1024^3 grid over their bounding box."""
-    lo = x.min(axis=0)
-    cells = ((x - lo) * (1023.0 / max(float(np.ptp(x, axis=0).max()), 1e-300))).astype(np.int64)
-    cells = (cells | (cells << 16)) & 0x030000FF
-    cells = (cells | (cells << 8)) & 0x0300F00F
-    cells = (cells | (cells << 4)) & 0x030C30C3
-    cells = (cells | (cells << 2)) & 0x09249249
-    return cells[:, 0] | (cells[:, 1] << 1) | (cells[:, 2] << 2)
-
-
 def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
     """Delaunay tetrahedralisation with circumspheres and neighbours.
 
@@ -111,14 +100,6 @@ def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
     """
     points = np.ascontiguousarray(points, np.float64)
     simplices, neighbors, _ = delaunay_tetrahedra(points)
-    # renumber the tetrahedra along a Z-order curve of their centroids: the walks
-    # over neighbours and faces that follow stay in the cache (100k torus: inside test
-    # 1.8 -> 1.0 s, facets 3.1 -> 2.0 s, compaction 2.0 -> 1.5 s)
-    perm = np.argsort(_zorder(points[simplices].mean(axis=1)), kind="stable")
-    rank = np.empty(len(perm), np.int64)
-    rank[perm] = np.arange(len(perm))
-    simplices, neighbors = simplices[perm], neighbors[perm]
-    neighbors = np.where(neighbors >= 0, rank[np.maximum(neighbors, 0)], -1)
     centres, radii = circumspheres(points, simplices)
     p = points[simplices]
     longest = np.zeros(len(simplices))
