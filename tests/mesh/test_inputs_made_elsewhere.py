@@ -177,3 +177,26 @@ def test_every_medial_ball_of_a_union_lies_inside_it():
     assert (_winding_numbers(hand, ma.points[check]) > 0.5).all()  # inside, by the mesh's own solid angles
     assert (_winding_numbers(hand, compact.points) > 0.5).all()
     assert ma.betti == compact.betti == (1, _genus(hand), 0) == (1, 0, 0)
+
+
+@pytest.mark.slow
+def test_fine_uv_ellipsoid_has_the_segment_axis_and_no_voids():
+    # trimesh's uv sphere, scaled 3:1:1: 73k vertices, the rings near the poles nearly flat. Flat
+    # tetrahedra of three nearly collinear cap samples once covered samples there: the full complex
+    # had 6 voids and far circumcentres (radius 31), and the default call took minutes.
+    mesh = trimesh.creation.uv_sphere(radius=1.0, count=[192, 192])
+    mesh.apply_scale([3.0, 1.0, 1.0])
+    compact = mx.medial_axis(mesh, method="voronoi")
+    full = compact.raw
+    # truth: a solid ellipsoid is contractible; its largest inscribed ball has the smallest semi-axis
+    assert full.betti == compact.betti == (1, 0, 0)
+    assert full.radii.max() <= 1.0 + 1e-9
+    assert full.metadata["n_outside_points"] == 0
+    # its medial axis is the segment |x| <= a - b^2 / a = 8/3 on the long axis, ball radii
+    # sqrt(1 - x^2 / 8) (normal of the ellipse through (x, 0)); the tip of the sampled axis ends
+    # where the balls get thinner than lambda
+    eps = compact.metadata["epsilon"]
+    x = compact.points[:, 0]
+    assert np.abs(compact.points[:, 1:]).max() <= eps
+    assert 8.0 / 3.0 - 3 * eps < np.abs(x).max() <= 8.0 / 3.0
+    assert np.abs(compact.radii - np.sqrt(1.0 - x**2 / 8.0)).max() <= eps

@@ -14,7 +14,7 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import csgraph
 
-__all__ = ["betti_numbers"]
+__all__ = ["betti_numbers", "void_faces"]
 
 
 def betti_numbers(n_points: int, edges: np.ndarray, faces: np.ndarray) -> tuple[int, int, int]:
@@ -43,6 +43,40 @@ def betti_numbers(n_points: int, edges: np.ndarray, faces: np.ndarray) -> tuple[
     >>> betti_numbers(3, [[0, 1], [1, 2], [2, 0]], np.empty((0, 3), int))  # a circle
     (1, 1, 0)
     """
+    kept, of_face, face_alive = _collapse_free_faces(n_points, edges, faces)
+    graph = sparse.coo_matrix((np.ones(len(kept)), (kept[:, 0], kept[:, 1])), shape=(n_points, n_points))
+    b0 = int(csgraph.connected_components(graph, directed=False)[0])
+    rank = len(_gf2_pivots(of_face[face_alive]))
+    b2 = int(face_alive.sum()) - rank
+    b1 = len(kept) - n_points + b0 - rank
+    return b0, b1, b2
+
+
+def void_faces(n_points: int, edges: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Faces whose removal leaves no void: one per independent 2-cycle (``b2`` of them).
+
+    The faces left after the free-face collapses are eliminated over GF(2)
+    in the given order; a face whose boundary reduces to zero closes a
+    cycle of earlier faces. Removing these faces leaves ``b0`` and ``b1``
+    unchanged (each removal drops a dependent row) and ``b2`` at 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> tet = np.array([[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])
+    >>> void_faces(4, np.empty((0, 2), int), tet)
+    array([3])
+    """
+    _, of_face, face_alive = _collapse_free_faces(n_points, edges, faces)
+    rows = np.flatnonzero(face_alive)
+    pivots = _gf2_pivots(of_face[rows])
+    independent = np.zeros(len(rows), bool)
+    independent[pivots] = True
+    return rows[~independent]
+
+
+def _collapse_free_faces(n_points: int, edges: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Collapse faces through free edges: the edges left, each face's edges, the faces left."""
     faces = np.asarray(faces, np.int64).reshape(-1, 3)
     edges = np.asarray(edges, np.int64).reshape(-1, 2)
     face_edges = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
@@ -62,20 +96,14 @@ def betti_numbers(n_points: int, edges: np.ndarray, faces: np.ndarray) -> tuple[
         rows = np.flatnonzero(collapsing)
         face_alive[rows] = False
         edge_alive[of_face[rows, np.argmax(free[of_face[rows]], axis=1)]] = False
-    kept = all_edges[edge_alive]
-    graph = sparse.coo_matrix((np.ones(len(kept)), (kept[:, 0], kept[:, 1])), shape=(n_points, n_points))
-    b0 = int(csgraph.connected_components(graph, directed=False)[0])
-    rank = _gf2_rank(of_face[face_alive])
-    b2 = int(face_alive.sum()) - rank
-    b1 = len(kept) - n_points + b0 - rank
-    return b0, b1, b2
+    return all_edges[edge_alive], of_face, face_alive
 
 
-def _gf2_rank(rows: np.ndarray) -> int:
-    """Rank over GF(2) of the 0/1 rows with ones at the given columns (3 per row)."""
+def _gf2_pivots(rows: np.ndarray) -> list[int]:
+    """Rows independent of the rows before them, over GF(2) (0/1 rows with ones at the given columns)."""
     pivots: dict[int, int] = {}
-    rank = 0
-    for row in rows:
+    independent = []
+    for i, row in enumerate(rows):
         bits = 0
         for column in row:
             bits ^= 1 << int(column)
@@ -83,7 +111,7 @@ def _gf2_rank(rows: np.ndarray) -> int:
             lead = bits.bit_length() - 1
             if lead not in pivots:
                 pivots[lead] = bits
-                rank += 1
+                independent.append(i)
                 break
             bits ^= pivots[lead]
-    return rank
+    return independent

@@ -50,7 +50,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core.arrays import unique_ints
-from medialaxis.core.homology import betti_numbers
+from medialaxis.core.homology import betti_numbers, void_faces
 from medialaxis.core.result import MedialAxis
 from medialaxis.mesh._compact_kernels import costs, link_ok, select, structure
 
@@ -222,19 +222,50 @@ def _components_and_euler(n: int, faces: np.ndarray, edges: np.ndarray) -> tuple
     return int(connected_components(graph, directed=False)[0]), int(n - len(all_edges) + len(faces))
 
 
-def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None) -> MedialAxis:
+def _open_voids(c: Compacted, points: np.ndarray, count: int) -> Compacted:
+    """``c`` without ``count`` of its voids: the smallest faces that close a 2-cycle are removed.
+
+    A faster rule may squeeze the thin sheets of a sampled axis into closed
+    pockets (the 99k-vertex uv ellipsoid's complex came out with 5); each
+    removed face that closes a cycle opens one and leaves ``b0`` and ``b1`` as
+    they are.
+    """
+    cut = void_faces(len(c.keep), c.edges, c.faces)
+    tri = points[c.faces[cut]]
+    area = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    cut = cut[np.argsort(area, kind="stable")[:count]]
+    faces = np.delete(c.faces, cut, axis=0)
+    all_edges, tri_count = complex_edges(faces, c.edges, len(c.keep))
+    curve = all_edges[tri_count == 0]
+    border = all_edges[(tri_count != 0) & (tri_count != 2)]
+    return dataclasses.replace(
+        c, faces=faces, face_origin=np.delete(c.face_origin, cut), edges=np.concatenate([curve, border]),
+        n_curve=len(curve),
+    )
+
+
+def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None, shells: int | None = None) -> MedialAxis:
     """The compact form of a Voronoi medial complex (``ma.raw`` is the full one).
 
     Collapses run first without the link condition, which the foam of small
     facets around a sampled axis blocks almost everywhere (a capsule's
     complex stops at a quarter of its points with it), as a matching per
-    round, then (if the result's components or Euler characteristic differ
-    from the full complex's) with the removed vertices' neighbourhoods apart,
-    then with the link condition, which cannot change the homotopy type. An
-    edge contraction that kills a tunnel or closes a void changes the Euler
-    characteristic by one, so the check catches each single change (the
-    full complex's Betti numbers would cost more than the compaction on
-    large complexes). ``metadata["compact"]`` names the rule whose result was kept.
+    round, then (if the result's topology differs from the full complex's)
+    with the removed vertices' neighbourhoods apart, then with the link
+    condition, which cannot change the homotopy type.
+    ``metadata["compact"]`` names the rule whose result was kept.
+
+    The full complex's Betti numbers would cost more than the compaction on
+    large complexes; they follow from cheap counts instead. Without
+    ``shells``, a result is kept when its components and Euler
+    characteristic are the full complex's (an edge contraction that kills a
+    tunnel or closes a void changes the Euler characteristic by one, so the
+    check catches each single change). With ``shells``, the number of
+    closed surfaces bounding the solid (outer ones and cavities), the full
+    complex has ``b2 = shells - b0`` voids and ``b1 = b0 + b2 - chi``
+    tunnels; a result is kept when its Betti numbers are these, after
+    opening the voids it has in excess (:func:`_open_voids`): they are
+    pockets pinched out of sheets thinner than the tolerance.
 
     Per-point extras are those of the kept points (the spheres do not move);
     per-triangle extras (``face_*``) those of the triangle each one comes from.
@@ -244,11 +275,20 @@ def compact_medial_axis(ma: MedialAxis, tolerance: float, exact: Any = None) -> 
     their exact radius and closest point.
     """
     contacts = ma.extras["contacts"] if "contacts" in ma.extras else ma.points[:, None, :]
-    full = _components_and_euler(len(ma.points), ma.faces, ma.edges)
+    components, chi = _components_and_euler(len(ma.points), ma.faces, ma.edges)
+    voids = None if shells is None else shells - components
+    target = None if voids is None or voids < 0 or components + voids < chi else (components, components + voids - chi, voids)
     for mode in RULES:
         c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, rule=mode)
         betti = betti_numbers(len(c.keep), c.edges, c.faces)
-        if (betti[0], betti[0] - betti[1] + betti[2]) == full:
+        if target is None:
+            if (betti[0], betti[0] - betti[1] + betti[2]) == (components, chi):
+                break
+            continue
+        if betti[:2] == target[:2] and betti[2] > target[2]:
+            c = _open_voids(c, ma.points[c.keep], betti[2] - target[2])
+            betti = betti_numbers(len(c.keep), c.edges, c.faces)
+        if betti == target:
             break
     extras = {}
     for name, value in ma.extras.items():

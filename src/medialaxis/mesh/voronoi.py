@@ -55,6 +55,11 @@ MAX_SAMPLES = 2_000_000
 #: Largest relative difference allowed between the volume of the inner
 #: Delaunay tetrahedra and the mesh's signed volume (self-intersection check).
 VOLUME_TOLERANCE = 2e-3
+#: A tetrahedron is inner when its centroid is deeper than this fraction of
+#: its longest edge (see :func:`_classify_tets`). Surface slivers on a sphere
+#: of radius R sampled at spacing s lie about s / (8 R) deep: 1e-5 keeps them
+#: up to R = 12,500 s; 1e-3 leaves samples covered on the uv ellipsoid again.
+FLAT_DEPTH = 1e-5
 #: Spacing adapts to local feature size within this ratio (finest : coarsest).
 ADAPTIVE_RANGE = 4.0
 
@@ -118,6 +123,13 @@ def _adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:
     return face_spacing_for_count(area, rel, count)
 
 
+def _shell_count(mesh: Any) -> int:
+    """Closed surfaces of a watertight mesh (outer shells and cavities)."""
+    from trimesh.graph import connected_component_labels
+
+    return int(connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces)).max()) + 1
+
+
 def _classify_tets(
     dt: Any, smp: Any, sd: SignedDistance, diag: float, lam: float, tolerance: float, spacing: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -126,8 +138,14 @@ def _classify_tets(
     Returns
     -------
     inner : (t,) bool ndarray
-        Centroid deeper than ``tolerance`` inside the mesh (flat tetrahedra
-        lying on a face of the mesh are not inner).
+        Centroid deeper than ``tolerance`` and than ``FLAT_DEPTH`` times the
+        longest edge inside the mesh. Flat tetrahedra lying on a face of the
+        mesh are not inner, nor those lying on a nearly flat part of it: on
+        the cap of a uv sphere, stacks of them with three nearly collinear
+        samples are a hair inside, cover samples of the cap (every
+        tetrahedron around such a sample is inner, its Voronoi cell is
+        closed and the medial complex gains a void: 57 on a 224 x 224 uv
+        ellipsoid) and bring circumcentres from far away.
     centre_signed : (t,) float64 ndarray
         Signed distance of the circumcentre (negative inside) for tetrahedra
         with a bounded circumsphere and an edge of at least ``lam`` or one
@@ -145,7 +163,8 @@ def _classify_tets(
     thin = (dt.longest >= THIN_SPAN * dt.radii) & (dt.longest >= THIN_SPACINGS * spacing[dt.simplices].min(axis=1))
     long = np.flatnonzero(((dt.longest >= lam) | thin) & (dt.radii < diag))
     centre_signed[long], closest[long] = sd.query(dt.centres[long], near[long])
-    return centroid_signed < -tolerance, centre_signed, closest
+    inner = centroid_signed < -np.maximum(tolerance, FLAT_DEPTH * dt.longest)
+    return inner, centre_signed, closest
 
 
 def voronoi_medial_axis(
@@ -372,7 +391,7 @@ def voronoi_medial_axis(
         from medialaxis.mesh.compact import COMPACT_TOLERANCE, compact_medial_axis
 
         t0 = time.perf_counter()
-        result = compact_medial_axis(result, COMPACT_TOLERANCE * eps, exact=sd.exact)
+        result = compact_medial_axis(result, COMPACT_TOLERANCE * eps, exact=sd.exact, shells=_shell_count(work))
         timings["compact"] = time.perf_counter() - t0
         timings["total"] = time.perf_counter() - t_start
     if simplify is None:
