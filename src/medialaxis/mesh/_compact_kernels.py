@@ -21,8 +21,9 @@ def structure(n, edges, faces):  # pragma: no cover - compiled
 
     ``edges`` (m, 2) are sorted by ``(u, v)`` with ``u < v``. Returns the
     CSR adjacency ``ptr, idx`` (each list ascending: the lower neighbours
-    come in edge order, then the higher ones) and, per edge, the apexes of
-    the triangles on it (``apex[apex_ptr[e]:apex_ptr[e + 1]]``).
+    come in edge order, then the higher ones), the edge of each entry
+    ``eid`` and, per edge, the apexes of the triangles on it
+    (``apex[apex_ptr[e]:apex_ptr[e + 1]]``).
     """
     m = edges.shape[0]
     ptr = np.zeros(n + 1, np.int64)
@@ -33,13 +34,16 @@ def structure(n, edges, faces):  # pragma: no cover - compiled
         ptr[v + 1] += ptr[v]
     fill = ptr[:-1].copy()
     idx = np.empty(2 * m, np.int64)
+    eid = np.empty(2 * m, np.int64)
     for e in range(m):  # lower neighbours w of u, for edges (w, u): w ascending
         u = edges[e, 1]
         idx[fill[u]] = edges[e, 0]
+        eid[fill[u]] = e
         fill[u] += 1
     for e in range(m):  # then the higher ones
         u = edges[e, 0]
         idx[fill[u]] = edges[e, 1]
+        eid[fill[u]] = e
         fill[u] += 1
     owner = np.empty(3 * faces.shape[0], np.int64)
     apex_ptr = np.zeros(m + 1, np.int64)
@@ -56,17 +60,8 @@ def structure(n, edges, faces):  # pragma: no cover - compiled
                 else:
                     hi = mid
             owner[3 * f + k] = lo
-    # positions of higher neighbours in the lists -> their edges
-    edge_at = np.full(2 * m, -1, np.int64)
-    fill = ptr[:-1].copy()
-    for e in range(m):
-        fill[edges[e, 1]] += 1
-    for e in range(m):
-        u = edges[e, 0]
-        edge_at[fill[u]] = e
-        fill[u] += 1
-    for r in range(owner.shape[0]):
-        owner[r] = edge_at[owner[r]]
+    for r in range(owner.shape[0]):  # positions in the lists -> their edges
+        owner[r] = eid[owner[r]]
         apex_ptr[owner[r] + 1] += 1
     for e in range(m):
         apex_ptr[e + 1] += apex_ptr[e]
@@ -77,7 +72,7 @@ def structure(n, edges, faces):  # pragma: no cover - compiled
             e = owner[3 * f + k]
             apex[fill[e]] = faces[f, (k + 2) % 3]
             fill[e] += 1
-    return ptr, idx, apex_ptr, apex
+    return ptr, idx, eid, apex_ptr, apex
 
 
 @njit(cache=True, nogil=True)
@@ -157,7 +152,71 @@ def select(order, src, dst, ptr, idx, n, apart):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True)
-def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second):  # pragma: no cover - compiled
+def _segment_distance2(s, p, a, b):  # pragma: no cover - compiled
+    """Squared distance from sphere ``p`` to the segment between spheres ``a`` and ``b``, in (x, y, z, r)."""
+    ab = 0.0
+    ap = 0.0
+    for k in range(4):
+        ab += (s[b, k] - s[a, k]) ** 2
+        ap += (s[p, k] - s[a, k]) * (s[b, k] - s[a, k])
+    t = min(max(ap / max(ab, 1e-300), 0.0), 1.0)
+    d = 0.0
+    for k in range(4):
+        d += (s[p, k] - s[a, k] - t * (s[b, k] - s[a, k])) ** 2
+    return d
+
+
+@njit(cache=True, nogil=True)
+def _triangle_distance2(s, p, a, b, c):  # pragma: no cover - compiled
+    """Squared distance from sphere ``p`` to the triangle of spheres ``a, b, c``, in (x, y, z, r)."""
+    d00 = d01 = d11 = d20 = d21 = 0.0
+    for k in range(4):
+        e0, e1, v = s[b, k] - s[a, k], s[c, k] - s[a, k], s[p, k] - s[a, k]
+        d00 += e0 * e0
+        d01 += e0 * e1
+        d11 += e1 * e1
+        d20 += v * e0
+        d21 += v * e1
+    den = d00 * d11 - d01 * d01
+    if den > 1e-12 * d00 * d11:
+        u = (d11 * d20 - d01 * d21) / den
+        w = (d00 * d21 - d01 * d20) / den
+        if u >= 0.0 and w >= 0.0 and u + w <= 1.0:
+            d = 0.0
+            for k in range(4):
+                d += (s[p, k] - s[a, k] - u * (s[b, k] - s[a, k]) - w * (s[c, k] - s[a, k])) ** 2
+            return d
+    return min(_segment_distance2(s, p, a, b), min(_segment_distance2(s, p, b, c), _segment_distance2(s, p, c, a)))
+
+
+@njit(cache=True, nogil=True)
+def _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex):  # pragma: no cover - compiled
+    """Distance in (centre, radius) from sphere ``j`` to the edges and triangles its merge into ``i`` makes.
+
+    The spheres interpolated over those stand for ``j`` after the merge: a
+    merge whose new edges would run from a large sphere straight to a small
+    one (a body's centre to a finger's root) is costed by how far ``j``
+    lies from them, not only by the tangent planes ``i`` keeps.
+    """
+    best = np.inf
+    for q in range(ptr[j], ptr[j + 1]):
+        k = idx[q]
+        if k == i:
+            continue
+        best = min(best, _segment_distance2(spheres, j, i, k))
+        e = eid[q]
+        for r in range(apex_ptr[e], apex_ptr[e + 1]):
+            if apex[r] != i:
+                best = min(best, _triangle_distance2(spheres, j, i, k, apex[r]))
+    if best == np.inf:  # i is its only neighbour
+        best = 0.0
+        for k in range(4):
+            best += (spheres[j, k] - spheres[i, k]) ** 2
+    return np.sqrt(best)
+
+
+@njit(cache=True, nogil=True)
+def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second, star):  # pragma: no cover - compiled
     """Cost of merging ``j`` into ``i`` and the feature move it makes (see the module docstring)."""
     quad = qc[j]
     for a in range(4):
@@ -165,8 +224,11 @@ def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second):
         for b in range(4):
             quad += spheres[i, a] * qa[j, a, b] * spheres[i, b]
     sqem = np.sqrt(max(quad, 0.0) / count[j])
+    ptr, idx, eid, apex_ptr, apex = star
+    slab = _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex)
     if degree[j] == 0:
-        return sqem, 0.0
+        move = max(moved[j], slab)
+        return max(sqem, move), move
     far = -1
     if degree[j] == 2 and first[j] == i:
         far = second[j]
@@ -185,12 +247,12 @@ def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second):
         t = min(max(ap / max(ab, 1e-300), 0.0), 1.0)
         for a in range(3):
             shift += (spheres[j, a] - spheres[i, a] - t * (spheres[far, a] - spheres[i, a])) ** 2
-    move = max(moved[j], np.sqrt(shift))
+    move = max(moved[j], max(np.sqrt(shift), slab))
     return max(sqem, move), move
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def costs(edges, cand, spheres, qa, qb, qc, count, moved, feature):  # pragma: no cover - compiled
+def costs(edges, cand, spheres, qa, qb, qc, count, moved, feature, star):  # pragma: no cover - compiled
     """Cheaper direction of merging each candidate edge: ``src -> dst``, its cost and feature move.
 
     Features are the edges not shared by exactly two triangles; a vertex
@@ -216,8 +278,8 @@ def costs(edges, cand, spheres, qa, qb, qc, count, moved, feature):  # pragma: n
     move = np.empty(m)
     for k in prange(m):
         u, v = edges[cand[k], 0], edges[cand[k], 1]
-        c_uv, m_uv = _merge_cost(u, v, spheres, qa, qb, qc, count, moved, degree, first, second)
-        c_vu, m_vu = _merge_cost(v, u, spheres, qa, qb, qc, count, moved, degree, first, second)
+        c_uv, m_uv = _merge_cost(u, v, spheres, qa, qb, qc, count, moved, degree, first, second, star)
+        c_vu, m_vu = _merge_cost(v, u, spheres, qa, qb, qc, count, moved, degree, first, second, star)
         if c_uv <= c_vu:
             src[k], dst[k], cost[k], move[k] = u, v, c_uv, m_uv
         else:

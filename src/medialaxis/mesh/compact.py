@@ -9,7 +9,7 @@ within ``tolerance`` of what it replaces, keeping its topology:
 - *half-edge collapses*: a vertex ``j`` is merged into a neighbour ``i``,
   whose sphere stays where it is, so every kept point is a Voronoi vertex
   of the full complex with its exact radius and extras;
-- the *cost* of merging ``j`` into ``i`` is the larger of (a) the root mean
+- the *cost* of merging ``j`` into ``i`` is the largest of (a) the root mean
   square distance from sphere ``i`` to the tangent planes at the contacts
   ``j`` stands for (the spherical quadric error of Q-MAT, accumulated over
   earlier merges and divided by their number) and (b) how far the merge
@@ -17,7 +17,11 @@ within ``tolerance`` of what it replaces, keeping its topology:
   vertex on a feature line (a curve, a sheet's free border or a junction of
   three sheets or more: the edges not shared by exactly two triangles) moved
   along it, its distance to the line that replaces it; otherwise the
-  distance moved; a kept vertex carries the largest feature move merged into
+  distance moved; for every vertex, (c) the distance in (centre, radius)
+  from its sphere to the edges and triangles that replace its star, over
+  which the spheres are interpolated (a merge that would join a body's
+  centre straight to a finger's root makes a slab bulging out of the
+  finger); a kept vertex carries the largest move merged into
   it, and later merges of it pay at least that. A sheet
   narrower than the tolerance therefore collapses onto its spine (a curve),
   while a wide sheet keeps its outline and a straight curve its ends;
@@ -170,13 +174,14 @@ def compact_complex(
     rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
-        ptr, idx, apex_ptr, apex = structure(n, all_edges, faces)
+        ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
         tri_count = np.diff(apex_ptr)
         ok = link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
         cand = np.flatnonzero(ok)
         if not len(cand):
             break
-        src, dst, cost, move = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2)
+        star = (ptr, idx, eid, apex_ptr, apex)
+        src, dst, cost, move = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2, star)
         within = np.flatnonzero(cost <= tolerance)
         if not len(within):
             break

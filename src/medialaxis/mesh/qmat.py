@@ -78,7 +78,12 @@ def _optimum(qa, qb, qc, s1, s2, reg):  # type: ignore[no-untyped-def]
     half = 0.5 * np.sqrt(np.sum((s1[:3] - s2[:3]) ** 2))
     off = np.sqrt(np.sum((s[:3] - mid[:3]) ** 2))
     if s[3] <= 0 or not np.all(np.isfinite(s)) or s[3] > 1.1 * r_max or off > half + 0.1 * r_max:
+        # the cheapest of the two spheres and their midpoint (Garland and Heckbert's fallback): the
+        # midpoint of a large and a small sphere alone pokes out of the thin part
         s = mid
+        for t in (s1, s2):
+            if t @ qa @ t - 2.0 * (qb @ t) < s @ qa @ s - 2.0 * (qb @ s):
+                s = t.copy()
     cost = s @ qa @ s - 2.0 * (qb @ s) + qc
     return s, max(cost, 0.0)
 
@@ -91,11 +96,14 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     ma : MedialAxis
         A 3D medial mesh (``points``, ``radii``, ``faces``/``edges``); the
         ``contacts`` extra of :func:`medialaxis.mesh.voronoi.voronoi_medial_axis`
-        gives the quadrics. A compact complex (``metadata["compact"]``) is
-        simplified from its full complex ``ma.raw``, as ``simplify=`` of the
-        Voronoi route does (the compact one may hold fewer spheres than asked).
+        gives the quadrics. The compact complex (the Voronoi route's default,
+        hundreds of spheres) is simplified in a few seconds with a smaller
+        error than its full complex (tens of thousands).
     simplify : int or float
-        ``int``: number of spheres to keep. ``float`` in (0, 1): stop before
+        ``int``: number of spheres to keep; when ``ma`` holds fewer, the
+        missing ones are all placed by the cover repair (at most ``simplify``
+        in all: it stops once no surface sample is left outside).
+        ``float`` in (0, 1): stop before
         the first collapse whose root quadric error exceeds this fraction of
         the bounding-box diagonal.
     surface : trimesh.Trimesh, optional
@@ -132,8 +140,6 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     check_simplify(simplify)
     if ma.dim != 3:
         raise InvalidInputError("simplify applies to 3D medial meshes")
-    if "compact" in ma.metadata and ma.raw is not None:
-        ma = ma.raw
     n = len(ma.points)
     spheres = np.c_[ma.points, ma.radii]
     qa, qb, qc = _initial_quadrics(ma)
@@ -146,6 +152,8 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     target = int(simplify) if isinstance(simplify, (int, np.integer)) else 1
     # a tenth of the spheres go where the collapsed mesh leaves the surface farthest (tips, limbs)
     repair = int(REPAIR_SHARE * target) if isinstance(simplify, (int, np.integer)) and target >= 20 else 0
+    if isinstance(simplify, (int, np.integer)):
+        repair = max(repair, target - n)  # a compact complex may hold fewer spheres than asked
     target -= repair
     bound = None if isinstance(simplify, (int, np.integer)) else float(simplify) * diag
 

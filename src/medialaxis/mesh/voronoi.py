@@ -201,10 +201,12 @@ def voronoi_medial_axis(
     simplify : int or float, optional
         Reduce the medial mesh by quadric error minimisation on spheres
         (:func:`medialaxis.mesh.qmat.simplify_medial_mesh`): an ``int`` is the
-        number of spheres to keep (a tenth of them placed last where the
-        surface is farthest from the others: tips of limbs), a ``float`` in
-        (0, 1) an error bound as a fraction of the bounding-box diagonal.
-        The unsimplified result is ``ma.raw``.
+        number of spheres to keep (a tenth of them, or all those the
+        compact complex lacks, placed last where the surface is farthest
+        from the others: tips of limbs), a ``float`` in (0, 1) an error
+        bound as a fraction of the bounding-box diagonal. It starts from
+        the compact complex (``compact=False``: the full one), which is
+        ``ma.raw`` (the full complex is then ``ma.raw.raw``).
     topology : {"preserve", "lambda"}
         ``"preserve"`` (default): keep every facet of at least ``lam`` plus
         the narrower facets and curve pieces needed for the complex to have
@@ -226,7 +228,7 @@ def voronoi_medial_axis(
         sampling error become curves (a capsule's axis is a polyline, a
         box's its few planar sheets) and flat sheets take few triangles;
         ``ma.raw`` is the full complex. ``False``: the full complex, every
-        Voronoi facet kept. ``simplify`` starts from the full complex.
+        Voronoi facet kept. ``simplify`` starts from the complex chosen here.
 
     Returns
     -------
@@ -387,7 +389,7 @@ def voronoi_medial_axis(
         "contacts": dt.points[dt.simplices[used]],
     }
     result = MedialAxis(points, radii, edges, faces, extras=extras, metadata=metadata, shape=src.mesh)
-    if simplify is None and compact:
+    if compact:
         from medialaxis.mesh.compact import COMPACT_TOLERANCE, compact_medial_axis
 
         t0 = time.perf_counter()
