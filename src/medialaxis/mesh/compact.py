@@ -31,8 +31,10 @@ within ``tolerance`` of what it replaces, keeping its topology:
   apexes are joined), which makes it a homotopy equivalence (Dey,
   Edelsbrunner, Guha and Nekhayev, "Topology preserving edge contraction",
   1999); the faster rules do not test it, and :func:`compact_medial_axis`
-  keeps their result only if its components and Euler characteristic are
-  those of the full complex (it falls back to the link condition otherwise);
+  keeps their result only if its Betti numbers are the solid's (or, without
+  the mesh's shell count, its components and Euler characteristic those of
+  the full complex), after opening the pockets they pinch out of thin
+  sheets (it falls back to the link condition otherwise);
 - collapses run in rounds: each round takes, cheapest first, edges whose
   endpoints' neighbourhoods are untouched by the others taken, so the link
   conditions tested at the start of the round still hold when it is applied
