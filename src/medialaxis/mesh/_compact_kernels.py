@@ -152,16 +152,19 @@ def select(order, src, dst, ptr, idx, n, apart):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True)
-def _segment_distance2(s, p, a, b):  # pragma: no cover - compiled
-    """Squared distance from sphere ``p`` to the segment between spheres ``a`` and ``b``, in (x, y, z, r)."""
+def _segment_distance2(s, p, a, b, dims=4):  # pragma: no cover - compiled
+    """Squared distance from sphere ``p`` to the segment between spheres ``a`` and ``b``.
+
+    In (x, y, z, r), or between the centres only with ``dims=3``.
+    """
     ab = 0.0
     ap = 0.0
-    for k in range(4):
+    for k in range(dims):
         ab += (s[b, k] - s[a, k]) ** 2
         ap += (s[p, k] - s[a, k]) * (s[b, k] - s[a, k])
     t = min(max(ap / max(ab, 1e-300), 0.0), 1.0)
     d = 0.0
-    for k in range(4):
+    for k in range(dims):
         d += (s[p, k] - s[a, k] - t * (s[b, k] - s[a, k])) ** 2
     return d
 
@@ -239,14 +242,7 @@ def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second, 
         for a in range(3):
             shift += (spheres[j, a] - spheres[i, a]) ** 2
     else:  # along its line: the distance to the segment that replaces it
-        ab = 0.0
-        ap = 0.0
-        for a in range(3):
-            ab += (spheres[far, a] - spheres[i, a]) ** 2
-            ap += (spheres[j, a] - spheres[i, a]) * (spheres[far, a] - spheres[i, a])
-        t = min(max(ap / max(ab, 1e-300), 0.0), 1.0)
-        for a in range(3):
-            shift += (spheres[j, a] - spheres[i, a] - t * (spheres[far, a] - spheres[i, a])) ** 2
+        shift = _segment_distance2(spheres, j, i, far, 3)
     move = max(moved[j], max(np.sqrt(shift), slab))
     return max(sqem, move), move
 
