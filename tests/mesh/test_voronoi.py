@@ -354,3 +354,26 @@ def test_html_view_is_self_contained(tmp_path, box):
     assert len(library) == 1 and f'<script src="{library[0].name}"></script>' in text  # beside the page, not remote
     assert '<script src="http' not in text
     assert "medial surface" in text and "input surface" in text
+
+
+def test_slab_distance_kernels_against_a_dense_grid():
+    # distance in (x, y, z, r) from a sphere to a segment / triangle of spheres, against the
+    # minimum over a dense barycentric grid (the exact value lies at most a grid step below)
+    from medialaxis.mesh._compact_kernels import _segment_distance2, _triangle_distance2
+
+    rng = np.random.default_rng(3)
+    n = 60
+    i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
+    keep = i + j <= n
+    u, w = i[keep] / n, j[keep] / n
+    for _ in range(50):
+        s = rng.normal(size=(4, 4))
+        tri = s[1] + u[:, None] * (s[2] - s[1]) + w[:, None] * (s[3] - s[1])
+        grid = np.sqrt(((tri - s[0]) ** 2).sum(axis=1).min())
+        exact = np.sqrt(_triangle_distance2(s, 0, 1, 2, 3))
+        assert exact <= grid + 1e-12
+        assert exact >= grid - 2.0 * np.abs(s[1:] - s[1]).sum(axis=1).max() / n
+        seg = s[1] + np.linspace(0, 1, 2001)[:, None] * (s[2] - s[1])
+        grid = np.sqrt(((seg - s[0]) ** 2).sum(axis=1).min())
+        exact = np.sqrt(_segment_distance2(s, 0, 1, 2))
+        assert grid - np.linalg.norm(s[2] - s[1]) / 2000 <= exact <= grid + 1e-12
