@@ -120,6 +120,13 @@ def _solid_angle_sums(points: np.ndarray, triangles: np.ndarray, chunk: int = 2_
 SHELL_PROBES = 500
 
 
+def shell_labels(mesh: Any) -> np.ndarray:
+    """Shell (connected set of faces) of each face: outer shells and cavities of a closed mesh."""
+    from trimesh.graph import connected_component_labels
+
+    return connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
+
+
 def check_shells(mesh: Any) -> None:
     """Refuse a mesh whose outer shells overlap or lie inside one another.
 
@@ -135,9 +142,7 @@ def check_shells(mesh: Any) -> None:
     ------
     InvalidInputError
     """
-    from trimesh.graph import connected_component_labels
-
-    labels = connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
+    labels = shell_labels(mesh)
     n_shells = int(labels.max()) + 1
     if n_shells < 2:
         return

@@ -30,7 +30,7 @@ from medialaxis.core.arrays import unique_ints
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError, ResourceLimitError
-from medialaxis.mesh.inputs import load_mesh
+from medialaxis.mesh.inputs import load_mesh, shell_labels
 from medialaxis.mesh.sampling import (
     PseudoNormals,
     face_spacing_for_count,
@@ -121,13 +121,6 @@ def _adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:
     median = lfs[order][np.searchsorted(np.cumsum(area[order]), 0.5 * area.sum())]
     rel = np.clip(lfs, median / ADAPTIVE_RANGE, median)
     return face_spacing_for_count(area, rel, count)
-
-
-def _shell_count(mesh: Any) -> int:
-    """Closed surfaces of a watertight mesh (outer shells and cavities)."""
-    from trimesh.graph import connected_component_labels
-
-    return int(connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces)).max()) + 1
 
 
 def _classify_tets(
@@ -393,7 +386,7 @@ def voronoi_medial_axis(
         from medialaxis.mesh.compact import COMPACT_TOLERANCE, compact_medial_axis
 
         t0 = time.perf_counter()
-        result = compact_medial_axis(result, COMPACT_TOLERANCE * eps, exact=sd.exact, shells=_shell_count(work))
+        result = compact_medial_axis(result, COMPACT_TOLERANCE * eps, exact=sd.exact, shells=int(shell_labels(work).max()) + 1)
         timings["compact"] = time.perf_counter() - t0
         timings["total"] = time.perf_counter() - t_start
     if simplify is None:
