@@ -16,7 +16,8 @@ placed where the surface is farthest from the interpolated spheres
 (:func:`_cover_repair`). The result is judged by the two-sided Hausdorff
 distance between the input surface and the boundary of the union of the
 spheres interpolated over the simplified mesh (vertices, edges and
-triangles), as Q-MAT does.
+triangles), as Q-MAT does, computed on the exact envelope
+(:mod:`medialaxis.mesh.envelope`).
 """
 
 from __future__ import annotations
@@ -31,8 +32,9 @@ from medialaxis._jit import njit
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh.compact import sphere_quadrics
+from medialaxis.mesh.envelope import envelope_gap, surface_sample, two_sided_distance
 
-__all__ = ["simplify_medial_mesh", "check_simplify", "hausdorff_to_surface", "REGULARISATION"]
+__all__ = ["simplify_medial_mesh", "check_simplify", "REGULARISATION"]
 
 #: Weight (relative to the mean quadric scale) pulling a merged sphere toward
 #: the two it replaces; keeps the 4x4 systems well posed on flat sheets.
@@ -42,6 +44,9 @@ REGULARISATION = 1e-3
 #: the medial ball touching the surface point farthest from the simplified
 #: mesh's spheres, joined to the sphere it overlaps most (:func:`_cover_repair`).
 REPAIR_SHARE = 0.1
+
+_ONE_EDGE = np.array([[0, 1]], np.int64)
+_NO_FACES = np.zeros((0, 3), np.int64)
 
 
 def check_simplify(simplify: Any) -> None:
@@ -224,12 +229,14 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     curve = sorted({(min(new[i], new[j]), max(new[i], new[j])) for i in keep for j in nbr[i]} - face_edges)
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
     curve = np.array(curve, np.int64).reshape(-1, 2)
-    if repair and surface is not None and hasattr(surface, "vertices"):
-        centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, surface, repair)
-    metadata = dict(ma.metadata, simplified=True, n_spheres=int(len(centres)), diagonal=diag)
+    metadata = dict(ma.metadata, simplified=True, diagonal=diag)
     if surface is not None and hasattr(surface, "vertices"):
-        h_sm, h_ms = hausdorff_to_surface(centres, radii, out_faces, curve, surface)
+        sample = surface_sample(surface)
+        if repair:
+            centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, sample, repair)
+        h_sm, h_ms = two_sided_distance(centres, radii, curve, out_faces, surface, sample)
         metadata.update(hausdorff=max(h_sm, h_ms), hausdorff_surface_to_mat=h_sm, hausdorff_mat_to_surface=h_ms)
+    metadata["n_spheres"] = int(len(centres))
     return MedialAxis(centres, radii, curve, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
 
 
@@ -253,26 +260,20 @@ def _medial_ball(p: np.ndarray, n: np.ndarray, tree: cKDTree, samples: np.ndarra
 
 
 def _cover_repair(
-    centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, surface: Any, extra: int
+    centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, sample: Any, extra: int
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Add ``extra`` spheres where the surface is farthest outside the interpolated spheres.
 
     Each new sphere is the medial ball touching that surface point (a
-    shrinking ball among 20,000 surface samples, so it reaches tips the
-    lambda pruning cut), joined by an edge to the sphere with the least power
+    shrinking ball among the surface samples, so it reaches tips the lambda
+    pruning cut), joined by an edge to the sphere with the least power
     distance to its centre (the one it overlaps most): a hanging edge, so the
-    topology stays the collapsed mesh's.
+    topology stays the collapsed mesh's. The gaps are exact
+    (:func:`medialaxis.mesh.envelope.envelope_gap`).
     """
-    from medialaxis.mesh.sampling import sample_surface
-
-    area = np.asarray(surface.area_faces, np.float64)
-    smp = sample_surface(surface, np.full(len(area), np.sqrt(area.sum() / 20_000)))
-    x, normals = smp.points, smp.normals
+    x, normals = sample.points, sample.normals
     sample_tree = cKDTree(x)
-    sph = _interpolated_spheres(centres, radii, faces, curve)
-    _, near = cKDTree(sph[:, :3]).query(x, k=min(32, len(sph)), workers=-1)
-    near = near.reshape(len(x), -1)
-    gap = (np.linalg.norm(x[:, None] - sph[near, :3], axis=2) - sph[near, 3]).min(axis=1)
+    gap = envelope_gap(x, centres, radii, curve, faces)
     c_list, r_list, e_list = [centres], [radii], [curve]
     n = len(centres)
     start = float(radii.max()) * 2.0 if len(radii) else 1.0
@@ -289,76 +290,7 @@ def _cover_repair(
         c_list.append(c[None])
         r_list.append(np.array([r]))
         e_list.append(np.array([[link, n]]))
-        t = np.linspace(0.0, 1.0, 9)[:, None]
-        new_c = (1 - t) * all_c[link] + t * c
-        new_r = (1 - t[:, 0]) * all_r[link] + t[:, 0] * r
-        gap = np.minimum(gap, (np.linalg.norm(x[:, None] - new_c[None], axis=2) - new_r).min(axis=1))
+        cone = envelope_gap(x, np.array([all_c[link], c]), np.array([all_r[link], r]), _ONE_EDGE, _NO_FACES)
+        gap = np.minimum(gap, cone)
         n += 1
     return np.concatenate(c_list), np.concatenate(r_list), np.concatenate(e_list).astype(np.int64)
-
-
-def _interpolated_spheres(centres: np.ndarray, radii: np.ndarray, faces: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    """Spheres along edges and inside triangles, by linear interpolation of (c, r) (Q-MAT's slabs)."""
-    s = np.c_[centres, radii]
-    out = [s]
-    all_edges = np.concatenate([edges, faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]) if len(faces) else edges
-    for t in (0.25, 0.5, 0.75):
-        out.append((1 - t) * s[all_edges[:, 0]] + t * s[all_edges[:, 1]])
-    for w in ((1 / 3, 1 / 3, 1 / 3), (2 / 3, 1 / 6, 1 / 6), (1 / 6, 2 / 3, 1 / 6), (1 / 6, 1 / 6, 2 / 3)):
-        if len(faces):
-            out.append(w[0] * s[faces[:, 0]] + w[1] * s[faces[:, 1]] + w[2] * s[faces[:, 2]])
-    return np.concatenate(out)
-
-
-def hausdorff_to_surface(
-    centres: np.ndarray, radii: np.ndarray, faces: np.ndarray, edges: np.ndarray, surface: Any, n_check: int = 20_000
-) -> tuple[float, float]:
-    """Two-sided Hausdorff distance between ``surface`` and the boundary of the interpolated spheres.
-
-    Returns
-    -------
-    surface_to_mat : float
-        Largest distance from a surface point (``n_check`` random points plus
-        the vertices) to the union's boundary, ``|min_s (|x - c_s| - r_s)|``
-        over the 64 nearest and the 64 largest spheres.
-    mat_to_surface : float
-        Largest distance from a point of the union's boundary (8 to 64
-        directions per sphere, at most about two million points; those not
-        inside one of the 16 nearest or 16 largest spheres) to the surface.
-    """
-    from medialaxis.mesh.sampling import random_surface_points, sample_surface
-    from medialaxis.mesh.signed_distance import SignedDistance
-
-    sph = _interpolated_spheres(centres, radii, faces, edges)
-    c, r = sph[:, :3], sph[:, 3]
-    rng = np.random.default_rng(0)
-    x = np.concatenate([random_surface_points(surface, n_check, rng), np.asarray(surface.vertices)])
-    # nearest 64 centres and the 64 largest spheres hold the minimum of |x - c| - r
-    # unless a sphere both far and large beats them (then the error is overestimated)
-    tree = cKDTree(c)
-    big = np.argsort(r)[-64:]
-    gap = np.full(len(x), np.inf)
-    for xs in np.array_split(np.arange(len(x)), max(1, len(x) // 5000)):
-        _, near = tree.query(x[xs], k=min(64, len(c)), workers=-1)
-        near = np.c_[near.reshape(len(xs), -1), np.tile(big, (len(xs), 1))]
-        gap[xs] = (np.linalg.norm(x[xs, None] - c[near], axis=2) - r[near]).min(axis=1)
-    surface_to_mat = float(np.abs(gap).max())
-    k = int(np.clip(2_000_000 // max(len(c), 1), 8, 64))  # directions per sphere, at most ~2M points
-    i = np.arange(k) + 0.5
-    phi, theta = np.arccos(1 - 2 * i / k), np.pi * (1 + 5**0.5) * i
-    dirs = np.c_[np.cos(theta) * np.sin(phi), np.sin(theta) * np.sin(phi), np.cos(phi)]
-    y = (c[:, None] + r[:, None, None] * dirs[None]).reshape(-1, 3)
-    # a boundary point is covered if inside one of its 16 nearest centres' or the 16 largest spheres
-    covered = np.zeros(len(y), bool)
-    for ys in np.array_split(np.arange(len(y)), max(1, len(y) // 100_000)):
-        _, near = tree.query(y[ys], k=min(16, len(c)), workers=-1)
-        near = np.c_[near.reshape(len(ys), -1), np.tile(big[-16:], (len(ys), 1))]
-        covered[ys] = (np.linalg.norm(y[ys, None] - c[near], axis=2) < r[near] * (1 - 1e-9) - 1e-12).any(axis=1)
-    y = y[~covered]
-    if len(y) == 0:
-        return surface_to_mat, 0.0
-    area = np.asarray(surface.area_faces)
-    smp = sample_surface(surface, np.full(len(area), np.sqrt(area.sum() / 2e5)))
-    _, nearest = cKDTree(smp.points).query(y, k=4, workers=-1)
-    signed, _ = SignedDistance(surface).query(y, smp.face[nearest])
-    return surface_to_mat, float(np.abs(signed).max())

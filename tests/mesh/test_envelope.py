@@ -1,0 +1,83 @@
+"""The exact envelope of a medial mesh's interpolated spheres, against closed forms and dense sampling."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+from medialaxis.mesh.envelope import envelope_gap, envelope_samples, primitives, two_sided_distance
+
+
+def _dense_gap(points, centres, radii, pairs, faces, steps=400, grid=120):
+    """min |x - c| - r over spheres interpolated at ``1/steps`` along edges and a ``1/grid`` lattice on triangles."""
+    s = np.c_[centres, radii]
+    t = np.linspace(0.0, 1.0, steps + 1)[:, None]
+    parts = [s] + [(1 - t) * s[a] + t * s[b] for a, b in pairs]
+    uv = np.array([(i / grid, j / grid) for i in range(grid + 1) for j in range(grid + 1 - i)])
+    parts += [(1 - uv.sum(1))[:, None] * s[a] + uv[:, :1] * s[b] + uv[:, 1:] * s[c] for a, b, c in faces]
+    dense = np.concatenate(parts)
+    return np.array([(np.linalg.norm(dense[:, :3] - p, axis=1) - dense[:, 3]).min() for p in points])
+
+
+def test_gap_of_equal_radii_is_the_distance_to_the_segment_or_triangle_less_the_radius():
+    rng = np.random.default_rng(3)
+    x = rng.normal(size=(2000, 3))
+    seg = np.array([[-0.5, 0.1, 0.0], [0.7, -0.2, 0.3]])
+    t = np.clip(((x - seg[0]) @ (seg[1] - seg[0])) / np.sum((seg[1] - seg[0]) ** 2), 0, 1)
+    exact = np.linalg.norm(x - seg[0] - t[:, None] * (seg[1] - seg[0]), axis=1) - 0.3
+    got = envelope_gap(x, seg, [0.3, 0.3], [[0, 1]], np.zeros((0, 3), int))
+    np.testing.assert_allclose(got, exact, atol=1e-12)
+    tri = np.array([[0.0, 0.0, 0.0], [1.0, 0.2, 0.0], [0.3, 0.9, 0.4]])
+    closest = trimesh.triangles.closest_point(np.repeat(tri[None], len(x), axis=0), x)
+    exact = np.linalg.norm(x - closest, axis=1) - 0.25
+    got = envelope_gap(x, tri, [0.25, 0.25, 0.25], np.zeros((0, 2), int), [[0, 1, 2]])
+    np.testing.assert_allclose(got, exact, atol=1e-12)
+
+
+def test_gap_with_varying_radii_matches_dense_interpolation_from_below():
+    rng = np.random.default_rng(1)
+    c = rng.random((6, 3))
+    r = 0.05 + 0.2 * rng.random(6)
+    edges, faces = np.array([[0, 1], [4, 5]]), np.array([[1, 2, 3], [2, 3, 4]])
+    x = rng.random((1500, 3)) * 1.6 - 0.3
+    got = envelope_gap(x, c, r, edges, faces)
+    pairs = [(0, 1), (4, 5), (1, 2), (2, 3), (1, 3), (2, 4), (3, 4)]
+    dense = _dense_gap(x, c, r, pairs, faces)
+    # the exact minimum is below every sampled one, and near it (lattice steps of 1/120 on triangles)
+    assert np.all(got <= dense + 1e-12)
+    assert np.max(dense - got) < 5e-4
+
+
+def test_a_sphere_inside_its_neighbour_adds_nothing():
+    c = np.array([[0.0, 0.0, 0.0], [0.1, 0.0, 0.0]])
+    x = np.random.default_rng(0).normal(size=(500, 3))
+    got = envelope_gap(x, c, [1.0, 0.2], [[0, 1]], np.zeros((0, 3), int))
+    np.testing.assert_allclose(got, np.linalg.norm(x, axis=1) - 1.0, atol=1e-12)
+
+
+def test_envelope_samples_lie_on_the_union_or_inside_it():
+    rng = np.random.default_rng(2)
+    c, r = rng.random((5, 3)), 0.1 + 0.1 * rng.random(5)
+    faces, edges = np.array([[0, 1, 2]]), np.array([[2, 3], [3, 4]])
+    spheres = np.c_[c, r]
+    y = envelope_samples(spheres, primitives(5, edges, faces), budget=5000)
+    g = envelope_gap(y, c, r, edges, faces)
+    assert len(y) >= 4000 and np.all(g <= 1e-12)
+    assert np.mean(g > -1e-9) > 0.2  # many are on the boundary itself
+
+
+@pytest.mark.parametrize("radius", [0.3, 1.0])
+def test_a_capsule_mesh_is_its_two_sphere_medial_mesh(radius):
+    # trimesh's capsule: the envelope of two spheres of the same radius, half its height apart
+    capsule = trimesh.creation.capsule(height=2.0, radius=radius, count=[64, 64])
+    centres = np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+    to_mat, from_mat = two_sided_distance(centres, [radius, radius], [[0, 1]], np.zeros((0, 3), int), capsule)
+    # the polygonal mesh's own distance from the round capsule, from a dense sample and the closed form
+    x, _ = trimesh.sample.sample_surface_even(capsule, 200_000, seed=0)
+    depth = np.abs(np.linalg.norm(x - np.c_[0 * x[:, :2], np.clip(x[:, 2], -1, 1)], axis=1) - radius).max()
+    assert 0.85 * depth < to_mat < 1.05 * depth
+    assert 0.5 * depth < from_mat < 1.05 * depth
+    # one sphere alone: the surface is a half height (1.0) away at the caps
+    to_mat, from_mat = two_sided_distance(centres[:1], [radius], np.zeros((0, 2), int), np.zeros((0, 3), int), capsule)
+    assert abs(to_mat - 2.0) < 0.02
