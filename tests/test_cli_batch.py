@@ -103,6 +103,12 @@ def test_first_class_options_reach_the_methods(tmp_path, capsys):
     simple = tmp_path / "box.json"
     assert main(["compute", str(box), "--simplify", "20", "-o", str(simple)]) == 0
     assert len(json.loads(simple.read_text())["points"]) <= 20
+    assert main(["compute", str(box), "--simplify-error", "0.05", "-o", str(simple)]) == 0
+    meta = json.loads(simple.read_text())["metadata"]
+    assert meta["target_met"] and meta["hausdorff"] <= 0.05 * meta["diagonal"]
+    capsys.readouterr()
+    assert main(["compute", str(box), "--simplify", "5", "--simplify-error", "0.05", "-o", str(simple)]) == 1
+    assert "not both" in capsys.readouterr().err
     from medialaxis.cli import build_parser
     from medialaxis.cli_compute import compute_options as _options
 

@@ -47,9 +47,37 @@ def test_simplify_to_n_spheres_reports_hausdorff(box_ma, box_mesh):
 
 
 def test_simplify_by_error_bound_and_through_the_pipeline(box_mesh):
-    ma = voronoi_medial_axis(box_mesh, samples=1500, simplify=0.02)
-    assert ma.metadata["simplified"] and 1 <= len(ma.points) < len(ma.raw.points)
+    ma = voronoi_medial_axis(box_mesh, samples=1500, simplify=0.05)
+    assert ma.metadata["simplified"] and ma.metadata["target_met"]
+    assert ma.metadata["hausdorff"] <= 0.05 * ma.metadata["diagonal"]
     assert ma.raw.metadata.get("simplified") is None
+    with pytest.raises(InvalidInputError, match="not both"):
+        voronoi_medial_axis(box_mesh, samples=1500, simplify=10, simplify_error=0.05)
+    with pytest.raises(InvalidInputError, match="simplify_error"):
+        voronoi_medial_axis(box_mesh, samples=1500, simplify_error=2)
+
+
+def _torus_distance(p, major=1.0, minor=0.3):
+    """Signed distance to the round torus (negative inside)."""
+    return np.hypot(np.hypot(p[:, 0], p[:, 1]) - major, p[:, 2]) - minor
+
+
+def test_simplify_error_meets_the_bound_measured_apart():
+    torus = trimesh.creation.torus(major_radius=1.0, minor_radius=0.3, major_sections=64, minor_sections=32)
+    diag = np.linalg.norm(np.ptp(torus.vertices, axis=0))
+    samples, _ = trimesh.sample.sample_surface_even(torus, 3000, seed=0)
+    found = {}
+    for bound in (0.03, 0.015):
+        s = mx.medial_axis(torus, method="voronoi", simplify_error=bound)
+        assert s.metadata["target_met"] and s.metadata["hausdorff"] <= bound * diag
+        assert s.betti == (1, 1, 0)  # the torus's own: one tunnel
+        # apart from the package: the surface to the densely interpolated balls, and how far the
+        # balls poke out of the round torus (the mesh's faces lie at most 0.2% of the diagonal inside it)
+        assert np.abs(_surface_gap(samples, s, steps=64)).max() <= 1.02 * bound * diag
+        c, r = _dense_balls(s, steps=64)
+        assert np.max(r + _torus_distance(c)) <= 1.02 * bound * diag
+        found[bound] = len(s.points)
+    assert found[0.03] < found[0.015]
 
 
 @pytest.mark.parametrize("bad", [0, -3, 1.5, 0.0, True, "ten"])
@@ -58,16 +86,20 @@ def test_rejects_bad_simplify(bad, box_ma):
         simplify_medial_mesh(box_ma, bad)
 
 
-def _surface_gap(points, s):
-    """Distance from surface points to the union of the simplified mesh's spheres (vertices and
-    edge/triangle interpolations at eighths), computed here by brute force."""
+def _dense_balls(s, steps=8):
+    """The simplified mesh's spheres and those interpolated at ``1/steps`` along its edges and its triangles' edges."""
     c, r = s.points, s.radii
     parts = [(c, r)]
     for a, b in np.concatenate([s.edges, s.faces[:, [0, 1]], s.faces[:, [1, 2]], s.faces[:, [2, 0]]]):
-        t = np.linspace(0, 1, 9)[1:-1, None]
+        t = np.linspace(0, 1, steps + 1)[1:-1, None]
         parts.append(((1 - t) * c[a] + t * c[b], (1 - t[:, 0]) * r[a] + t[:, 0] * r[b]))
-    cc = np.concatenate([p[0] for p in parts])
-    rr = np.concatenate([p[1] for p in parts])
+    return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+
+
+def _surface_gap(points, s, steps=8):
+    """Distance from surface points to the union of the simplified mesh's spheres (vertices and
+    edge interpolations), computed here by brute force."""
+    cc, rr = _dense_balls(s, steps)
     return np.array([(np.linalg.norm(cc - p, axis=1) - rr).min() for p in points])
 
 

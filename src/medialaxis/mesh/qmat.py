@@ -45,6 +45,9 @@ REGULARISATION = 1e-3
 #: mesh's spheres, joined to the sphere it overlaps most (:func:`_cover_repair`).
 REPAIR_SHARE = 0.1
 
+#: Sphere count the search for ``simplify=e`` (an error bound) starts from, doubling.
+MIN_SEARCH = 32
+
 _ONE_EDGE = np.array([[0, 1]], np.int64)
 _NO_FACES = np.zeros((0, 3), np.int64)
 
@@ -108,9 +111,13 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
         ``int``: number of spheres to keep; when ``ma`` holds fewer, the
         missing ones are all placed by the cover repair (at most ``simplify``
         in all: it stops once no surface sample is left outside).
-        ``float`` in (0, 1): stop before
-        the first collapse whose root quadric error exceeds this fraction of
-        the bounding-box diagonal.
+        ``float`` in (0, 1): a bound on the two-sided error, as a fraction of
+        the bounding-box diagonal: the fewest spheres (found to a tenth by
+        doubling from 32, then bisection) whose measured ``hausdorff`` is
+        within it; ``metadata["target_met"]`` says whether any count up to
+        twice ``len(ma.points)`` met it (if not, the most accurate one is
+        returned). Without a surface to measure against, the collapses stop
+        before the first whose root quadric error exceeds the bound.
     surface : trimesh.Trimesh, optional
         The input surface, for the Hausdorff distance (default ``ma.shape``).
 
@@ -121,7 +128,9 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
         (curve pieces not bounding a triangle); ``raw`` is the complex simplified. Metadata:
         ``n_spheres``, ``hausdorff`` (two-sided, input surface vs. the
         boundary of the interpolated spheres), ``hausdorff_surface_to_mat``,
-        ``hausdorff_mat_to_surface``, ``diagonal``.
+        ``hausdorff_mat_to_surface``, ``diagonal`` (the distances are those of
+        :func:`medialaxis.mesh.envelope.two_sided_distance`; absent without a
+        surface).
 
     Raises
     ------
@@ -145,22 +154,76 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     check_simplify(simplify)
     if ma.dim != 3:
         raise InvalidInputError("simplify applies to 3D medial meshes")
+    if surface is None:
+        surface = ma.shape
+    measured = surface is not None and hasattr(surface, "vertices")
+    points = np.asarray(surface.vertices) if measured else ma.points
+    diag = float(np.linalg.norm(np.ptp(points, axis=0))) if len(points) else 0.0
+    sample = surface_sample(surface) if measured else None
+    metadata = dict(ma.metadata, simplified=True, diagonal=diag)
+    if isinstance(simplify, (int, np.integer)):
+        parts = _reduce(ma, int(simplify), None, sample)
+        errors = two_sided_distance(*parts, surface, sample) if measured else None
+    elif measured:
+        parts, errors = _fewest(ma, float(simplify) * diag, surface, sample)
+        metadata["target_met"] = max(errors) <= float(simplify) * diag
+    else:
+        parts, errors = _reduce(ma, 1, float(simplify) * diag, None), None
+    centres, radii, curve, out_faces = parts
+    if errors is not None:
+        h_sm, h_ms = errors
+        metadata.update(hausdorff=max(h_sm, h_ms), hausdorff_surface_to_mat=h_sm, hausdorff_mat_to_surface=h_ms)
+    metadata["n_spheres"] = int(len(centres))
+    return MedialAxis(centres, radii, curve, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
+
+
+def _fewest(ma: MedialAxis, bound: float, surface: Any, sample: Any) -> tuple[tuple, tuple[float, float]]:
+    """The fewest spheres (to a tenth) whose two-sided error is at most ``bound``: doubling, then bisection.
+
+    The search goes up to twice the spheres ``ma`` holds (those past its
+    own are placed by the cover repair); when even these miss the bound, the
+    most accurate result tried is returned.
+    """
+    tried: dict[int, tuple[tuple, tuple[float, float]]] = {}
+
+    def error(k: int) -> float:
+        if k not in tried:
+            parts = _reduce(ma, k, None, sample)
+            tried[k] = (parts, two_sided_distance(*parts, surface, sample))
+        return max(tried[k][1])
+
+    cap = 2 * len(ma.points) + MIN_SEARCH
+    lo, hi = 0, min(MIN_SEARCH, cap)
+    while error(hi) > bound and hi < cap:
+        lo, hi = hi, min(2 * hi, cap)
+    if error(hi) > bound:
+        return min(tried.values(), key=lambda t: max(t[1]))
+    while hi - lo > max(1, hi // 10):
+        mid = (lo + hi) // 2
+        if error(mid) <= bound:
+            hi = mid
+        else:
+            lo = mid
+    return tried[hi]
+
+
+def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tuple:
+    """``(centres, radii, edges, faces)`` of ``ma`` collapsed to ``count`` spheres, or until the root quadric error passes ``bound``.
+
+    With a surface ``sample``, a tenth of the ``count`` spheres (or all
+    that ``ma`` lacks) are placed last by :func:`_cover_repair`.
+    """
     n = len(ma.points)
     spheres = np.c_[ma.points, ma.radii]
     qa, qb, qc = _initial_quadrics(ma)
     reg = REGULARISATION * float(np.mean(np.trace(qa, axis1=1, axis2=2))) if n else 0.0
-    diag = float(np.linalg.norm(np.ptp(ma.points, axis=0))) if n else 0.0
-    if surface is None:
-        surface = ma.shape
-    if surface is not None and hasattr(surface, "vertices"):
-        diag = float(np.linalg.norm(np.ptp(np.asarray(surface.vertices), axis=0)))
-    target = int(simplify) if isinstance(simplify, (int, np.integer)) else 1
-    # a tenth of the spheres go where the collapsed mesh leaves the surface farthest (tips, limbs)
-    repair = int(REPAIR_SHARE * target) if isinstance(simplify, (int, np.integer)) and target >= 20 else 0
-    if isinstance(simplify, (int, np.integer)):
+    target = count
+    repair = 0
+    if sample is not None and bound is None:
+        # a tenth of the spheres go where the collapsed mesh leaves the surface farthest (tips, limbs)
+        repair = int(REPAIR_SHARE * target) if target >= 20 else 0
         repair = max(repair, target - n)  # a compact complex may hold fewer spheres than asked
     target -= repair
-    bound = None if isinstance(simplify, (int, np.integer)) else float(simplify) * diag
 
     faces = [set() for _ in range(n)]
     tri = {k: tuple(f) for k, f in enumerate(ma.faces.tolist())}
@@ -184,8 +247,8 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
         for j in nbr[i]:
             if i < j:
                 push(i, j)
-    count = n
-    while count > target and heap:
+    left = n
+    while left > target and heap:
         cost, i, j, vi, vj = heapq.heappop(heap)
         if not (alive[i] and alive[j]) or version[i] != vi or version[j] != vj:
             continue
@@ -197,7 +260,7 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
         qb[i] += qb[j]
         qc[i] += qc[j]
         alive[j] = False
-        count -= 1
+        left -= 1
         for k in faces[j]:
             f = tri[k]
             if i in f:
@@ -229,15 +292,9 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     curve = sorted({(min(new[i], new[j]), max(new[i], new[j])) for i in keep for j in nbr[i]} - face_edges)
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
     curve = np.array(curve, np.int64).reshape(-1, 2)
-    metadata = dict(ma.metadata, simplified=True, diagonal=diag)
-    if surface is not None and hasattr(surface, "vertices"):
-        sample = surface_sample(surface)
-        if repair:
-            centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, sample, repair)
-        h_sm, h_ms = two_sided_distance(centres, radii, curve, out_faces, surface, sample)
-        metadata.update(hausdorff=max(h_sm, h_ms), hausdorff_surface_to_mat=h_sm, hausdorff_mat_to_surface=h_ms)
-    metadata["n_spheres"] = int(len(centres))
-    return MedialAxis(centres, radii, curve, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
+    if repair:
+        centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, sample, repair)
+    return centres, radii, curve, out_faces
 
 
 def _medial_ball(p: np.ndarray, n: np.ndarray, tree: cKDTree, samples: np.ndarray, start: float) -> tuple[np.ndarray, float]:

@@ -166,6 +166,7 @@ def voronoi_medial_axis(
     lam: float | None = None,
     samples: int | None = None,
     simplify: int | float | None = None,
+    simplify_error: float | None = None,
     topology: Literal["preserve", "lambda"] = "preserve",
     repair: bool = False,
     rng: Any = 0,
@@ -200,6 +201,11 @@ def voronoi_medial_axis(
         bound as a fraction of the bounding-box diagonal. It starts from
         the compact complex (``compact=False``: the full one), which is
         ``ma.raw`` (the full complex is then ``ma.raw.raw``).
+    simplify_error : float, optional
+        The same as a ``float`` ``simplify``, by name: the fewest spheres whose
+        two-sided error (``metadata["hausdorff"]``, exact envelope of the
+        interpolated spheres against the input surface) is at most this
+        fraction of the bounding-box diagonal. Not with ``simplify``.
     topology : {"preserve", "lambda"}
         ``"preserve"`` (default): keep every facet of at least ``lam`` plus
         the narrower facets and curve pieces needed for the complex to have
@@ -292,6 +298,12 @@ def voronoi_medial_axis(
         raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
     if not isinstance(compact, (bool, np.bool_)):
         raise InvalidInputError(f"compact must be True or False, got {compact!r}")
+    if simplify_error is not None:
+        if simplify is not None:
+            raise InvalidInputError("give simplify (spheres) or simplify_error (error bound), not both")
+        if isinstance(simplify_error, (bool, int, np.integer)):
+            raise InvalidInputError(f"simplify_error must be a float in (0, 1) of the diagonal, got {simplify_error!r}")
+        simplify = simplify_error
     if simplify is not None:
         from medialaxis.mesh.qmat import check_simplify
 
