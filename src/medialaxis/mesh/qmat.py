@@ -11,7 +11,7 @@ of its contacts (the four samples on its Delaunay sphere, normals taken
 along the radius). Edges are collapsed cheapest first; the merged sphere
 minimises the sum of the two quadrics (kept near the two it replaces), and
 the quadrics add. Collapses alone leave the tips of limbs and fins without a
-sphere, so for ``simplify=n`` a tenth of the spheres is kept back and then
+sphere, so for ``simplify=n`` a quarter of the spheres is kept back and then
 placed where the surface is farthest from the interpolated spheres
 (:func:`_cover_repair`). The result is judged by the two-sided Hausdorff
 distance between the input surface and the boundary of the union of the
@@ -43,7 +43,9 @@ REGULARISATION = 1e-3
 #: Share of the spheres of ``simplify=n`` added after the collapses, each at
 #: the medial ball touching the surface point farthest from the simplified
 #: mesh's spheres, joined to the sphere it overlaps most (:func:`_cover_repair`).
-REPAIR_SHARE = 0.1
+#: Ten real models at 200 spheres, median / worst two-sided error measured apart:
+#: 0.1: 1.54 / 2.15%, 0.15: 1.52 / 2.15%, 0.2: 1.49 / 2.15%, 0.25: 1.45 / 2.15%.
+REPAIR_SHARE = 0.25
 
 #: Sphere count the search for ``simplify=e`` (an error bound) starts from, doubling.
 MIN_SEARCH = 32
@@ -210,7 +212,7 @@ def _fewest(ma: MedialAxis, bound: float, surface: Any, sample: Any) -> tuple[tu
 def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tuple:
     """``(centres, radii, edges, faces)`` of ``ma`` collapsed to ``count`` spheres, or until the root quadric error passes ``bound``.
 
-    With a surface ``sample``, a tenth of the ``count`` spheres (or all
+    With a surface ``sample``, ``REPAIR_SHARE`` of the ``count`` spheres (or all
     that ``ma`` lacks) are placed last by :func:`_cover_repair`.
     """
     n = len(ma.points)
@@ -220,7 +222,7 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tup
     target = count
     repair = 0
     if sample is not None and bound is None:
-        # a tenth of the spheres go where the collapsed mesh leaves the surface farthest (tips, limbs)
+        # a share of the spheres go where the collapsed mesh leaves the surface farthest (tips, limbs)
         repair = int(REPAIR_SHARE * target) if target >= 20 else 0
         repair = max(repair, target - n)  # a compact complex may hold fewer spheres than asked
     target -= repair
