@@ -53,8 +53,9 @@ def test_simplify_by_error_bound_and_through_the_pipeline(box_mesh):
     assert ma.raw.metadata.get("simplified") is None
     with pytest.raises(InvalidInputError, match="not both"):
         voronoi_medial_axis(box_mesh, samples=1500, simplify=10, simplify_error=0.05)
-    with pytest.raises(InvalidInputError, match="simplify_error"):
-        voronoi_medial_axis(box_mesh, samples=1500, simplify_error=2)
+    for bad in (2, 1.5, 0.0, float("nan"), "1%"):
+        with pytest.raises(InvalidInputError, match="simplify_error"):
+            voronoi_medial_axis(box_mesh, samples=1500, simplify_error=bad)
 
 
 def _torus_distance(p, major=1.0, minor=0.3):

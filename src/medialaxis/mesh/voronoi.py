@@ -301,7 +301,7 @@ def voronoi_medial_axis(
     if simplify_error is not None:
         if simplify is not None:
             raise InvalidInputError("give simplify (spheres) or simplify_error (error bound), not both")
-        if isinstance(simplify_error, (bool, int, np.integer)):
+        if not isinstance(simplify_error, (float, np.floating)) or not 0.0 < simplify_error < 1.0:
             raise InvalidInputError(f"simplify_error must be a float in (0, 1) of the diagonal, got {simplify_error!r}")
         simplify = simplify_error
     if simplify is not None:
