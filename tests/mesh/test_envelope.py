@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import trimesh
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from medialaxis.mesh.envelope import envelope_gap, envelope_samples, primitives, two_sided_distance
 
@@ -81,3 +83,30 @@ def test_a_capsule_mesh_is_its_two_sphere_medial_mesh(radius):
     # one sphere alone: the surface is a half height (1.0) away at the caps
     to_mat, from_mat = two_sided_distance(centres[:1], [radius], np.zeros((0, 2), int), np.zeros((0, 3), int), capsule)
     assert abs(to_mat - 2.0) < 0.02
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**31 - 1), scale=st.floats(0.01, 100.0))
+def test_gap_moves_with_rotation_translation_and_scale(seed, scale):
+    rng = np.random.default_rng(seed)
+    c, r = rng.random((5, 3)), 0.05 + 0.3 * rng.random(5)
+    edges, faces = np.array([[3, 4]]), np.array([[0, 1, 2], [1, 2, 3]])
+    x = rng.normal(size=(200, 3))
+    rotation = trimesh.transformations.random_rotation_matrix(rng.random(3))[:3, :3]
+    shift = rng.normal(size=3) * 10
+    moved = envelope_gap(scale * x @ rotation.T + shift, scale * c @ rotation.T + shift, scale * r, edges, faces)
+    np.testing.assert_allclose(moved, scale * envelope_gap(x, c, r, edges, faces), atol=1e-9 * scale, rtol=1e-9)
+
+
+def test_degenerate_primitives_give_finite_gaps():
+    # coincident centres, a zero-length edge, collinear and repeated triangle corners, a sphere inside another
+    c = np.array([[0.0, 0, 0], [0.0, 0, 0], [1.0, 0, 0], [2.0, 0, 0], [0.5, 0, 0]])
+    r = np.array([0.2, 0.1, 0.2, 0.3, 0.0])
+    edges, faces = np.array([[0, 1], [1, 2]]), np.array([[0, 2, 3], [0, 0, 2], [2, 3, 4]])
+    x = np.random.default_rng(0).normal(size=(300, 3))
+    got = envelope_gap(x, c, r, edges, faces)
+    assert np.all(np.isfinite(got))
+    dense = _dense_gap(x, c, r, [(0, 1), (1, 2), (0, 2), (2, 3), (0, 3), (3, 4), (2, 4)], [(0, 2, 3), (2, 3, 4)])
+    assert np.all(got <= dense + 1e-12) and np.max(dense - got) < 1e-3
+    y = envelope_samples(np.c_[c, r], primitives(5, edges, faces), budget=2000)
+    assert len(y) and np.all(np.isfinite(y))
