@@ -110,3 +110,13 @@ def test_degenerate_primitives_give_finite_gaps():
     assert np.all(got <= dense + 1e-12) and np.max(dense - got) < 1e-3
     y = envelope_samples(np.c_[c, r], primitives(5, edges, faces), budget=2000)
     assert len(y) and np.all(np.isfinite(y))
+
+
+def test_two_overlapping_spheres_against_their_capsule():
+    # two unit spheres 1 apart, no edge between them: their union's crease circle (radius sqrt(3)/2)
+    # lies 1 - sqrt(3)/2 inside the capsule's waist; the waist is sqrt(5)/2 - 1 from the union
+    capsule = trimesh.creation.capsule(height=1.0, radius=1.0, count=[128, 128])
+    centres = np.array([[0.0, 0.0, -0.5], [0.0, 0.0, 0.5]])
+    to_mat, from_mat = two_sided_distance(centres, [1.0, 1.0], np.zeros((0, 2), int), np.zeros((0, 3), int), capsule)
+    assert abs(from_mat - (1 - np.sqrt(3) / 2)) < 1e-3
+    assert abs(to_mat - (np.sqrt(5) / 2 - 1)) < 1e-3

@@ -30,6 +30,10 @@ from medialaxis._jit import njit, prange
 
 __all__ = ["primitives", "envelope_gap", "envelope_samples", "surface_sample", "two_sided_distance"]
 
+#: Farthest envelope samples refined, and jittered points around each (:func:`two_sided_distance`).
+REFINE_TOP = 32
+REFINE_JITTER = 16
+
 
 def primitives(n: int, edges: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """``(p, 4)`` int64 rows ``(kind, a, b, c)``: every sphere (0), every edge of ``edges`` and ``faces`` (1), every face (2)."""
@@ -277,8 +281,11 @@ def two_sided_distance(
     surface_to_mat : float
         ``max |g(x)|`` over the surface points: exact at each point.
     mat_to_surface : float
-        Largest distance to the surface from an envelope sample that no
-        primitive holds: a lower bound, sharp to about the sample spacing.
+        Largest distance to the surface from a point of the union's
+        boundary: envelope samples that no primitive holds, refined around
+        the farthest ones (jittered at the spacing and at a quarter of it,
+        then moved onto the boundary by Newton steps on ``g``). A lower
+        bound; the maxima sit at creases where spheres meet.
     """
     from medialaxis.mesh.signed_distance import SignedDistance
 
@@ -290,9 +297,37 @@ def two_sided_distance(
     surface_to_mat = float(np.abs(_gaps(x, spheres, prims, centre, reach, -np.inf)).max()) if len(x) else 0.0
     y = np.ascontiguousarray(envelope_samples(spheres, prims, budget))
     diag = float(np.linalg.norm(np.ptp(np.asarray(surface.vertices), axis=0)))
+    # the samples' own spacing: median distance to the nearest other sample
+    spacing = float(np.median(cKDTree(y).query(y[:: max(1, len(y) // 2000)], k=2)[0][:, 1])) if len(y) > 1 else 0.0
     y = y[_gaps(y, spheres, prims, centre, reach, -1e-7 * diag) >= -1e-7 * diag]
     if len(y) == 0:
         return surface_to_mat, 0.0
-    _, nearest = cKDTree(smp.points).query(y, k=4, workers=-1)
-    signed, _ = SignedDistance(surface).query(y, smp.face[nearest])
-    return surface_to_mat, float(np.abs(signed).max())
+    tree, sd = cKDTree(smp.points), SignedDistance(surface)
+
+    def distance(z: np.ndarray) -> np.ndarray:
+        _, nearest = tree.query(z, k=4, workers=-1)
+        return np.abs(sd.query(z, smp.face[nearest])[0])
+
+    far = distance(y)
+    # the largest distances sit at creases where spheres meet, between samples: jitter around the
+    # farthest samples at the spacing, then a quarter of it, and move back onto the union's boundary
+    rng = np.random.default_rng(0)
+    for step in (spacing, 0.25 * spacing) if REFINE_TOP > 0 else ():
+        top = y[np.argsort(far)[-REFINE_TOP:]]
+        z = np.repeat(top, REFINE_JITTER, axis=0) + step * rng.normal(size=(len(top) * REFINE_JITTER, 3))
+        z = _onto_boundary(z, spheres, prims, centre, reach, diag)
+        if len(z):
+            y, far = np.concatenate([y, z]), np.concatenate([far, distance(z)])
+    return surface_to_mat, float(far.max())
+
+
+def _onto_boundary(z: np.ndarray, spheres: np.ndarray, prims: np.ndarray, centre: np.ndarray, reach: np.ndarray, diag: float) -> np.ndarray:
+    """Points moved onto the union's boundary by Newton steps on ``g``; those not within ``1e-6 diag`` of it are dropped."""
+    h = 1e-6 * diag  # finite-difference step of the gradient (|grad g| = 1 away from creases)
+    for _ in range(2):
+        z = np.ascontiguousarray(z)
+        g = _gaps(z, spheres, prims, centre, reach, -np.inf)
+        grad = np.stack([(_gaps(z + h * e, spheres, prims, centre, reach, -np.inf) - g) / h for e in np.eye(3)], axis=1)
+        z = z - (g / np.maximum((grad * grad).sum(axis=1), 1e-12))[:, None] * grad
+    g = _gaps(np.ascontiguousarray(z), spheres, prims, centre, reach, -np.inf)
+    return z[np.abs(g) <= 1e-6 * diag]
