@@ -20,7 +20,10 @@ Coverage Axis papers measure it:
    distance to the nearest surface sample.
 
 Both are reported as maxima (Hausdorff) over the bounding-box diagonal.
-Accuracy: the sample spacings, a few thousandths of the diagonal.
+Accuracy: the sample spacings, a few thousandths of the diagonal. The
+medial -> surface side is a lower bound: its largest distances sit at creases
+where spheres meet, between samples (max-planck at 200 spheres: 1.72% here,
+1.84% from the package's envelope refined around its farthest samples).
 """
 
 from __future__ import annotations
