@@ -318,6 +318,13 @@ def two_sided_distance(
         z = _onto_boundary(z, spheres, prims, centre, reach, diag)
         if len(z):
             y, far = np.concatenate([y, z]), np.concatenate([far, distance(z)])
+    # the local search may overstate (it misses faces farther off); the largest are searched exhaustively
+    checked = np.zeros(len(far), bool)
+    while not checked[np.argmax(far)]:
+        top = np.argsort(far)[-64:]
+        top = top[~checked[top]]
+        far[top] = np.abs(sd.exact(y[top])[0])
+        checked[top] = True
     return surface_to_mat, float(far.max())
 
 
