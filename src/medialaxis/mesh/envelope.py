@@ -15,8 +15,10 @@ in the deepest sphere when inside.
 The boundary of the union lies on the primitives' own envelopes: sphere
 surfaces, the tangent circles of cones (``n . u = -dr / |dc|``) and the two
 offset planes of slabs. :func:`two_sided_distance` samples those evenly,
-keeps the samples no other primitive holds, and measures their distance to
-the input surface; the other side is ``|g|`` over samples of the surface.
+keeps the samples no other primitive holds, refines around the farthest of
+them (the largest distances sit at creases where spheres meet, between
+samples) and measures their distance to the input surface; the other side is
+``|g|`` over samples of the surface.
 """
 
 from __future__ import annotations
