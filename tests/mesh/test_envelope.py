@@ -80,7 +80,7 @@ def test_a_capsule_mesh_is_its_two_sphere_medial_mesh(radius):
     depth = np.abs(np.linalg.norm(x - np.c_[0 * x[:, :2], np.clip(x[:, 2], -1, 1)], axis=1) - radius).max()
     assert 0.85 * depth < to_mat < 1.05 * depth
     assert 0.5 * depth < from_mat < 1.05 * depth
-    # one sphere alone: the surface is a half height (1.0) away at the caps
+    # one sphere alone: the far cap is the height (2.0) away from it
     to_mat, from_mat = two_sided_distance(centres[:1], [radius], np.zeros((0, 2), int), np.zeros((0, 3), int), capsule)
     assert abs(to_mat - 2.0) < 0.02
 
