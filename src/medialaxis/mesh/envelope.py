@@ -262,6 +262,7 @@ def two_sided_distance(
     surface: Any,
     sample: Any = None,
     budget: int = 100_000,
+    signed: Any = None,
 ) -> tuple[float, float]:
     """Hausdorff distance both ways between ``surface`` and the boundary of the interpolated spheres.
 
@@ -277,6 +278,9 @@ def two_sided_distance(
         closest-point search of the second.
     budget : int
         About how many points are spread over the primitives' envelopes.
+    signed : SignedDistance, optional
+        Of ``surface`` (made here when not given; pass one to measure many
+        medial meshes against the same surface).
 
     Returns
     -------
@@ -304,7 +308,7 @@ def two_sided_distance(
     y = y[_gaps(y, spheres, prims, centre, reach, -1e-7 * diag) >= -1e-7 * diag]
     if len(y) == 0:
         return surface_to_mat, 0.0
-    tree, sd = cKDTree(smp.points), SignedDistance(surface)
+    tree, sd = cKDTree(smp.points), SignedDistance(surface) if signed is None else signed
 
     def distance(z: np.ndarray) -> np.ndarray:
         _, nearest = tree.query(z, k=4, workers=-1)

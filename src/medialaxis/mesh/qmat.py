@@ -186,12 +186,15 @@ def _fewest(ma: MedialAxis, bound: float, surface: Any, sample: Any) -> tuple[tu
     own are placed by the cover repair); when even these miss the bound, the
     most accurate result tried is returned.
     """
+    from medialaxis.mesh.signed_distance import SignedDistance
+
     tried: dict[int, tuple[tuple, tuple[float, float]]] = {}
+    signed = SignedDistance(surface)  # one for every count tried
 
     def error(k: int) -> float:
         if k not in tried:
             parts = _reduce(ma, k, None, sample)
-            tried[k] = (parts, two_sided_distance(*parts, surface, sample))
+            tried[k] = (parts, two_sided_distance(*parts, surface, sample, signed=signed))
         return max(tried[k][1])
 
     cap = 2 * len(ma.points) + MIN_SEARCH
