@@ -12,7 +12,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["structure", "link_ok", "select", "costs"]
+__all__ = ["structure", "link_ok", "select", "costs", "lattice"]
 
 
 @njit(cache=True, nogil=True)
@@ -281,3 +281,55 @@ def costs(edges, cand, spheres, qa, qb, qc, count, moved, feature, star):  # pra
         else:
             src[k], dst[k], cost[k], move[k] = v, u, c_vu, m_vu
     return src, dst, cost, move
+
+
+@njit(cache=True, nogil=True)
+def _lattice(spheres, prims, spacing, tolerance, out, owner):  # pragma: no cover - compiled
+    """Fill ``out`` and ``owner`` (if not empty) with :func:`lattice`'s samples; returns their count."""
+    count = 0
+    s = np.empty(4)
+    for p in range(prims.shape[0]):
+        a, b, c = prims[p, 0], prims[p, 1], prims[p, 2]
+        longest = 0.0
+        for u, v in ((a, b), (b, c), (c, a)):
+            d = 0.0
+            for k in range(4):
+                d += (spheres[u, k] - spheres[v, k]) ** 2
+            longest = max(longest, d)
+        steps = int(np.ceil(np.sqrt(longest) / spacing))
+        for u in range(steps + 1):
+            for w in range(1 if b == c else steps - u + 1):  # an edge (b == c): w = 0 only
+                if (u == 0 and w == 0) or u == steps or w == steps:  # the corners
+                    continue
+                t, v = u / steps, w / steps
+                for k in range(4):
+                    s[k] = (1.0 - t - v) * spheres[a, k] + t * spheres[b, k] + v * spheres[c, k]
+                bound = s[3]  # the corners' balls hold no surface point: d(x) >= r_q - |x - x_q|
+                for q in (a, b, c):
+                    d = 0.0
+                    for k in range(3):
+                        d += (s[k] - spheres[q, k]) ** 2
+                    bound = min(bound, s[3] - spheres[q, 3] + np.sqrt(d))
+                if bound <= tolerance:
+                    continue
+                if out.shape[0] > 0:
+                    out[count] = s
+                    owner[count] = p
+                count += 1
+    return count
+
+
+@njit(cache=True, nogil=True)
+def lattice(spheres, prims, spacing, tolerance):  # pragma: no cover - compiled
+    """Spheres interpolated over triangles ``prims`` (edges: ``(a, b, b)``) about ``spacing`` apart.
+
+    Corners are left out, and so are the spheres that cannot reach more than
+    ``tolerance`` out of a surface the corner balls do not cross (a ball
+    ``(x, r)`` reaches ``r - d(x)`` out, and ``d(x) >= r_q - |x - x_q|``).
+    Returns the samples (q, 4) and the primitive each comes from.
+    """
+    count = _lattice(spheres, prims, spacing, tolerance, np.empty((0, 4)), np.empty(0, np.int64))
+    out = np.empty((count, 4))
+    owner = np.empty(count, np.int64)
+    _lattice(spheres, prims, spacing, tolerance, out, owner)
+    return out, owner
