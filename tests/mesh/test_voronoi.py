@@ -124,6 +124,17 @@ def test_torus_gives_its_core_circle(torus):
     assert np.histogram(angle, bins=36, range=(-np.pi, np.pi))[0].min() > 0  # all the way round
 
 
+def test_sphere_gives_its_centre():
+    # A ball's medial axis is its centre: the compact complex shrinks to a few spheres there, with
+    # nothing left to sample between them (the reach check of the collapses then has no work).
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=2.0)
+    ma = voronoi_medial_axis(sphere, samples=3000)
+    assert len(ma.points) <= 8 and ma.betti == (1, 0, 0)
+    # within the compaction tolerance of the centre (4.7% of the radius here; the facets lie 0.6% inside)
+    assert np.linalg.norm(ma.points, axis=1).max() <= ma.metadata["compact_tolerance"] + 0.012 * 2.0
+    assert np.abs(ma.radii - 2.0).max() <= ma.metadata["compact_tolerance"] + 0.012 * 2.0
+
+
 # ---------------------------------------------------------------- certificate
 @pytest.mark.parametrize("name", ["capsule", "box", "torus"])
 def test_medial_certificate(name, request):

@@ -277,8 +277,9 @@ def _inside(
         before = np.concatenate([faces[changed], edges[changed_edges][:, [0, 1, 1]]])
         after = np.concatenate([moved_faces[changed], moved_edges[changed_edges][:, [0, 1, 1]]])
         samples, owner = lattice(spheres, after, tolerance, tolerance)
-        near, which = centres.query(samples[:, :3], k=min(NEAR_BALLS, n))
-        near, which = near.reshape(len(samples), -1), which.reshape(len(samples), -1)
+        k = min(NEAR_BALLS, n)
+        near, which = centres.query(samples[:, :3], k=k)
+        near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
         reach = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1)
         samples, owner = samples[reach > tolerance], owner[reach > tolerance]
         deep = samples[:, 3] + signed(samples[:, :3]) > tolerance
