@@ -150,7 +150,7 @@ def compact_complex(
     points: np.ndarray, radii: np.ndarray, faces: np.ndarray, edges: np.ndarray, contacts: np.ndarray,
     tolerance: float,
     rule: str = "link condition",
-    signed: Callable[[np.ndarray], np.ndarray] | None = None,
+    signed: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
 ) -> Compacted:
     """Contract the complex while it stays within ``tolerance`` (see the module docstring).
 
@@ -172,8 +172,9 @@ def compact_complex(
         apart by a shared vertex or by the removed vertex's neighbourhood
         (faster; :func:`compact_medial_axis` checks the result's topology).
     signed : callable, optional
-        ``signed(points)``: signed distance to the surface (negative
-        inside). A round's collapses are kept only while the spheres
+        ``signed(points, near)``: signed distance to the surface (negative
+        inside) of ``points`` (q, 3), whose nearest input spheres are
+        ``near`` (q, k) (their contacts show where to search). A round's collapses are kept only while the spheres
         interpolated over the edges and triangles they make reach at most
         ``tolerance`` out of it (:func:`_inside`).
 
@@ -251,7 +252,7 @@ def compact_complex(
 
 def _inside(
     chosen: np.ndarray, src: np.ndarray, dst: np.ndarray, faces: np.ndarray, edges: np.ndarray,
-    spheres: np.ndarray, signed: Callable[[np.ndarray], np.ndarray], centres: cKDTree, tolerance: float,
+    spheres: np.ndarray, signed: Callable[[np.ndarray, np.ndarray], np.ndarray], centres: cKDTree, tolerance: float,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The collapses ``src -> dst`` of ``chosen`` whose new edges and triangles stay inside the surface.
 
@@ -265,6 +266,9 @@ def _inside(
     """
     n = len(spheres)
     refused = np.zeros(len(src), bool)
+    moving = np.zeros(n, bool)
+    moving[src[chosen]] = True
+    faces, edges = faces[moving[faces].any(axis=1)], edges[moving[edges].any(axis=1)]  # all that may change
     while True:
         to = np.arange(n)
         to[src[chosen]] = dst[chosen]
@@ -280,9 +284,9 @@ def _inside(
         k = min(NEAR_BALLS, n)
         near, which = centres.query(samples[:, :3], k=k)
         near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
-        reach = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1)
-        samples, owner = samples[reach > tolerance], owner[reach > tolerance]
-        deep = samples[:, 3] + signed(samples[:, :3]) > tolerance
+        far = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1) > tolerance
+        samples, owner = samples[far], owner[far]
+        deep = samples[:, 3] + signed(samples[:, :3], which[far]) > tolerance if len(samples) else np.zeros(0, bool)
         if not deep.any():
             return chosen, np.flatnonzero(refused), np.unique(after)
         culprit = np.isin(src[chosen], before[np.unique(owner[deep])])
@@ -324,7 +328,7 @@ def _open_voids(c: Compacted, points: np.ndarray, count: int) -> Compacted:
 
 def compact_medial_axis(
     ma: MedialAxis, tolerance: float, exact: Any = None, shells: int | None = None,
-    signed: Callable[[np.ndarray], np.ndarray] | None = None,
+    signed: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
 ) -> MedialAxis:
     """The compact form of a Voronoi medial complex (``ma.raw`` is the full one).
 
@@ -353,8 +357,9 @@ def compact_medial_axis(
     ``exact(points)``, if given, returns the signed distance and the
     closest surface point of the kept points with an exhaustive search (the
     full complex's radii come from a local one): the few spheres left get
-    their exact radius and closest point. ``signed(points)``, if given, is
-    the signed distance to the surface (negative inside): the spheres
+    their exact radius and closest point. ``signed(points, near)``, if given, is
+    the signed distance to the surface (negative inside), given the nearest
+    input spheres of each point (see :func:`compact_complex`): the spheres
     interpolated over the result then reach at most ``tolerance`` out of the
     solid (:func:`compact_complex`).
     """

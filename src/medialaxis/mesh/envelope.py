@@ -308,11 +308,11 @@ def two_sided_distance(
     y = y[_gaps(y, spheres, prims, centre, reach, -1e-7 * diag) >= -1e-7 * diag]
     if len(y) == 0:
         return surface_to_mat, 0.0
-    sd = SignedDistance(surface) if signed is None else signed
-    near = sd.near(smp.points, smp.face)
+    tree, sd = cKDTree(smp.points), SignedDistance(surface) if signed is None else signed
 
     def distance(z: np.ndarray) -> np.ndarray:
-        return np.abs(near(z))
+        _, nearest = tree.query(z, k=4, workers=-1)
+        return np.abs(sd.query(z, smp.face[nearest])[0])
 
     far = distance(y)
     # the largest distances sit at creases where spheres meet, between samples: jitter around the

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -74,24 +73,6 @@ class SignedDistance:
         normal[edge] = pn.edge[pn.face_edges[face[edge], region[edge] - 3]]
         side = np.einsum("ij,ij->i", points - closest, normal)
         return np.where(side < 0, -dist, dist), closest
-
-    def near(self, samples: np.ndarray, sample_face: np.ndarray, k: int = 4) -> Callable[[np.ndarray], np.ndarray]:
-        """``signed(points)``: signed distance (negative inside), a query's ``k`` nearest samples naming its faces.
-
-        ``samples`` (s, 3) lie on the faces ``sample_face`` (s,). Exact for a
-        sample dense enough that the closest point lies in the vertex rings
-        of those faces.
-        """
-        tree, sample_face = cKDTree(samples), np.asarray(sample_face, np.int64)
-
-        def signed(points: np.ndarray) -> np.ndarray:
-            points = np.asarray(points, np.float64).reshape(-1, 3)
-            if not len(points):
-                return np.empty(0)
-            _, nearest = tree.query(points, k=k, workers=-1)
-            return self.query(points, sample_face[nearest.reshape(len(points), k)])[0]
-
-        return signed
 
     def exact(
         self, points: np.ndarray, k: int = 32, budget: int = 2_000_000, max_k: int = 2048

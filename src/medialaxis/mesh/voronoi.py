@@ -398,9 +398,10 @@ def voronoi_medial_axis(
         from medialaxis.mesh.compact import COMPACT_TOLERANCE, compact_medial_axis
 
         t0 = time.perf_counter()
+        contact_faces = smp.face[dt.simplices[used]]  # the faces of each sphere's four samples
         result = compact_medial_axis(
             result, COMPACT_TOLERANCE * eps, exact=sd.exact, shells=int(shell_labels(work).max()) + 1,
-            signed=sd.near(smp.points, smp.face),
+            signed=lambda x, near: sd.query(x, contact_faces[near].reshape(len(x), -1))[0],
         )
         timings["compact"] = time.perf_counter() - t0
         timings["total"] = time.perf_counter() - t_start
