@@ -284,6 +284,28 @@ def test_collapse_kernels_match_python_and_keep_euler():
     assert np.array_equal(alive, used)  # every dangling side went
 
 
+
+def test_reach_lattice_of_the_compaction():
+    # the spheres the compaction's reach check samples over a triangle and an edge (corners left out)
+    from medialaxis.mesh._compact_kernels import lattice
+
+    spheres = np.array([[0.0, 0, 0, 1.0], [1.0, 0, 0, 1.0], [0.0, 1.0, 0, 2.0]])
+    prims = np.array([[0, 1, 2], [0, 1, 1]])
+    out, owner = lattice(spheres, prims, 0.25, -np.inf)  # nothing bounded away
+    steps = (int(np.ceil(np.sqrt(3.0) / 0.25)), 4)  # longest side in (centre, radius): sqrt(3) and 1
+    assert np.bincount(owner).tolist() == [(steps[0] + 1) * (steps[0] + 2) // 2 - 3, steps[1] - 1]
+    # each sample is the interpolation of the corners at barycentric coordinates k / steps
+    w = np.linalg.lstsq(spheres[[0, 1, 2]].T, out[owner == 0].T, rcond=None)[0].T
+    assert np.allclose(w.sum(axis=1), 1.0) and w.min() >= -1e-12
+    assert np.allclose(w * steps[0], np.round(w * steps[0]), atol=1e-9)
+    assert not np.isclose(w, 1.0).any()  # no corner
+    edge = out[owner == 1]
+    assert np.allclose(edge[:, 1:], [0.0, 0.0, 1.0]) and np.allclose(np.sort(edge[:, 0]), [0.25, 0.5, 0.75])
+    # a sphere within the tolerance of reaching out, by its corners' balls, is not sampled
+    assert len(lattice(spheres, prims, 0.25, 0.5)[0]) < len(out)
+    assert len(lattice(spheres, prims, 0.25, 2.0)[0]) == 0  # none can reach 2.0 out: r <= 2.0
+
+
 # ---------------------------------------------------------- inputs and API
 def test_dispatch_file_input_and_outputs(tmp_path, capsule_mesh):
     path = tmp_path / "capsule.ply"
