@@ -291,7 +291,7 @@ def test_reach_lattice_of_the_compaction():
 
     spheres = np.array([[0.0, 0, 0, 1.0], [1.0, 0, 0, 1.0], [0.0, 1.0, 0, 2.0]])
     prims = np.array([[0, 1, 2], [0, 1, 1]])
-    out, owner = lattice(spheres, prims, 0.25, -np.inf)  # nothing bounded away
+    out, owner = lattice(spheres, prims, prims, 0.25, -np.inf)  # nothing bounded away
     steps = (int(np.ceil(np.sqrt(3.0) / 0.25)), 4)  # longest side in (centre, radius): sqrt(3) and 1
     assert np.bincount(owner).tolist() == [(steps[0] + 1) * (steps[0] + 2) // 2 - 3, steps[1] - 1]
     # each sample is the interpolation of the corners at barycentric coordinates k / steps
@@ -302,8 +302,8 @@ def test_reach_lattice_of_the_compaction():
     edge = out[owner == 1]
     assert np.allclose(edge[:, 1:], [0.0, 0.0, 1.0]) and np.allclose(np.sort(edge[:, 0]), [0.25, 0.5, 0.75])
     # a sphere within the tolerance of reaching out, by its corners' balls, is not sampled
-    assert len(lattice(spheres, prims, 0.25, 0.5)[0]) < len(out)
-    assert len(lattice(spheres, prims, 0.25, 2.0)[0]) == 0  # none can reach 2.0 out: r <= 2.0
+    assert len(lattice(spheres, prims, prims, 0.25, 0.5)[0]) < len(out)
+    assert len(lattice(spheres, prims, prims, 0.25, 2.0)[0]) == 0  # none can reach 2.0 out: r <= 2.0
 
 
 # ---------------------------------------------------------- inputs and API

@@ -284,7 +284,7 @@ def costs(edges, cand, spheres, qa, qb, qc, count, moved, feature, star):  # pra
 
 
 @njit(cache=True, nogil=True)
-def _lattice(spheres, prims, spacing, tolerance, out, owner):  # pragma: no cover - compiled
+def _lattice(spheres, prims, balls, spacing, tolerance, out, owner):  # pragma: no cover - compiled
     """Fill ``out`` and ``owner`` (if not empty) with :func:`lattice`'s samples; returns their count."""
     count = 0
     s = np.empty(4)
@@ -304,8 +304,9 @@ def _lattice(spheres, prims, spacing, tolerance, out, owner):  # pragma: no cove
                 t, v = u / steps, w / steps
                 for k in range(4):
                     s[k] = (1.0 - t - v) * spheres[a, k] + t * spheres[b, k] + v * spheres[c, k]
-                bound = s[3]  # the corners' balls hold no surface point: d(x) >= r_q - |x - x_q|
-                for q in (a, b, c):
+                bound = s[3]  # the balls hold no surface point: d(x) >= r_q - |x - x_q|
+                for m in range(balls.shape[1]):
+                    q = balls[p, m]
                     d = 0.0
                     for k in range(3):
                         d += (s[k] - spheres[q, k]) ** 2
@@ -320,16 +321,17 @@ def _lattice(spheres, prims, spacing, tolerance, out, owner):  # pragma: no cove
 
 
 @njit(cache=True, nogil=True)
-def lattice(spheres, prims, spacing, tolerance):  # pragma: no cover - compiled
+def lattice(spheres, prims, balls, spacing, tolerance):  # pragma: no cover - compiled
     """Spheres interpolated over triangles ``prims`` (edges: ``(a, b, b)``) about ``spacing`` apart.
 
     Corners are left out, and so are the spheres that cannot reach more than
-    ``tolerance`` out of a surface the corner balls do not cross (a ball
-    ``(x, r)`` reaches ``r - d(x)`` out, and ``d(x) >= r_q - |x - x_q|``).
-    Returns the samples (q, 4) and the primitive each comes from.
+    ``tolerance`` out of a surface that the balls ``balls[p]`` (p, m) of each
+    primitive do not cross (a ball ``(x, r)`` reaches ``r - d(x)`` out, and
+    ``d(x) >= r_q - |x - x_q|``). Returns the samples (q, 4) and the
+    primitive each comes from.
     """
-    count = _lattice(spheres, prims, spacing, tolerance, np.empty((0, 4)), np.empty(0, np.int64))
+    count = _lattice(spheres, prims, balls, spacing, tolerance, np.empty((0, 4)), np.empty(0, np.int64))
     out = np.empty((count, 4))
     owner = np.empty(count, np.int64)
-    _lattice(spheres, prims, spacing, tolerance, out, owner)
+    _lattice(spheres, prims, balls, spacing, tolerance, out, owner)
     return out, owner

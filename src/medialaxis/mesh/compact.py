@@ -77,7 +77,10 @@ __all__ = [
 COMPACT_TOLERANCE = 1.0
 
 #: Input balls (nearest centres) whose emptiness bounds an interpolated sphere's reach before the surface is searched.
-NEAR_BALLS = 8
+NEAR_BALLS = 4
+
+#: Spacing of the spheres sampled over new edges and triangles (in centre and radius), times the tolerance.
+LATTICE_SPACING = 2.0
 
 #: Most rounds of collapses (each halves the remaining candidates or more in practice).
 MAX_ROUNDS = 400
@@ -280,7 +283,7 @@ def _inside(
         changed_edges = (moved_edges != edges).any(axis=1) & (moved_edges[:, 0] != moved_edges[:, 1])
         before = np.concatenate([faces[changed], edges[changed_edges][:, [0, 1, 1]]])
         after = np.concatenate([moved_faces[changed], moved_edges[changed_edges][:, [0, 1, 1]]])
-        samples, owner = lattice(spheres, after, tolerance, tolerance)
+        samples, owner = lattice(spheres, after, np.c_[after, before], LATTICE_SPACING * tolerance, tolerance)  # corners old and new
         k = min(NEAR_BALLS, n)
         near, which = centres.query(samples[:, :3], k=k)
         near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
