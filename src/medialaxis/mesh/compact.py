@@ -37,8 +37,8 @@ within ``tolerance`` of what it replaces, keeping its topology:
   sheets (it falls back to the link condition otherwise);
 - given the surface's signed distance, a round's collapses are kept only
   while the spheres interpolated over the edges and triangles they make
-  reach at most ``tolerance`` out of the solid (sampled ``tolerance`` apart
-  in centre and radius); the others are refused until their neighbourhood
+  reach at most ``tolerance`` out of the solid (sampled ``LATTICE_SPACING``
+  tolerances apart in centre and radius); the others are refused until their neighbourhood
   changes. Without it a chain of merges, each within the tolerance, drifts:
   kitten's compact complex reached 1.63% of the diagonal out of the
   surface, twice its tolerance;
@@ -260,8 +260,8 @@ def _inside(
     """The collapses ``src -> dst`` of ``chosen`` whose new edges and triangles stay inside the surface.
 
     The spheres interpolated over every edge and triangle the round's
-    collapses change are sampled about ``tolerance`` apart (in centre and
-    radius); a sphere ``(x, r)`` reaches ``r + signed(x)`` out of the
+    collapses change are sampled ``LATTICE_SPACING`` tolerances apart (in centre and
+    radius); a sphere ``(x, r)`` reaches ``r + signed(x, near)`` out of the
     surface, at most ``tolerance`` for a kept collapse;
     the collapses that made an edge or triangle failing this are refused,
     and the rest tested again. Returns the kept collapses, the refused ones
