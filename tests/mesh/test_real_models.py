@@ -71,7 +71,6 @@ def test_the_balls_cover_the_solid(model, full):
     assert covered.mean() >= 0.95
 
 
-
 def test_the_compact_complexs_balls_stay_within_its_tolerance_of_the_surface(model):
     # The balls interpolated over the compact complex's edges and triangles may reach out of the
     # solid by the compaction tolerance at most (the README's promise). Measured apart from the

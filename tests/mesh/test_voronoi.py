@@ -284,7 +284,6 @@ def test_collapse_kernels_match_python_and_keep_euler():
     assert np.array_equal(alive, used)  # every dangling side went
 
 
-
 def test_reach_lattice_of_the_compaction():
     # the spheres the compaction's reach check samples over a triangle and an edge (corners left out)
     from medialaxis.mesh._compact_kernels import lattice
