@@ -38,8 +38,8 @@ within ``tolerance`` of what it replaces, keeping its topology:
 - given the surface's signed distance, a round's collapses are kept only
   while the spheres interpolated over the edges and triangles they make
   reach at most ``tolerance`` out of the solid (sampled ``LATTICE_SPACING``
-  tolerances apart in centre and radius); the others are refused until their neighbourhood
-  changes. Without it a chain of merges, each within the tolerance, drifts:
+  tolerances apart in centre and radius); the others are refused until
+  their neighbourhood changes. Without it a chain of merges, each within the tolerance, drifts:
   kitten's compact complex reached 1.63% of the diagonal out of the
   surface, twice its tolerance;
 - collapses run in rounds: each round takes, cheapest first, edges whose
@@ -177,9 +177,10 @@ def compact_complex(
     signed : callable, optional
         ``signed(points, near)``: signed distance to the surface (negative
         inside) of ``points`` (q, 3), whose nearest input spheres are
-        ``near`` (q, k) (their contacts show where to search). A round's collapses are kept only while the spheres
-        interpolated over the edges and triangles they make reach at most
-        ``tolerance`` out of it (:func:`_inside`).
+        ``near`` (q, k) (their contacts show where to search). A round's
+        collapses are kept only while the spheres interpolated over the
+        edges and triangles they make reach at most ``tolerance`` out of it
+        (:func:`_inside`).
 
     Returns
     -------
@@ -233,7 +234,7 @@ def compact_complex(
         to = np.arange(n)
         to[j] = i
         faces = to[faces]
-        flat = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+        flat = _flat(faces)
         faces, origin = faces[~flat], origin[~flat]
         if not strict:
             first = _first_of_each(np.sort(faces, axis=1))
@@ -253,6 +254,11 @@ def compact_complex(
     return Compacted(keep, faces_out, origin, edges_out, int(len(curve)), rounds)
 
 
+def _flat(faces: np.ndarray) -> np.ndarray:
+    """Which triangles repeat a corner (a collapse squeezed them to an edge)."""
+    return (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+
+
 def _inside(
     chosen: np.ndarray, src: np.ndarray, dst: np.ndarray, faces: np.ndarray, edges: np.ndarray,
     spheres: np.ndarray, signed: Callable[[np.ndarray, np.ndarray], np.ndarray], centres: cKDTree, tolerance: float,
@@ -260,8 +266,8 @@ def _inside(
     """The collapses ``src -> dst`` of ``chosen`` whose new edges and triangles stay inside the surface.
 
     The spheres interpolated over every edge and triangle the round's
-    collapses change are sampled ``LATTICE_SPACING`` tolerances apart (in centre and
-    radius); a sphere ``(x, r)`` reaches ``r + signed(x, near)`` out of the
+    collapses change are sampled ``LATTICE_SPACING`` tolerances apart (in
+    centre and radius); a sphere ``(x, r)`` reaches ``r + signed(x, near)`` out of the
     surface, at most ``tolerance`` for a kept collapse;
     the collapses that made an edge or triangle failing this are refused,
     and the rest tested again. Returns the kept collapses, the refused ones
@@ -276,9 +282,7 @@ def _inside(
         to = np.arange(n)
         to[src[chosen]] = dst[chosen]
         moved_faces = to[faces]
-        changed = (moved_faces != faces).any(axis=1)
-        changed &= (moved_faces[:, 0] != moved_faces[:, 1]) & (moved_faces[:, 1] != moved_faces[:, 2])
-        changed &= moved_faces[:, 2] != moved_faces[:, 0]
+        changed = (moved_faces != faces).any(axis=1) & ~_flat(moved_faces)
         moved_edges = to[edges]
         changed_edges = (moved_edges != edges).any(axis=1) & (moved_edges[:, 0] != moved_edges[:, 1])
         before = np.concatenate([faces[changed], edges[changed_edges][:, [0, 1, 1]]])
@@ -362,9 +366,9 @@ def compact_medial_axis(
     full complex's radii come from a local one): the few spheres left get
     their exact radius and closest point. ``signed(points, near)``, if given, is
     the signed distance to the surface (negative inside), given the nearest
-    input spheres of each point (see :func:`compact_complex`): the spheres
-    interpolated over the result then reach at most ``tolerance`` out of the
-    solid (:func:`compact_complex`).
+    input spheres of each point: the spheres interpolated over the result
+    then reach at most ``tolerance`` out of the solid (see
+    :func:`compact_complex`).
     """
     contacts = ma.extras["contacts"] if "contacts" in ma.extras else ma.points[:, None, :]
     components, chi = _components_and_euler(len(ma.points), ma.faces, ma.edges)
