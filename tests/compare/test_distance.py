@@ -6,11 +6,12 @@ from hypothesis import given
 from hypothesis import strategies as st
 from PIL import Image
 from shapely import affinity
-from shapely.geometry import MultiPoint, Polygon, box
+from shapely.geometry import MultiPoint, Point, Polygon, box
 from skimage import transform
 
 import medialaxis as mx
-from medialaxis.compare import match_tour, query_distances, shape_signature
+from medialaxis.compare import match_tour, query_distances, shape_signature, signature
+from medialaxis.compare.signature import CLOSING
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 
 T_SHAPE = Polygon([(0, 0), (10, 0), (10, 2), (6, 2), (6, 8), (4, 8), (4, 2), (0, 2)])
@@ -52,6 +53,42 @@ def test_polygon_distance_invariant_under_similarities(which, other, angle, fact
     got = mx.shape_distance(moved, b)
     assert got == pytest.approx(base, rel=1e-6, abs=1e-9)
     assert mx.shape_distance(b, moved) == got
+
+
+def test_a_disc_has_a_finite_distance_to_other_shapes():
+    """A disc's axis is one point (a one-sample tour): it is compared with the others, not at infinity.
+
+    Its samples (all the mass at the centre) match no sample of an axis of some
+    length, so the distance is the cap, every sample of both left out: 2 * gap.
+    """
+    disc, ellipse = Point(0, 0).buffer(10), affinity.scale(Point(0, 0).buffer(10), 1.3, 1.0)
+    for other in (ellipse, T_SHAPE):
+        assert mx.shape_distance(disc, other) == pytest.approx(2 * 0.3)
+        assert mx.shape_distance(disc, other, gap=0.2) == pytest.approx(2 * 0.2)
+    assert mx.shape_distance(disc, affinity.scale(disc, 3.0, 3.0)) < 1e-9
+
+
+def test_slits_do_not_hide_a_shape():
+    """A pentagon cut by three slits (as MPEG-7's device classes are) is nearest to the pentagon.
+
+    The truth is the construction: the cut shape is the pentagon minus thin
+    rectangles. Without the closed versions (``closing=0``) a star comes first.
+    """
+    angles = np.pi / 2 + 2 * np.pi * np.arange(5) / 5
+    pentagon = Polygon(np.c_[np.cos(angles), np.sin(angles)] * 10)
+    cut = pentagon
+    for angle in (36, 180, 324):
+        cut = cut.difference(affinity.rotate(box(-0.15, 2, 0.15, 12), angle, origin=(0, 0)))
+    star_angles = np.pi / 2 + np.pi * np.arange(10) / 5
+    star = Polygon(np.c_[np.cos(star_angles), np.sin(star_angles)] * np.where(np.arange(10) % 2, 4, 10)[:, None])
+    others = [pentagon, star, box(0, 0, 10, 10), Polygon([(0, 0), (10, 0), (5, 8.7)]), T_SHAPE]
+    for closing, nearest in ((CLOSING, 0), (0.0, 1)):
+        def sig(g, closing=closing):
+            return signature(mx.medial_axis(g, tolerance=1e-3 * np.sqrt(g.area)), closing=closing)
+
+        query = sig(cut)
+        assert (query.closing_gain > 0.01) == (closing > 0)
+        assert int(np.argmin([mx.shape_distance(query, sig(g)) for g in others])) == nearest
 
 
 def test_distance_separates_shapes():

@@ -8,6 +8,7 @@ from shapely.geometry import Point, Polygon, box
 
 import medialaxis as mx
 from medialaxis.compare import shape_signature, signature
+from medialaxis.compare.signature import closed_axis
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 
@@ -60,25 +61,46 @@ def test_keeps_largest_component():
     assert sig.endpoints[:, 1].max() < 75
 
 
-def test_tour_versions_of_both_prunings():
-    ma = mx.medial_axis(np.pad(np.ones((30, 80), bool), 10))  # a raster rectangle: its raw axis has pixel spurs
+def test_tour_versions_of_both_prunings_and_the_closed_shape():
+    mask = np.pad(np.ones((30, 80), bool), 10)
+    ma = mx.medial_axis(mask)  # a raster rectangle
     sig = signature(ma)
     assert sig.tour.shape == (8, 64, 60) and sig.tour_radii.shape == (8, 64) and sig.tour_points.shape == (8, 64, 2)
     assert np.allclose(sig.tour.sum(axis=2), 1.0)
-    assert not np.allclose(sig.tour[:2], sig.tour[2:4])  # the raw axis is walked differently
     # Mirror versions: the same sample positions met in the other direction.
     for g in (0, 2, 4, 6):
         assert np.allclose(np.sort(sig.tour_radii[g]), np.sort(sig.tour_radii[g + 1]))
-    # Versions 4-7: the same, pruned at the coarse level; with prune above it, both levels are one.
+    # Versions 2-3: pruned at the coarse level; with prune above it, both levels are one.
     high = signature(ma, prune=0.1)
-    assert np.array_equal(high.tour[:4], high.tour[4:])
-    assert np.array_equal(signature(ma, prune=0.045).tour[:4], sig.tour[4:])
-    # Without a raw graph (e.g. a saved and reloaded axis), each level's second pair repeats its first.
-    bare = signature(dataclasses.replace(ma, raw=None))
-    assert np.array_equal(bare.tour[:2], bare.tour[2:4]) and np.array_equal(bare.tour[:2], sig.tour[:2])
-    # unpruned=True compares the raw axis throughout: both pairs of versions are its tour.
+    assert np.array_equal(high.tour[:2], high.tour[2:4])
+    assert np.array_equal(signature(ma, prune=0.045).tour[:2], sig.tour[2:4])
+    # A convex shape is its own closing: the closed versions walk the same axis, nothing is charged.
+    assert sig.closing_gain < 1e-3 and np.allclose(sig.tour_radii[4:], sig.tour_radii[:4], atol=0.02)
+    # closing=0, or an axis without its shape (a bare MedialAxis): the closed versions repeat the first four.
+    for bare in (signature(ma, closing=0), signature(dataclasses.replace(ma, shape=None))):
+        assert np.array_equal(bare.tour[4:], bare.tour[:4]) and bare.closing_gain == 0.0
+        assert np.array_equal(bare.tour[:4], sig.tour[:4])
+    # unpruned=True walks the raw axis (pixel spurs kept up to prune) in the first four versions.
     raw = signature(ma, unpruned=True)
-    assert np.array_equal(raw.tour[:2], raw.tour[2:4]) and np.array_equal(raw.tour[:2], sig.tour[2:4])
+    assert raw.tour.shape == sig.tour.shape and np.array_equal(raw.tour[4:], sig.tour[4:])
+
+
+def test_closing_fills_slits_and_reports_the_area_it_added():
+    """A square cut by two slits: the closed shape is the full square (area from shapely, not from us)."""
+    square = np.zeros((140, 140), bool)
+    square[20:120, 20:120] = True
+    cut = square.copy()
+    cut[40:42, 20:90] = False  # slits 2 px wide, 70 px long, from the left edge
+    cut[90:92, 50:120] = False  # and from the right edge
+    ma = mx.medial_axis(cut)
+    closed, gain = closed_axis(ma)
+    assert closed is not None and closed.shape.area == pytest.approx(100 * 100, rel=0.01)
+    assert gain == pytest.approx(2 * 70 * 2 / (100 * 100 - 2 * 70 * 2), rel=0.1)
+    sig = signature(ma)
+    assert sig.closing_gain == pytest.approx(gain)
+    # The closed axis is the square's: its radius peaks at half the side; the slits cut that disc.
+    assert closed.radii.max() == pytest.approx(50, rel=0.02) and ma.radii.max() < 40
+    assert not np.allclose(sig.tour_radii[4:], sig.tour_radii[:4], atol=0.05)
 
 
 def test_input_axis_not_modified():

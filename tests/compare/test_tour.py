@@ -82,7 +82,7 @@ def _random_tours(rng, n_samples, versions=2, bins=60):
 def test_compiled_alignment_matches_reference_and_is_symmetric(seed, na, nb):
     rng = np.random.default_rng(seed)
     (ha, ra), (hb, rb) = _random_tours(rng, na), _random_tours(rng, nb)
-    packed = _kernels.pack_tour([ha, hb], [ra, rb])
+    packed = _kernels.pack_tour([ha, hb], [ra, rb], [0.0, 0.0])
     forward = _kernels.tour_distances(*packed, np.array([0]), np.array([1]), 0.3)[0]
     backward = _kernels.tour_distances(*packed, np.array([1]), np.array([0]), 0.3)[0]
     assert forward == backward  # exactly symmetric
@@ -97,12 +97,52 @@ def test_alignment_is_zero_on_itself_and_finds_a_rotated_start():
     rng = np.random.default_rng(7)
     h, r = _random_tours(rng, N_TOUR)
     shifted = np.roll(h, -16, axis=1), np.roll(r, -16, axis=1)  # the same walk started 16 samples later
-    packed = _kernels.pack_tour([h, h.copy(), shifted[0]], [r, r.copy(), shifted[1]])
+    packed = _kernels.pack_tour([h, h.copy(), shifted[0]], [r, r.copy(), shifted[1]], [0.0] * 3)
     d = _kernels.tour_distances(*packed, np.array([0, 0]), np.array([1, 2]), 0.3)
     assert d[0] == 0.0 and d[1] < 1e-12
     value, va, vb, pairs = _kernels.tour_match_reference(h, r, shifted[0], shifted[1], 0.3)
     assert value < 1e-12 and (va, vb) == (0, 0) and pairs[0] == (0, N_TOUR - 16)
     # The gap bounds the cost: skipping every sample of both costs 2 * gap per mean sample.
     far = _random_tours(np.random.default_rng(8), N_TOUR)
-    packed = _kernels.pack_tour([h, far[0]], [r, far[1]])
+    packed = _kernels.pack_tour([h, far[0]], [r, far[1]], [0.0, 0.0])
     assert 0 < _kernels.tour_distances(*packed, np.array([0]), np.array([1]), 0.3)[0] <= 2 * 0.3 + 1e-12
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_closed_versions_are_charged_their_closing_gain(seed):
+    """Versions 4-7 (the closed shapes) count with CLOSING_PENALTY times the larger gain; reference agrees."""
+    rng = np.random.default_rng(seed)
+    (ha, ra), (hb, rb) = _random_tours(rng, N_TOUR, versions=8), _random_tours(rng, N_TOUR, versions=8)
+    hb[4:], rb[4:] = ha[4:], ra[4:]  # the closed shapes are equal: that comparison costs only the charge
+
+    def kernel(ga, gb):
+        packed = _kernels.pack_tour([ha, hb], [ra, rb], [ga, gb])
+        return _kernels.tour_distances(*packed, np.array([0]), np.array([1]), 0.3)[0]
+
+    # Only the shapes as given: the least over their two groups, each aligned separately.
+    alone = _kernels.tour_match_reference(ha[:4], ra[:4], hb[:4], rb[:4], 0.3)[0]
+    assert min(
+        _kernels.tour_match_reference(ha[g:g + 2], ra[g:g + 2], hb[g:g + 2], rb[g:g + 2], 0.3)[0] for g in (0, 2)
+    ) == pytest.approx(alone, rel=1e-12)
+    # The kernel aligns in an order fixed by content (see above): the other order's value may be the one.
+    alone_ba = _kernels.tour_match_reference(hb[:4], rb[:4], ha[:4], ra[:4], 0.3)[0]
+    kernel_alone = kernel(5.0, 0.0)
+    assert any(kernel_alone == pytest.approx(ref, rel=1e-9) for ref in (alone, alone_ba)) and kernel_alone > 0.05
+    for ga, gb in ((0.0, 0.01), (0.02, 0.005), (0.3, 0.1)):
+        charge = _kernels.CLOSING_PENALTY * max(ga, gb)
+        assert kernel(ga, gb) == pytest.approx(min(kernel_alone, charge), rel=1e-9) == kernel(gb, ga)
+        value, va, vb, _ = _kernels.tour_match_reference(ha, ra, hb, rb, 0.3, ga, gb)
+        assert value == pytest.approx(min(alone, charge), rel=1e-9) and (va >= 4) == (charge < alone)
+
+
+def test_abandoning_hopeless_starts_keeps_the_least_alignment():
+    """The row bound prunes only starts that cannot win: the value equals the one found without it."""
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        (ha, ra), (hb, rb) = _random_tours(rng, N_TOUR, versions=1), _random_tours(rng, N_TOUR, versions=1)
+        cost = _kernels._tour_costs(np.sqrt(ha[0]), ra[0], (ha[0]).sum(1), np.sqrt(hb[0]), rb[0], (hb[0]).sum(1))
+        table = np.empty((N_TOUR + 1, N_TOUR + 1))
+        exact = _kernels._cyclic_align(cost, N_TOUR, 0.3, 8, 16, table, np.inf)
+        assert np.isfinite(exact)
+        assert _kernels._cyclic_align(cost, N_TOUR, 0.3, 8, 16, table, exact * 1.000001) == exact
+        assert _kernels._cyclic_align(cost, N_TOUR, 0.3, 8, 16, table, exact) == np.inf  # nothing below the bound

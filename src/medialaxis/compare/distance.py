@@ -171,7 +171,7 @@ def _signature_pair(a: Any, b: Any, prune: float, options: dict[str, Any]) -> tu
 
 def _pack(sigs: Sequence[Signature]) -> tuple[np.ndarray, ...]:
     """Pack the signatures' tours for the compiled kernel."""
-    return _kernels.pack_tour([s.tour for s in sigs], [s.tour_radii for s in sigs])
+    return _kernels.pack_tour([s.tour for s in sigs], [s.tour_radii for s in sigs], [s.closing_gain for s in sigs])
 
 
 def shape_distance(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: Any) -> float:
@@ -181,9 +181,10 @@ def shape_distance(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: A
     meets its parts) and aligns the two walks cyclically, keeping the order:
     each sample is an axis point with its radius and a log-polar histogram of
     where the axis's swept area lies around it (:mod:`medialaxis.compare.tour`);
-    it is computed for the axis as pruned and for the axis before the
-    method's own pruning, and the better of the two is kept. Both
-    orientations (mirror images) are tried.
+    it is computed at two prunings of spurious branches, and for the shapes
+    closed (slits, cracks and narrow gaps filled), charged for the area the
+    closing added; the least is kept. Both orientations (mirror images) are
+    tried.
 
     Parameters
     ----------
@@ -243,7 +244,8 @@ def match_tour(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: Any) 
         The tour term (NumPy reference computation).
     points_a, points_b : (p, 2) float64 ndarray
         Aligned tour samples: ``points_a[i]`` on ``a``'s axis matched
-        ``points_b[i]`` on ``b``'s, in walk order (input units).
+        ``points_b[i]`` on ``b``'s, in walk order (input units); on the axes
+        of the closed shapes when that comparison was the better.
 
     Examples
     --------
@@ -255,7 +257,9 @@ def match_tour(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: Any) 
     (0.0, 64, True)
     """
     sa, sb, params = _signature_pair(a, b, prune, options)
-    value, va, vb, pairs = _kernels.tour_match_reference(sa.tour, sa.tour_radii, sb.tour, sb.tour_radii, params["gap"])
+    value, va, vb, pairs = _kernels.tour_match_reference(
+        sa.tour, sa.tour_radii, sb.tour, sb.tour_radii, params["gap"], sa.closing_gain, sb.closing_gain
+    )
     index = np.asarray(pairs, np.int64).reshape(-1, 2)
     return value, sa.tour_points[va][index[:, 0]], sb.tour_points[vb][index[:, 1]]
 
