@@ -88,10 +88,10 @@ def mass_histograms(
     t_w = theta - t_lo
     t_hi = (t_lo + 1) % n_angular
     t_lo = t_lo % n_angular
-    hist = np.zeros((len(pos), N_RADIAL * n_angular))
-    rows = np.broadcast_to(np.arange(len(pos))[:, None], dist.shape)
-    m = np.broadcast_to(mass[None, :], dist.shape)
+    n_bins = N_RADIAL * n_angular
+    base = np.arange(len(pos))[:, None] * n_bins
+    hist = np.zeros(len(pos) * n_bins)
     for r_bin, rw in ((r_lo, 1.0 - r_w), (r_hi, r_w)):
         for t_bin, tw in ((t_lo, 1.0 - t_w), (t_hi, t_w)):
-            np.add.at(hist, (rows, r_bin * n_angular + t_bin), m * rw * tw)
-    return hist
+            hist += np.bincount((base + r_bin * n_angular + t_bin).ravel(), (mass * rw * tw).ravel(), len(hist))
+    return hist.reshape(len(pos), n_bins)

@@ -69,13 +69,6 @@ def rotation_system(points: np.ndarray, edges: np.ndarray) -> tuple[list[list[in
     return nbrs, rank
 
 
-def _next_dart(dart: tuple[int, int], nbrs: list[list[int]], rank: list[dict[int, int]]) -> tuple[int, int]:
-    """Arriving at ``b`` from ``a``, leave by the neighbour that follows ``a`` around ``b``."""
-    a, b = dart
-    around = nbrs[b]
-    return b, around[(rank[b][a] + 1) % len(around)]
-
-
 def outer_face(points: np.ndarray, edges: np.ndarray, starts: np.ndarray) -> np.ndarray:
     """The darts ``(k, 2)`` of the walk around the outer face of the axis, from one of ``starts``.
 
@@ -93,25 +86,39 @@ def outer_face(points: np.ndarray, edges: np.ndarray, starts: np.ndarray) -> np.
     pose or the numbering (a mirror image walks the other way, and its walk
     is the one the mirrored version of the signature takes).
     """
-    nbrs, rank = rotation_system(points, edges)
-    seen: set[tuple[int, int]] = set()
-    faces: list[list[tuple[int, int]]] = []
-    for a, b in np.concatenate([edges, edges[:, ::-1]]):
-        dart = (int(a), int(b))
-        if a == b or dart in seen:
+    edges = np.asarray(edges, np.int64).reshape(-1, 2)
+    edges = edges[edges[:, 0] != edges[:, 1]]
+    m = len(edges)
+    darts = np.empty((2 * m, 2), np.int64)  # edge i gives darts 2i (a -> b) and 2i + 1 (b -> a)
+    darts[0::2], darts[1::2] = edges, edges[:, ::-1]
+    step = points[darts[:, 1]] - points[darts[:, 0]]
+    # Darts leaving each node in angular order (stable: ties keep the edge order), and the
+    # dart that follows each: arriving at b from a, leave by the neighbour after a around b.
+    order = np.lexsort((np.arctan2(step[:, 1], step[:, 0]), darts[:, 0]))
+    place = np.empty(2 * m, np.int64)
+    place[order] = np.arange(2 * m)
+    first = np.searchsorted(darts[order, 0], np.arange(len(points)))
+    count = np.bincount(darts[:, 0], minlength=len(points))
+    back = np.arange(2 * m) ^ 1
+    node = darts[:, 1]
+    following = order[first[node] + (place[back] - first[node] + 1) % np.maximum(count[node], 1)].tolist()
+    seen = bytearray(2 * m)
+    faces: list[list[int]] = []
+    for start in [*range(0, 2 * m, 2), *range(1, 2 * m, 2)]:
+        if seen[start]:
             continue
-        face = []
-        while dart not in seen:
-            seen.add(dart)
+        face, dart = [], start
+        while not seen[dart]:
+            seen[dart] = 1
             face.append(dart)
-            dart = _next_dart(dart, nbrs, rank)
+            dart = following[dart]
         faces.append(face)
 
-    def area(face: list[tuple[int, int]]) -> float:
-        p = points[[a for a, _ in face]]
+    def area(face: list[int]) -> float:
+        p = points[darts[face, 0]]
         return float(np.dot(p[:, 0], np.roll(p[:, 1], -1)) - np.dot(p[:, 1], np.roll(p[:, 0], -1))) / 2
 
-    darts = np.asarray(faces[0] if len(faces) == 1 else max(faces, key=area), np.int64)
+    darts = darts[faces[0] if len(faces) == 1 else max(faces, key=area)]
     leaving = np.flatnonzero(np.isin(darts[:, 0], starts))
     if not len(leaving):
         leaving = np.arange(len(darts))
