@@ -3,10 +3,9 @@
 The *axis tour* (:mod:`medialaxis.compare.tour`): samples along the walk
 around the axis, each described by where the axis's swept area lies around
 it and by its radius, aligned cyclically in order with a cost ``gap`` per
-skipped sample, for the axis as pruned and for the axis before the method's
-own pruning, each with spurious branches removed at two levels, keeping the
-best. Kimia-99 row 960; MPEG-7, 35 dev classes: bull's-eye 88.66% (one
-pruning level: 956 and 87.59%).
+skipped sample, for the axis as pruned, for the axis before the method's own
+pruning and for the axis of the shape closed (slits and cracks filled;
+charged for the area the closing changed), keeping the best.
 
 Two more terms were options here: Bai and Latecki's skeleton path matching
 (Kimia-99 853 alone; with the axis context 912, the default before the tour)
@@ -181,9 +180,9 @@ def shape_distance(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: A
     meets its parts) and aligns the two walks cyclically, keeping the order:
     each sample is an axis point with its radius and a log-polar histogram of
     where the axis's swept area lies around it (:mod:`medialaxis.compare.tour`);
-    it is computed at two prunings of spurious branches, and for the shapes
-    closed (slits, cracks and narrow gaps filled), charged for the area the
-    closing added; the least is kept. Both orientations (mirror images) are
+    it is computed for the axis as pruned, for the axis before the method's
+    own pruning and for the shapes closed (slits, cracks and narrow gaps
+    filled), charged for the area the closing changed; the least is kept. Both orientations (mirror images) are
     tried.
 
     Parameters

@@ -2,8 +2,8 @@
 
 The *axis tour* (:mod:`medialaxis.compare.tour`) of the axis after removing
 spurious branches: samples along the walk around the axis with their
-swept-mass histograms and radii, for the shape and its mirror image, at two
-prunings of spurious branches, and the same for the shape *closed*
+swept-mass histograms and radii, for the shape and its mirror image, for
+the axis before the method's own pruning, and for the shape *closed*
 (:func:`closed_axis`: slits, cracks and narrow notches filled, as occluders
 and scratches make them). The walk starts at the endpoint whose branch
 protrudes most (endpoints listed in the order a walk around the shape's
@@ -30,24 +30,26 @@ from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["Signature", "signature", "closed_axis", "DEFAULT_PRUNE", "COARSE_PRUNE", "CLOSING"]
+__all__ = ["Signature", "signature", "closed_axis", "DEFAULT_PRUNE", "CLOSING"]
 
 #: Terminal branches protruding less than this fraction of the shape scale
-#: beyond the disc of their junction are dropped before matching; the axis is
-#: also compared pruned at ``COARSE_PRUNE`` and the distance keeps the better.
-#: Measured on MPEG-7 (35 dev classes, 5 class folds; issue 15): one pruning
-#: at 0.03 gives 87.59%; 0.02, 0.045 or 0.06 alone each gain about 0.5 points
-#: but lower one fold by more than 1; the better of 0.02 and 0.045 gives
-#: 88.66% with no fold lower (+1.9, 0, +0.2, +1.9, +1.3), Kimia-99 960 (956),
-#: at twice the pair time. Gap, bins, sample counts and radius weights moved
-#: the figure by less than 0.3 points.
+#: beyond the disc of their junction are dropped before matching. Measured on
+#: MPEG-7 (35 dev classes, 5 class folds; issue 15): one pruning at 0.03 gave
+#: 87.59%; the better of 0.02 and 0.045 (both compared) 88.66%, at twice
+#: the pair time. With the closed shape compared too, the second level no
+#: longer helps: 0.02 alone with the raw and closed axes gives 90.85%
+#: (Kimia-99 960), both levels of the axis and the closed axis 90.76% (955).
 DEFAULT_PRUNE = 0.02
-COARSE_PRUNE = 0.045
 #: Offset that closes the shape, times the square root of its area: gaps
-#: narrower than twice this are filled (see :func:`closed_axis`). Measured on MPEG-7 (35 dev
-#: classes, issue 15): 0.02 leaves the slits of the ``device6`` pentagons
-#: open (that class 28.7% -> 34.8%); 0.04 fills them (68%) and turns the
-#: cut triangles of ``device4`` into one triangle (68% -> 100%).
+#: narrower than twice this are filled (see :func:`closed_axis`). Measured on
+#: MPEG-7 (35 dev classes, 5 class folds; issue 15; ``bench_compare.py
+#: --mpeg7``): the shapes as given only, 87.22%; closing 0.02, 88.86% (the
+#: slits of the ``device6`` pentagons stay open); 0.04, 90.78%; 0.06, 90.57%.
+#: At 0.04 the ``device4`` triangles cut by slits go from 68% to 100% and
+#: ``device6`` from 29% to 60%. Skipping the closed axis when the closing
+#: changes less than 0.1% of the area (half the shapes: raster staircases)
+#: lowers the figure by 1.3 points: that second axis is a second sample of
+#: the shape too, as the raw axis it replaces was.
 CLOSING = 0.04
 
 
@@ -70,19 +72,20 @@ class Signature:
     points, radii_at_points, edges : ndarray
         The axis actually used (largest component, spurious branches removed),
         kept for pictures.
-    tour : (8, t, h) float64 ndarray
+    tour : (6, t, h) float64 ndarray
         Tour-context histograms of ``t`` samples along the walk around the
-        axis (see :func:`medialaxis.compare.tour.tour_context`) in eight
-        versions: the shape and its mirror image (the walk the other way),
-        then both again with spurious branches removed at ``COARSE_PRUNE``;
-        then the same four for the axis of the closed shape
-        (:func:`closed_axis`; a copy of the first four when the axis carries
-        no shapely shape or ``closing`` is 0). Each walk starts at an
-        endpoint of largest weight (the node of largest radius if the axis
-        has no endpoint), chosen by the walk itself.
-    tour_radii : (8, t) float64 ndarray
+        axis (see :func:`medialaxis.compare.tour.tour_context`) in six
+        versions: the shape and its mirror image (the walk the other way);
+        both again for the axis before the method's own pruning (``ma.raw``,
+        spurious branches removed by ``prune`` alone; a copy of the first two
+        when the axis carries no raw graph); both again for the axis of the
+        closed shape (:func:`closed_axis`; a copy of the first two when the
+        axis carries no shapely shape or ``closing`` is 0). Each walk starts
+        at an endpoint of largest weight (the node of largest radius if the
+        axis has no endpoint), chosen by the walk itself.
+    tour_radii : (6, t) float64 ndarray
         Radius at each tour sample divided by the scale of its axis.
-    tour_points : (8, t, 2) float64 ndarray
+    tour_points : (6, t, 2) float64 ndarray
         Positions of the samples of each version on the axis (input units), for pictures.
     closing_gain : float
         Area the closing changed (filled, or cut off bevelled spikes), as a
@@ -197,7 +200,7 @@ def signature(
     unpruned: bool = False,
     closing: float = CLOSING,
 ) -> Signature:
-    """Signature of a planar medial axis (its tour, in eight versions).
+    """Signature of a planar medial axis (its tour, in six versions).
 
     Parameters
     ----------
@@ -206,8 +209,7 @@ def signature(
     prune : float
         Terminal branches protruding less than ``prune * scale`` beyond the
         disc at their junction are dropped (spurious branches of boundary
-        noise). ``0`` keeps every branch. The axis is also pruned at
-        ``max(prune, COARSE_PRUNE)``; both are compared.
+        noise). ``0`` keeps every branch.
     max_endpoints : int
         If the axis still has more endpoints, the least protruding terminal
         branches are dropped until it has this many.
@@ -216,7 +218,7 @@ def signature(
         the result carries it; the spurious branches are then removed only
         by ``prune``.
     closing : float
-        Offset that closes the shape for the second four versions, times
+        Offset that closes the shape for the last two versions, times
         the square root of the shape's area
         (:func:`closed_axis`); ``0`` compares the shape as it is only.
 
@@ -237,8 +239,8 @@ def signature(
     >>> from medialaxis.compare import signature
     >>> mask = np.zeros((40, 80), bool); mask[10:30, 10:70] = True
     >>> sig = signature(mx.medial_axis(mask))
-    >>> sig.n_endpoints, sig.tour.shape[0]   # a rectangle: four corner branches; eight tour versions
-    (4, 8)
+    >>> sig.n_endpoints, sig.tour.shape[0]   # a rectangle: four corner branches; six tour versions
+    (4, 6)
     """
     if not isinstance(ma, MedialAxis):
         raise InvalidInputError(f"expected a MedialAxis, got {type(ma).__name__}")
@@ -251,16 +253,15 @@ def signature(
     if not isinstance(max_endpoints, (int, np.integer)) or max_endpoints < 2:
         raise InvalidInputError(f"max_endpoints must be an integer >= 2, got {max_endpoints!r}")
     closed, gain = closed_axis(ma, closing)
-    if unpruned and ma.raw is not None and len(ma.raw.points):
-        ma = ma.raw
-    levels = (prune, max(prune, COARSE_PRUNE))
-    versions = [_versions(ma, level, max_endpoints) for level in levels]
-    # The closed shape's axis, at both levels; the distance keeps the best comparison of all
-    # versions, charging the closed ones for the area the closing added.
-    if closed is None or closed is ma:
-        versions += versions
-    else:
-        versions += [_versions(closed, level, max_endpoints) for level in levels]
+    raw = ma.raw if ma.raw is not None and len(ma.raw.points) else None
+    if unpruned and raw is not None:
+        ma, raw = raw, None
+    # The axis as pruned, the axis before the method's own pruning (spurious branches removed by
+    # prune alone) and the closed shape's axis: the distance keeps the best comparison of all the
+    # versions, charging the closed ones for the area the closing changed.
+    versions = [_versions(ma, prune, max_endpoints)]
+    versions.append(versions[0] if raw is None else _versions(raw, prune, max_endpoints))
+    versions.append(versions[0] if closed is None or closed is ma else _versions(closed, prune, max_endpoints))
     # An axis pruned to one point (a disc) has a one-sample tour: that sample, all along the
     # walk, as many times as the others have samples (a 1-sample walk cannot be aligned within
     # the band to a 64-sample one: the distance of a disc to any other shape was infinite).
