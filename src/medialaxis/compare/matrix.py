@@ -12,7 +12,6 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis._progress import progress
 from medialaxis.compare.distance import _options, _pack, _score_block, shape_signature
 from medialaxis.compare.signature import DEFAULT_PRUNE, Signature
 from medialaxis.core.parallel import check_jobs, check_scheduler, run_tasks
@@ -52,15 +51,20 @@ def query_distances(
     check_jobs(n_jobs)
     check_scheduler(scheduler)
     shapes = list(shapes)
-    sigs = [shape_signature(query, prune=prune, **axis_options)] + [
-        shape_signature(s, prune=prune, **axis_options)
-        for s in progress(shapes, desc="signatures", total=len(shapes), show=show_progress)
-    ]
+    sigs = [shape_signature(query, prune=prune, **axis_options)] + run_tasks(
+        _signature_task, shapes, prune, axis_options, scheduler=scheduler, n_jobs=n_jobs, desc="signatures",
+        show_progress=show_progress,
+    )
     if not shapes:
         return np.zeros(0)
     cols = np.arange(1, len(sigs))
     rows = np.zeros_like(cols)
     return _score_pairs(sigs, rows, cols, params, n_jobs=n_jobs, scheduler=scheduler, show_progress=show_progress)
+
+
+def _signature_task(shape: Any, prune: float, axis_options: dict[str, Any]) -> Signature:
+    """One shape's signature (a task of :func:`distance_matrix`)."""
+    return shape_signature(shape, prune=prune, **axis_options)
 
 
 def _score_pairs(
@@ -153,10 +157,8 @@ def distance_matrix(
         raise InvalidInputError("distance_matrix needs at least one shape, got an empty collection")
     check_jobs(n_jobs)
     check_scheduler(scheduler)
-    sigs = [
-        shape_signature(s, prune=prune, **axis_options)
-        for s in progress(shapes, desc="signatures", total=n, show=show_progress)
-    ]
+    sigs = run_tasks(_signature_task, list(shapes), prune, axis_options, scheduler=scheduler, n_jobs=n_jobs,
+                     desc="signatures", show_progress=show_progress)
     out = np.zeros((n, n))
     if n == 1:
         return out
