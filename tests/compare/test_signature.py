@@ -130,3 +130,14 @@ def test_errors():
         signature(ma, prune="much")
     with pytest.raises(EmptyShapeError):
         shape_signature(np.zeros((20, 20), bool))
+
+
+def test_an_invalid_or_non_finite_shape_is_compared_by_its_axis_alone():
+    """A result carrying a self-crossing or NaN outline (a hand-edited file, found by the fuzzer) still has a
+    signature: the closing needs a valid outline, so the closed versions repeat the axis's own."""
+    ma = mx.medial_axis(np.pad(np.ones((30, 80), bool), 10))
+    bow_tie = Polygon([(0, 0), (10, 10), (10, 0), (0, 10)])
+    nan = Polygon([(0, 0), (np.nan, 5), (10, 0), (10, 10)])
+    for shape in (bow_tie, nan):
+        sig = signature(dataclasses.replace(ma, shape=shape))
+        assert sig.closing_gain == 0.0 and np.array_equal(sig.tour[4:], sig.tour[:2])
