@@ -51,9 +51,8 @@ def query_distances(
     check_jobs(n_jobs)
     check_scheduler(scheduler)
     shapes = list(shapes)
-    sigs = [shape_signature(query, prune=prune, **axis_options)] + run_tasks(
-        _signature_task, shapes, prune, axis_options, scheduler=scheduler, n_jobs=n_jobs, desc="signatures",
-        show_progress=show_progress,
+    sigs = [shape_signature(query, prune=prune, **axis_options)] + _signatures(
+        shapes, prune, axis_options, n_jobs, scheduler, show_progress
     )
     if not shapes:
         return np.zeros(0)
@@ -63,8 +62,18 @@ def query_distances(
 
 
 def _signature_task(shape: Any, prune: float, axis_options: dict[str, Any]) -> Signature:
-    """One shape's signature (a task of :func:`distance_matrix`)."""
+    """One shape's signature (a task of :func:`_signatures`)."""
     return shape_signature(shape, prune=prune, **axis_options)
+
+
+def _signatures(
+    shapes: list[Any], prune: float, axis_options: dict[str, Any], n_jobs: int | None, scheduler: Any,
+    show_progress: bool | None,
+) -> list[Signature]:
+    """Signatures of ``shapes`` on local threads (file paths need not exist on Dask workers; the cache is here)."""
+    local = "synchronous" if scheduler == "synchronous" else None
+    return run_tasks(_signature_task, shapes, prune, axis_options, scheduler=local, n_jobs=n_jobs,
+                     desc="signatures", show_progress=show_progress)
 
 
 def _score_pairs(
@@ -157,8 +166,7 @@ def distance_matrix(
         raise InvalidInputError("distance_matrix needs at least one shape, got an empty collection")
     check_jobs(n_jobs)
     check_scheduler(scheduler)
-    sigs = run_tasks(_signature_task, list(shapes), prune, axis_options, scheduler=scheduler, n_jobs=n_jobs,
-                     desc="signatures", show_progress=show_progress)
+    sigs = _signatures(list(shapes), prune, axis_options, n_jobs, scheduler, show_progress)
     out = np.zeros((n, n))
     if n == 1:
         return out

@@ -90,8 +90,9 @@ class Signature:
         Positions of the samples of each version on the axis (input units), for pictures.
     closing_gain : float
         Area the closing changed (filled, or cut off bevelled spikes), as a
-        fraction of the shape's area (0 when the closed versions are copies). The distance charges it when it
-        compares closed shapes (see :mod:`medialaxis.compare._kernels`).
+        fraction of the shape's area (0 when the closed versions are
+        copies). The distance charges it when it compares closed shapes
+        (see :mod:`medialaxis.compare._kernels`).
     """
 
     weights: np.ndarray
