@@ -23,8 +23,8 @@ directly; only the *order* of the samples is the boundary's. It is the
 medial counterpart of matching shape contexts with an order-keeping dynamic
 program (Belongie, Malik and Puzicha, TPAMI 2002; Ling and Jacobs, TPAMI
 2007), and it lifts the Kimia-99 row from 912 (path matching plus the
-unordered axis context) to 955, and to 960 when the distance keeps the better
-of two axis prunings (``benchmarks/bench_compare.py``).
+unordered axis context) to 955, and to 961 when the distance keeps the best of
+the axis, the raw axis and the closed shape's axis (``benchmarks/bench_compare.py``).
 Similarity invariant: distances are divided by the signature's scale and
 angles are measured from the walk; a mirror image walks the tour the other
 way (:func:`tour_context` of the reflected axis gives it).
