@@ -29,6 +29,7 @@ from medialaxis.compare.endpoints import endpoint_order, endpoint_weights, path_
 from medialaxis.compare.tour import N_TOUR, tour_context
 from medialaxis.core import graph as _graph
 from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError
 
 __all__ = ["Signature", "signature", "closed_axis", "DEFAULT_PRUNE", "CLOSING"]
@@ -258,8 +259,8 @@ def signature(
         raise InvalidInputError(
             f"shape comparison needs a planar (2D curve) axis, got a {ma.dim}D axis with {len(ma.faces)} faces"
         )
-    prune = _check_level(prune, "prune")
-    closing = _check_level(closing, "closing")
+    prune = check_number(prune, "prune")
+    closing = check_number(closing, "closing")
     if not isinstance(max_endpoints, (int, np.integer)) or max_endpoints < 2:
         raise InvalidInputError(f"max_endpoints must be an integer >= 2, got {max_endpoints!r}")
     closed, gain = closed_axis(ma, closing)
@@ -280,13 +281,3 @@ def signature(
     tour, tour_radii, tour_points = (np.concatenate(column) for column in zip(*parts))
     return Signature(*versions[0][1], tour, tour_radii, tour_points, gain)
 
-
-def _check_level(value: float, name: str) -> float:
-    """A finite number >= 0 (a fraction of the shape scale)."""
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(value) or value < 0:
-        raise InvalidInputError(f"{name} must be finite and >= 0, got {value!r}")
-    return value
