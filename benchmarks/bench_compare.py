@@ -258,8 +258,9 @@ def mpeg7(folder: Path, jobs: int | None, with_shape_context: bool, collection: 
 
     With ``collection``, also times ``distance_matrix`` on that many of the
     set's masks and their mirror images (signatures included: every shape is
-    computed from its pixels), and checks that each mirror image is at the
-    distances of its original.
+    computed from its pixels), and reports how far each mirror image's
+    distances are from its original's (raster flips trace the contour a
+    little differently; polygons are exactly mirror invariant).
     """
     files = sorted(folder.glob("*-*.gif"), key=lambda p: (p.stem.rsplit("-", 1)[0], int(p.stem.rsplit("-", 1)[1])))
     if not files:
