@@ -108,7 +108,7 @@ def _nearest_other_class(query_sig, signatures, labels, label):
 
 
 @pytest.mark.parametrize("name", ["class1_01", "class3_05", "class7_03", "class8_05", "class9_02"])
-@pytest.mark.parametrize("kind", ["rotate", "rescale", "noise", "bump"])
+@pytest.mark.parametrize("kind", ["rotate", "rescale", "noise", "bump", "scratch"])
 def test_raster_changes_stay_within_class(name, kind, kimia_dir, kimia_files, kimia_signatures, kimia_labels):
     mask = _load(kimia_dir / f"{name}.png")
     rng = np.random.default_rng(0)
@@ -126,6 +126,14 @@ def test_raster_changes_stay_within_class(name, kind, kimia_dir, kimia_files, ki
         moved[flip] = False
         out = ndimage.binary_dilation(mask) & ~mask & (rng.random(mask.shape) < 0.33)
         moved[out] = True
+    elif kind == "scratch":
+        # A dark scratch 2 pixels wide across the middle row, from the left edge to the centre: the
+        # axis runs around it (the closed versions fill it).
+        rows, cols = np.nonzero(mask)
+        r = int(np.median(rows))
+        c = cols[rows == r]
+        moved = mask.copy()
+        moved[r : r + 2, c.min() : (c.min() + c.max()) // 2 + 1] = False
     else:
         # A small bump (3 x 3 pixels) on the boundary: a small spurious branch.
         rows, cols = np.nonzero(mask ^ np.pad(mask[1:], ((0, 1), (0, 0))))
