@@ -1,5 +1,7 @@
-"""Compiled kernels of the Voronoi medial complex: Delaunay edge rings, star groups, collapses.
+"""Compiled kernels of the Voronoi medial complex: tetrahedron geometry, Delaunay edge rings, star groups, collapses.
 
+:func:`tet_geometry` gives the circumspheres, longest edges and volumes of
+the Delaunay tetrahedra;
 :func:`all_edge_rings` walks the tetrahedra around every Delaunay edge (the
 Voronoi facets); :func:`minor_star_groups` finds the tetrahedra that pinch
 the union of the inner ones at a sample point (:func:`~medialaxis.mesh.voronoi_complex.unpinch`);
@@ -15,7 +17,56 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["all_edge_rings", "collapse_facets", "collapse_free_sides", "minor_star_groups"]
+__all__ = ["all_edge_rings", "collapse_facets", "collapse_free_sides", "minor_star_groups", "tet_geometry"]
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def tet_geometry(points, simplices):  # type: ignore[no-untyped-def]
+    """Circumcentres, circumradii, longest edges and volumes of tetrahedra.
+
+    Flat tetrahedra (``|det| <= 1e-12`` of the cube of their largest
+    coordinate difference from the first point along the second and fourth
+    edges) get the circumcentre of their first three points, on the line of
+    Voronoi vertices they span; fully degenerate ones get ``nan`` centres
+    and ``inf`` radii.
+    """
+    n = simplices.shape[0]
+    centres = np.empty((n, 3))
+    radii = np.empty(n)
+    longest = np.empty(n)
+    volume = np.empty(n)
+    for t in prange(n):
+        p0, p1, p2, p3 = simplices[t, 0], simplices[t, 1], simplices[t, 2], simplices[t, 3]
+        ux, uy, uz = points[p1, 0] - points[p0, 0], points[p1, 1] - points[p0, 1], points[p1, 2] - points[p0, 2]
+        vx, vy, vz = points[p2, 0] - points[p0, 0], points[p2, 1] - points[p0, 1], points[p2, 2] - points[p0, 2]
+        wx, wy, wz = points[p3, 0] - points[p0, 0], points[p3, 1] - points[p0, 1], points[p3, 2] - points[p0, 2]
+        vwx, vwy, vwz = vy * wz - vz * wy, vz * wx - vx * wz, vx * wy - vy * wx
+        wux, wuy, wuz = wy * uz - wz * uy, wz * ux - wx * uz, wx * uy - wy * ux
+        uvx, uvy, uvz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+        uu, vv, ww = ux * ux + uy * uy + uz * uz, vx * vx + vy * vy + vz * vz, wx * wx + wy * wy + wz * wz
+        det = 2.0 * (ux * vwx + uy * vwy + uz * vwz)
+        volume[t] = abs(det) / 12.0
+        scale = max(abs(ux), abs(uy), abs(uz), abs(wx), abs(wy), abs(wz)) ** 3
+        if abs(det) > 1e-12 * max(scale, 1e-300):
+            ox = (uu * vwx + vv * wux + ww * uvx) / det
+            oy = (uu * vwy + vv * wuy + ww * uvy) / det
+            oz = (uu * vwz + vv * wuz + ww * uvz) / det
+        else:  # co-planar (co-circular) points: the centre of the circle of the first three
+            nn = 2.0 * max(uvx * uvx + uvy * uvy + uvz * uvz, 1e-300)
+            ox = ((uvy * uz - uvz * uy) * vv + (vy * uvz - vz * uvy) * uu) / nn
+            oy = ((uvz * ux - uvx * uz) * vv + (vz * uvx - vx * uvz) * uu) / nn
+            oz = ((uvx * uy - uvy * ux) * vv + (vx * uvy - vy * uvx) * uu) / nn
+            if not (np.isfinite(ox) and np.isfinite(oy) and np.isfinite(oz)):
+                ox, oy, oz = np.nan, np.nan, np.nan
+        r = np.sqrt(ox * ox + oy * oy + oz * oz)
+        radii[t] = r if np.isfinite(r) else np.inf
+        centres[t, 0], centres[t, 1], centres[t, 2] = points[p0, 0] + ox, points[p0, 1] + oy, points[p0, 2] + oz
+        d = max(uu, vv, ww)
+        for i, j in ((p1, p2), (p1, p3), (p2, p3)):
+            ex, ey, ez = points[i, 0] - points[j, 0], points[i, 1] - points[j, 1], points[i, 2] - points[j, 2]
+            d = max(d, ex * ex + ey * ey + ez * ez)
+        longest[t] = np.sqrt(d)
+    return centres, radii, longest, volume
 
 
 @njit(cache=True, nogil=True)
@@ -52,17 +103,22 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
         count[facet_sides[k]] += 1
     facet_alive = np.ones(n_facets, np.bool_)
     side_alive = np.ones(n_sides, np.bool_)
-    heap = [(0.0, np.int64(0))]
+    # the heap holds ranks in (length, index) order: plain integers compare faster than tuples
+    order = np.argsort(length, kind="mergesort")
+    rank = np.empty(n_facets, np.int64)
+    for r in range(n_facets):
+        rank[order[r]] = r
+    heap = [np.int64(0)]
     heap.pop()
     for f in range(n_facets):
         if not protected[f]:
             for k in range(facet_ptr[f], facet_ptr[f + 1]):
                 if count[facet_sides[k]] == 1:
-                    heap.append((length[f], np.int64(f)))
+                    heap.append(rank[f])
                     break
     heapq.heapify(heap)
     while len(heap) > 0:
-        _, f = heapq.heappop(heap)
+        f = order[heapq.heappop(heap)]
         if not facet_alive[f]:
             continue
         free = -1
@@ -82,7 +138,7 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
                 for j in range(side_facet_ptr[s], side_facet_ptr[s + 1]):
                     g = side_facet_idx[j]
                     if facet_alive[g] and not protected[g]:
-                        heapq.heappush(heap, (length[g], g))
+                        heapq.heappush(heap, rank[g])
     return facet_alive, side_alive
 
 

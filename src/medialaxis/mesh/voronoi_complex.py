@@ -28,6 +28,7 @@ import numpy as np
 
 from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
+from medialaxis.mesh._ring_kernels import csr_transpose, gather_rings, ring_all, ring_rises, ring_side_ids
 from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides, minor_star_groups
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 
@@ -98,8 +99,7 @@ def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarr
 
 
 def _select(ring_ptr: np.ndarray, ring_tets: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    counts = np.diff(ring_ptr)
-    return np.r_[0, np.cumsum(counts[keep])].astype(np.int64), ring_tets[np.repeat(keep, counts)]
+    return gather_rings(ring_ptr, ring_tets, np.flatnonzero(keep))
 
 
 def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray, inner: np.ndarray) -> np.ndarray:
@@ -132,16 +132,9 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
     inner = np.array(inner, dtype=bool, copy=True)
     if len(ring_tets) == 0:
         return inner
-    p = dt.points[dt.simplices]
-    volume = np.abs(np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0]))) / 6.0
-    size = np.diff(ring_ptr)
-    position = np.arange(len(ring_tets))
-    last = np.repeat(ring_ptr[1:] - 1, size)
-    following = np.where(position == last, np.repeat(ring_ptr[:-1], size), position + 1)
+    volume = dt.volume
     for _ in range(UNPINCH_ROUNDS):
-        flag = inner[ring_tets]
-        rises = np.add.reduceat((~flag & flag[following]).astype(np.int64), ring_ptr[:-1])
-        pinched = np.flatnonzero((rises >= 2) & (size > 0))
+        pinched = np.flatnonzero(ring_rises(ring_ptr, ring_tets, inner) >= 2)
         # around a point, the inner tetrahedra must be one group and the
         # outer ones one group: drop inner strays, fill outer pockets
         stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False)
@@ -180,19 +173,15 @@ def _gaps(flag: np.ndarray) -> list[np.ndarray]:
     return gaps
 
 
+def _by_ends(ends: np.ndarray, n: int) -> np.ndarray:
+    """Rows of ``ends`` (pairs of tetrahedra), each ascending, sorted by their first then second tetrahedron."""
+    ends = np.sort(ends, axis=1)
+    return ends[np.argsort(ends[:, 0] * n + ends[:, 1])]
+
+
 def _all_in_ring(ring_ptr: np.ndarray, ring_tets: np.ndarray, flag: np.ndarray) -> np.ndarray:
     """For each ring: are all its tetrahedra flagged."""
-    if len(ring_tets) == 0:
-        return np.zeros(len(ring_ptr) - 1, bool)
-    bad = np.add.reduceat((~flag[ring_tets]).astype(np.int64), ring_ptr[:-1])
-    return (bad == 0) & (np.diff(ring_ptr) > 0)
-
-
-def _csr_transpose(ptr: np.ndarray, idx: np.ndarray, n_cols: int) -> tuple[np.ndarray, np.ndarray]:
-    rows = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))
-    order = np.argsort(idx, kind="stable")
-    tptr = np.r_[0, np.cumsum(np.bincount(idx, minlength=n_cols))].astype(np.int64)
-    return tptr, rows[order].astype(np.int64)
+    return ring_all(ring_ptr, ring_tets, flag)
 
 
 def medial_complex(
@@ -253,35 +242,32 @@ def medial_complex(
     certified = wide & _all_in_ring(ring_ptr, ring_tets, centre_inside)
     n_curve = 0
     curve = np.empty((0, 2), np.int64)
+    side_id = ring_side_ids(ring_ptr, ring_tets, dt.neighbors)  # the triangle after each ring entry
     if topology == "preserve":
-        # Sides of D: triangles shared by two inner tetrahedra.
-        t = np.repeat(np.arange(n_tets), 4)
-        nb = dt.neighbors.ravel()
-        both = (nb > t) & inner[t] & inner[np.maximum(nb, 0)]
-        side_ends = np.c_[t[both], nb[both]]
-        side_key = side_ends[:, 0] * n_tets + side_ends[:, 1]
-        order = np.argsort(side_key)
-        side_key, side_ends = side_key[order], side_ends[order]
-        _, _, ring_sides = fan_triangles(ring_ptr, ring_tets)
-        ring_sides.sort(axis=1)
-        facet_sides = np.searchsorted(side_key, ring_sides[:, 0] * n_tets + ring_sides[:, 1]).astype(np.int64)
-        sptr, sidx = _csr_transpose(ring_ptr, facet_sides, len(side_key))
+        # Sides of D: triangles shared by two inner tetrahedra, as 4 * tet + face (the lower tetrahedron's face).
+        nb = dt.neighbors
+        ids = np.flatnonzero((nb > np.arange(n_tets)[:, None]) & inner[:, None] & inner[np.maximum(nb, 0)])
+        side_ends = np.c_[ids // 4, nb.ravel()[ids]]
+        slot = np.full(4 * n_tets, -1, np.int64)
+        slot[ids] = np.arange(len(ids))
+        facet_sides = slot[side_id]
+        sptr, sidx = csr_transpose(ring_ptr, facet_sides, len(ids))
         facet_alive, side_alive = collapse_facets(ring_ptr, facet_sides, sptr, sidx, length, certified)
-        side_used = np.zeros(len(side_key), bool)
+        side_used = np.zeros(len(ids), bool)
         side_used[facet_sides[np.repeat(facet_alive, np.diff(ring_ptr))]] = True
         side_alive = collapse_free_sides(side_alive, side_used, side_ends, n_tets)
-        curve = side_ends[side_alive & ~side_used]
+        curve = _by_ends(side_ends[side_alive & ~side_used], n_tets)
         n_curve = len(curve)
-        ring_ptr, ring_tets = _select(ring_ptr, ring_tets, facet_alive)
-        length, certified = length[facet_alive], certified[facet_alive]
+        alive = facet_alive
     else:
-        ring_ptr, ring_tets = _select(ring_ptr, ring_tets, certified)
-        length, certified = length[certified], certified[certified]
-    tris, owner, sides = fan_triangles(ring_ptr, ring_tets)
-    sides = np.sort(sides, axis=1)
-    keys, side_count = np.unique(sides[:, 0] * n_tets + sides[:, 1], return_counts=True)
-    border = keys[side_count != 2]
-    border = np.c_[border // n_tets, border % n_tets]
+        alive = certified
+    side_id = side_id[np.repeat(alive, np.diff(ring_ptr))]
+    ring_ptr, ring_tets = _select(ring_ptr, ring_tets, alive)
+    length, certified = length[alive], certified[alive]
+    tris, owner, _ = fan_triangles(ring_ptr, ring_tets)
+    side_count = np.bincount(side_id, minlength=4 * n_tets)
+    border_ids = np.flatnonzero((side_count != 0) & (side_count != 2))
+    border = _by_ends(np.c_[border_ids // 4, dt.neighbors.ravel()[border_ids]], n_tets)
     used = unique_ints(np.concatenate([ring_tets, curve.ravel()]))
     new_index = np.full(n_tets, -1, np.int64)
     new_index[used] = np.arange(len(used))

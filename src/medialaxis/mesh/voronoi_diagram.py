@@ -14,14 +14,11 @@ import dataclasses
 
 import numpy as np
 
-from medialaxis.mesh._voronoi_kernels import all_edge_rings
+from medialaxis.mesh._ring_kernels import edge_order, gather_rings
+from medialaxis.mesh._voronoi_kernels import all_edge_rings, tet_geometry
 from medialaxis.mesh.delaunay import delaunay_tetrahedra
 
-__all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings", "TET_EDGES"]
-
-#: Local vertex pairs of the six edges of a tetrahedron, and the two other vertices.
-TET_EDGES = np.array([(0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2), (1, 2, 0, 3), (1, 3, 0, 2), (2, 3, 0, 1)], np.int64)
-
+__all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings"]
 
 @dataclasses.dataclass(frozen=True)
 class Tetrahedralisation:
@@ -37,6 +34,8 @@ class Tetrahedralisation:
         Circumradii (``inf`` where undefined).
     longest : (t,) float64 ndarray
         Longest edge of each tetrahedron.
+    volume : (t,) float64 ndarray
+        Volume of each tetrahedron.
     neighbors : (t, 4) int64 ndarray
         Tetrahedron opposite each vertex (-1 on the hull).
     """
@@ -46,6 +45,7 @@ class Tetrahedralisation:
     centres: np.ndarray
     radii: np.ndarray
     longest: np.ndarray
+    volume: np.ndarray
     neighbors: np.ndarray
 
 
@@ -56,31 +56,8 @@ def circumspheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray
     points (on the line of Voronoi vertices they span); fully degenerate
     ones get ``nan`` centres and ``inf`` radii.
     """
-    a = points[simplices[:, 0]]
-    u = points[simplices[:, 1]] - a
-    v = points[simplices[:, 2]] - a
-    w = points[simplices[:, 3]] - a
-    vw, wu, uv = np.cross(v, w), np.cross(w, u), np.cross(u, v)
-    det = 2.0 * np.einsum("ij,ij->i", u, vw)
-    num = (u * u).sum(1)[:, None] * vw + (v * v).sum(1)[:, None] * wu + (w * w).sum(1)[:, None] * uv
-    scale = np.maximum(np.abs(u).max(1), np.abs(w).max(1)) ** 3
-    flat = np.abs(det) <= 1e-12 * np.maximum(scale, 1e-300)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        offset = num / det[:, None]
-    if flat.any():
-        # Co-planar (co-circular) points: the Voronoi vertex lies on the line
-        # through their circle's centre; take that centre.
-        uf, vf = u[flat], v[flat]
-        n = np.cross(uf, vf)
-        nn = np.maximum((n * n).sum(1), 1e-300)[:, None]
-        offset[flat] = (np.cross(n, uf) * (vf * vf).sum(1)[:, None] + np.cross(vf, n) * (uf * uf).sum(1)[:, None]) / (
-            2.0 * nn
-        )
-        degenerate = flat & ~np.all(np.isfinite(offset), axis=1)
-        offset[degenerate] = np.nan
-    radii = np.linalg.norm(offset, axis=1)
-    radii[~np.isfinite(radii)] = np.inf
-    return a + offset, radii
+    centres, radii, _, _ = tet_geometry(np.ascontiguousarray(points, np.float64), np.asarray(simplices, np.int64))
+    return centres, radii
 
 
 def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
@@ -100,12 +77,8 @@ def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
     """
     points = np.ascontiguousarray(points, np.float64)
     simplices, neighbors, _ = delaunay_tetrahedra(points)
-    centres, radii = circumspheres(points, simplices)
-    p = points[simplices]
-    longest = np.zeros(len(simplices))
-    for i, j, _, _ in TET_EDGES:
-        longest = np.maximum(longest, np.linalg.norm(p[:, i] - p[:, j], axis=1))
-    return Tetrahedralisation(points, simplices, centres, radii, longest, neighbors)
+    centres, radii, longest, volume = tet_geometry(points, simplices)
+    return Tetrahedralisation(points, simplices, centres, radii, longest, volume, neighbors)
 
 
 def edge_rings(
@@ -137,9 +110,7 @@ def edge_rings(
     tets = np.sort(np.asarray(tets, np.int64))
     edge_ij, ring_ptr, ring, length = all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, float(min_length))
     # in the order of the edges (the facets of a sample come together: output files compress better)
-    order = np.argsort(edge_ij[:, 0] * len(dt.points) + edge_ij[:, 1])
-    counts = np.diff(ring_ptr)[order]
-    new_ptr = np.r_[0, np.cumsum(counts)].astype(np.int64)
-    rows = np.repeat(ring_ptr[:-1][order] - new_ptr[:-1], counts) + np.arange(new_ptr[-1])
-    return edge_ij[order], new_ptr, ring[rows], length[order]
+    order = edge_order(edge_ij, len(dt.points))
+    new_ptr, new_ring = gather_rings(ring_ptr, ring, order)
+    return edge_ij[order], new_ptr, new_ring, length[order]
 
