@@ -13,7 +13,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["first_crossing", "first_crossing_reference", "segment_crosses_triangle"]
+__all__ = ["first_crossing", "first_crossing_reference", "segment_crosses_triangle", "near_pairs"]
 
 
 @njit(cache=True, nogil=True)
@@ -58,6 +58,73 @@ def _boxes_apart(t: np.ndarray, u: np.ndarray) -> bool:
     return False
 
 
+@njit(cache=True, nogil=True)
+def _shares_vertex(faces: np.ndarray, i: int, j: int) -> bool:
+    for a in range(3):
+        for b in range(3):
+            if faces[i, a] == faces[j, b]:
+                return True
+    return False
+
+
+@njit(cache=True, nogil=True)
+def _cell_key(x: float, y: float, z: float) -> int:
+    """One integer per grid cell (cell indices within +-2^20)."""
+    return (np.int64(x) * 2097152 + np.int64(y)) * 2097152 + np.int64(z)
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore[no-untyped-def]
+    """Pairs ``(i, j)``, ``i < j``, of ``members`` that may cross: bounding spheres and boxes meet, no shared vertex.
+
+    The members are binned on a grid of side ``cell`` (at least the largest
+    sum of two of their radii), so each is compared with those of its own
+    and the 26 surrounding cells only; nothing is materialised for the many
+    pairs of adjacent faces, which share a vertex.
+    """
+    n = members.shape[0]
+    key = np.empty(n, np.int64)
+    for q in range(n):
+        c = centre[members[q]]
+        key[q] = _cell_key(np.floor(c[0] / cell), np.floor(c[1] / cell), np.floor(c[2] / cell))
+    order = np.argsort(key)
+    # members in cell order, their spheres copied alongside: the inner loop reads memory in sequence
+    sorted_key, tri_id = key[order], members[order]
+    sc, sr = centre[tri_id], radius[tri_id]
+    count = np.zeros(n, np.int64)
+    pairs = np.empty((0, 2), np.int64)
+    for sweep in range(2):
+        if sweep == 1:
+            start = np.zeros(n + 1, np.int64)
+            start[1:] = np.cumsum(count)
+            pairs = np.empty((start[n], 2), np.int64)
+        for q in prange(n):
+            i = tri_id[q]
+            gx, gy, gz = np.floor(sc[q, 0] / cell), np.floor(sc[q, 1] / cell), np.floor(sc[q, 2] / cell)
+            found = 0
+            for dx in range(-1, 2):
+                for dy in range(-1, 2):
+                    for dz in range(-1, 2):
+                        k = _cell_key(gx + dx, gy + dy, gz + dz)
+                        r = np.searchsorted(sorted_key, k)
+                        while r < n and sorted_key[r] == k:
+                            j = tri_id[r]
+                            d2 = (sc[q, 0] - sc[r, 0]) ** 2 + (sc[q, 1] - sc[r, 1]) ** 2 + (sc[q, 2] - sc[r, 2]) ** 2
+                            reach = sr[q] + sr[r]
+                            r += 1
+                            if j <= i or d2 > reach * reach:
+                                continue
+                            if _boxes_apart(triangles[i], triangles[j]) or _shares_vertex(faces, i, j):
+                                continue
+                            if sweep == 1:
+                                pairs[start[q] + found, 0] = i
+                                pairs[start[q] + found, 1] = j
+                            found += 1
+            if sweep == 0:
+                count[q] = found
+    return pairs
+
+
 @njit(cache=True, nogil=True, parallel=True)
 def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> int:
     """Index of the first pair ``(i, j)`` of ``pairs`` whose triangles share no vertex and cross, or -1.
@@ -70,12 +137,7 @@ def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, 
         i, j = pairs[k, 0], pairs[k, 1]
         if _boxes_apart(triangles[i], triangles[j]):
             continue
-        share = False
-        for a in range(3):
-            for b in range(3):
-                if faces[i, a] == faces[j, b]:
-                    share = True
-        if not share and _crosses(triangles[i], triangles[j], tol):
+        if not _shares_vertex(faces, i, j) and _crosses(triangles[i], triangles[j], tol):
             hit[k] = True
     for k in range(len(pairs)):
         if hit[k]:

@@ -289,14 +289,14 @@ def _inside(
         after = np.concatenate([moved_faces[changed], moved_edges[changed_edges][:, [0, 1, 1]]])
         samples, owner = lattice(spheres, after, np.c_[after, before], LATTICE_SPACING * tolerance, tolerance)  # corners old and new
         k = min(NEAR_BALLS, n)
-        near, which = centres.query(samples[:, :3], k=k)
+        near, which = centres.query(samples[:, :3], k=k, workers=-1)
         near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
         far = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1) > tolerance
         samples, owner = samples[far], owner[far]
         deep = samples[:, 3] + signed(samples[:, :3], which[far]) > tolerance if len(samples) else np.zeros(0, bool)
         if not deep.any():
-            return chosen, np.flatnonzero(refused), np.unique(after)
-        culprit = np.isin(src[chosen], before[np.unique(owner[deep])])
+            return chosen, np.flatnonzero(refused), unique_ints(after)
+        culprit = np.isin(src[chosen], before[unique_ints(owner[deep])])
         refused[chosen[culprit]] = True
         chosen = chosen[~culprit]
 

@@ -174,14 +174,18 @@ def check_shells(mesh: Any) -> None:
             )
 
 
-def _sphere_pairs(tri: np.ndarray) -> np.ndarray:
-    """Pairs ``(i, j)`` of triangles that may meet (a superset: bounding spheres about the centroids meet).
+def _sphere_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Pairs ``(i, j)`` of triangles that may cross (a superset: bounding spheres about the centroids meet).
 
-    Triangles up to twice the median size go through one
-    ``cKDTree.query_pairs``; the larger ones (slivers, long CAD faces) are
-    matched against every triangle within their own reach.
+    Triangles up to twice the median size are binned on a grid
+    (:func:`~medialaxis.mesh._intersect_kernels.near_pairs`, which also
+    drops the pairs with a shared vertex or apart bounding boxes); the
+    larger ones (slivers, long CAD faces) are matched against every
+    triangle within their own reach.
     """
     from scipy.spatial import cKDTree
+
+    from medialaxis.mesh._intersect_kernels import near_pairs
 
     centre = tri.mean(axis=1)
     radius = np.linalg.norm(tri - centre[:, None, :], axis=2).max(axis=1)
@@ -189,7 +193,8 @@ def _sphere_pairs(tri: np.ndarray) -> np.ndarray:
     idx = np.flatnonzero(small)
     pairs = []
     if len(idx) > 1:
-        pairs.append(idx[cKDTree(centre[idx]).query_pairs(2.0 * float(radius[idx].max()), output_type="ndarray")])
+        cell = max(2.0 * float(radius[idx].max()), 2.0**-19)  # ``tri`` lies in a unit box: at most 2^19 cells a side
+        pairs.append(near_pairs(tri, faces, centre, radius, idx, cell))
     big = np.flatnonzero(~small)
     if len(big):
         near = cKDTree(centre).query_ball_point(centre[big], radius[big] + float(radius.max()), return_sorted=False)
@@ -221,7 +226,7 @@ def check_self_intersection(mesh: Any) -> None:
     # tolerance on orientation determinants (volumes), from the typical edge
     edge = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)
     tol = 1e-9 * float(np.median(edge)) ** 3
-    pairs = _sphere_pairs(tri)
+    pairs = _sphere_pairs(tri, np.ascontiguousarray(f))
     k = first_crossing(tri, np.ascontiguousarray(f), pairs, tol)
     if k >= 0:
         i, j = (int(x) for x in pairs[k])
