@@ -124,6 +124,22 @@ def test_torus_gives_its_core_circle(torus):
     assert np.histogram(angle, bins=36, range=(-np.pi, np.pi))[0].min() > 0  # all the way round
 
 
+@pytest.mark.parametrize("seed", [3, 4])
+def test_flat_tetrahedra_do_not_reach_out_to_a_faceted_sphere(seed):
+    # Four co-circular samples near the surface of a faceted sphere make a flat tetrahedron whose
+    # circumcentre (the circle's centre) lies near the surface: its Voronoi ball pokes far out
+    # of the mesh. Rotated this way, the release before kept a sheet out to 1.95 from the centre
+    # of this radius-2 icosphere (a ball of radius 0.05 at the surface). Truth: the medial axis
+    # of a sphere is its centre; the facets add only sheets thinner than lambda.
+    from scipy.spatial.transform import Rotation
+
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=2.0)
+    sphere.apply_transform(np.r_[np.c_[Rotation.random(random_state=seed).as_matrix(), np.zeros(3)], [[0, 0, 0, 1]]])
+    full = voronoi_medial_axis(sphere, samples=3000, compact=False)
+    assert np.linalg.norm(full.points, axis=1).max() < 0.25
+    assert full.radii.min() > 1.75
+
+
 def test_sphere_gives_its_centre():
     # A ball's medial axis is its centre: the compact complex shrinks to a few spheres there, with
     # nothing left to sample between them (the reach check of the collapses then has no work).

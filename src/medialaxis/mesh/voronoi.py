@@ -62,6 +62,11 @@ VOLUME_TOLERANCE = 2e-3
 FLAT_DEPTH = 1e-5
 #: Spacing adapts to local feature size within this ratio (finest : coarsest).
 ADAPTIVE_RANGE = 4.0
+#: A circumcentre inside is a medial point when its distance to the mesh is
+#: at least its circumradius minus this many epsilons (the surface cannot
+#: reach further into a ball empty of samples; 2 allows for epsilon being
+#: measured on random points, from below).
+EMPTY_BALL_SLACK = 2.0
 #: Cell of the grids that thin the medial points of the local feature size
 #: estimate, relative to their radius (see :func:`_lfs_estimate`).
 LFS_CELL = 0.1
@@ -258,7 +263,8 @@ def voronoi_medial_axis(
         ``face_contact_diameter``
         (k,) the Delaunay edge length of each triangle's facet,
         ``face_certified`` (k,) whether that facet is one of Algorithm 5
-        (at least ``lam`` wide, all vertices inside) rather than kept for
+        (at least ``lam`` wide, all vertices inside and no nearer the mesh
+        than their circumradius minus ``EMPTY_BALL_SLACK`` epsilons) rather than kept for
         topology (``metadata["n_filling_faces"]`` counts those). Metadata:
         ``lam``, ``epsilon`` (measured ``max d(x, P)``), ``epsilon_lfs``
         (the same relative to the estimated local feature size),
@@ -355,7 +361,11 @@ def voronoi_medial_axis(
 
     t0 = time.perf_counter()
     # thin parts narrower than lam keep their sheets
-    cx = medial_complex(dt, inner, signed < 0, lam_used, topology, spacing=point_spacing)
+    # A Voronoi ball is empty of samples, so the surface reaches into it by at most epsilon: a
+    # circumcentre far nearer the surface than its four samples is not a medial point but the
+    # arbitrary centre of a flat tetrahedron (four co-circular samples near a faceted surface)
+    medial = (signed < 0) & (dt.radii + signed <= EMPTY_BALL_SLACK * eps)
+    cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing)
     if len(cx.faces) == 0:
         raise ComputationError(
             f"no Voronoi facet with a contact set of at least lam={lam_used:.4g} lies inside the mesh; "
