@@ -296,7 +296,7 @@ def _root(parent, a):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
-def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull):  # type: ignore[no-untyped-def]
+def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active):  # type: ignore[no-untyped-def]
     """Flagged tetrahedra in a group that is not the largest of some point's star.
 
     Around each sample point, two flagged tetrahedra are in one group when a
@@ -306,10 +306,13 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull):  # ty
     flagged cell around each hull point, of infinite volume. A group's size
     is the volume of its tetrahedra; ties go to the group met first.
 
+    Only the stars of the ``active`` points (a ``(p,)`` bool array) are
+    looked at: those whose tetrahedra changed since the last call.
+
     Returns
     -------
     (t,) bool ndarray
-        The flagged tetrahedra outside the largest group at one of their corners.
+        The flagged tetrahedra outside the largest group at one of their active corners.
     """
     n_tets = simplices.shape[0]
     rank = np.full(n_tets, -1, np.int64)
@@ -328,7 +331,7 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull):  # ty
             if nb >= 0 and (nb < t or not flag[nb]):
                 continue
             for c in range(4):
-                if c == k:
+                if c == k or not active[simplices[t, c]]:
                     continue
                 a = _root(parent, 4 * rank[t] + c)
                 if nb < 0:
@@ -350,12 +353,15 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull):  # ty
                 size[_root(parent, 4 * rank[t] + c)] += volume[t]
     if hull:
         for p in range(n_points):
-            size[_root(parent, 4 * m + p)] = np.inf
+            if active[p]:
+                size[_root(parent, 4 * m + p)] = np.inf
     best = np.full(n_points, -1, np.int64)
     for t in range(n_tets):
         if flag[t]:
             for c in range(4):
                 p = simplices[t, c]
+                if not active[p]:
+                    continue
                 r = _root(parent, 4 * rank[t] + c)
                 if best[p] < 0 or size[r] > size[best[p]]:
                     best[p] = r
@@ -363,6 +369,6 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull):  # ty
     for t in range(n_tets):
         if flag[t]:
             for c in range(4):
-                if _root(parent, 4 * rank[t] + c) != best[simplices[t, c]]:
+                if active[simplices[t, c]] and _root(parent, 4 * rank[t] + c) != best[simplices[t, c]]:
                     minor[t] = True
     return minor

@@ -133,13 +133,19 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
     if len(ring_tets) == 0:
         return inner
     volume = dt.volume
+    seen_by_stray = seen_by_pocket = None
     for _ in range(UNPINCH_ROUNDS):
         pinched = np.flatnonzero(ring_rises(ring_ptr, ring_tets, inner) >= 2)
         # around a point, the inner tetrahedra must be one group and the
         # outer ones one group: drop inner strays, fill outer pockets
-        stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False)
+        # only the stars changed since the same call last ran can have split (all on the first round)
+        active = _corners_of(dt, inner, seen_by_stray)
+        seen_by_stray = inner.copy()
+        stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False, active)
         inner[stray] = False
-        pocket = minor_star_groups(dt.simplices, dt.neighbors, ~inner, volume, len(dt.points), True)
+        active = _corners_of(dt, inner, seen_by_pocket)
+        seen_by_pocket = inner.copy()
+        pocket = minor_star_groups(dt.simplices, dt.neighbors, ~inner, volume, len(dt.points), True, active)
         inner[pocket] = True
         if len(pinched) == 0 and not stray.any() and not pocket.any():
             break
@@ -153,6 +159,15 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
                 if g != largest:
                     inner[ring[rows]] = False
     return inner
+
+
+def _corners_of(dt: Tetrahedralisation, flag: np.ndarray, before: np.ndarray | None) -> np.ndarray:
+    """Which sample points are corners of tetrahedra whose flag differs from ``before`` (all when it is None)."""
+    if before is None:
+        return np.ones(len(dt.points), bool)
+    out = np.zeros(len(dt.points), bool)
+    out[dt.simplices[flag != before]] = True
+    return out
 
 
 def _gaps(flag: np.ndarray) -> list[np.ndarray]:
