@@ -68,6 +68,7 @@ from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers, void_faces
 from medialaxis.core.result import MedialAxis
 from medialaxis.mesh._compact_kernels import costs, lattice, link_ok, select, structure
+from medialaxis.mesh._rows import first_of_rows
 
 __all__ = [
     "Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE", "RULES",
@@ -133,20 +134,6 @@ def complex_edges(faces: np.ndarray, edges: np.ndarray, n: int) -> tuple[np.ndar
 
 #: Collapse rules, fastest first: (link condition tested, how far apart the collapses of a round are).
 RULES = {"matching": (False, 0), "apart": (False, 1), "link condition": (True, 2)}
-
-
-def _first_of_each(rows: np.ndarray) -> np.ndarray:
-    """Indices (ascending) of the first occurrence of each distinct row (what ``np.unique(axis=0)`` gives, faster)."""
-    if not len(rows):
-        return np.arange(0)
-    order = np.lexsort(rows.T[::-1])
-    ordered = rows[order]
-    new = np.ones(len(rows), bool)
-    new[1:] = (ordered[1:] != ordered[:-1]).any(axis=1)
-    group = np.cumsum(new) - 1
-    first = np.full(int(group[-1]) + 1, len(rows), np.int64)
-    np.minimum.at(first, group, order)
-    return np.sort(first)
 
 
 def compact_complex(
@@ -237,7 +224,7 @@ def compact_complex(
         flat = _flat(faces)
         faces, origin = faces[~flat], origin[~flat]
         if not strict:
-            first = _first_of_each(np.sort(faces, axis=1))
+            first = first_of_rows(np.sort(faces, axis=1))
             faces, origin = faces[first], origin[first]
         mapped = np.sort(to[all_edges], axis=1)
         mapped = mapped[mapped[:, 0] != mapped[:, 1]]

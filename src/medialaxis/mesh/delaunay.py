@@ -98,6 +98,7 @@ from medialaxis.mesh._delaunay_kernels import (
     _insert,
 )
 from medialaxis.mesh._predicates import _FACE_OUT, _GRID
+from medialaxis.mesh._rows import first_of_rows
 
 __all__ = ["delaunay_tetrahedra", "JOGGLE"]
 
@@ -201,35 +202,6 @@ def _extract(tet, nt, inf):  # type: ignore[no-untyped-def]
 # ----------------------------------------------------------------------------
 # preparation: duplicates, insertion order
 # ----------------------------------------------------------------------------
-
-
-@njit(cache=True, nogil=True)
-def _first_of_duplicates(bits):  # type: ignore[no-untyped-def]
-    """Indices of the rows of ``bits`` (n, 3) int64 seen first (ascending), by hashing."""
-    n = bits.shape[0]
-    hb = 4
-    while (1 << hb) < 2 * n:
-        hb += 1
-    size = 1 << hb
-    mask = size - 1
-    table = np.full(size, -1, np.int64)
-    keep = np.empty(n, np.int64)
-    count = 0
-    for i in range(n):
-        x, y, z = bits[i, 0], bits[i, 1], bits[i, 2]
-        h = (x * -7046029254386353131) ^ (y * 0x27D4EB2F165667C5) ^ (z * 0x165667B19E3779F9)
-        h = (h ^ (h >> 31)) & mask
-        while True:
-            j = table[h]
-            if j < 0:
-                table[h] = i
-                keep[count] = i
-                count += 1
-                break
-            if bits[j, 0] == x and bits[j, 1] == y and bits[j, 2] == z:
-                break
-            h = (h + 1) & mask
-    return keep[:count]
 
 
 @njit(cache=True, nogil=True)
@@ -369,7 +341,7 @@ def _delaunay(
     if len(x) < 5:
         raise ComputationError(f"the 3D Delaunay tetrahedralisation needs at least 5 points, got {len(x)}")
     x = np.ascontiguousarray(x + 0.0)  # -0.0 -> 0.0, so equal coordinates have equal bits
-    keep = _first_of_duplicates(x.view(np.int64))
+    keep = first_of_rows(x.view(np.int64))  # exact duplicates: equal bits
     m = len(keep)
     if m < 5:
         raise ComputationError(f"the 3D Delaunay tetrahedralisation needs at least 5 distinct points, got {m}")

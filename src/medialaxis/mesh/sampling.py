@@ -21,6 +21,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.errors import ResourceLimitError
+from medialaxis.mesh._rows import first_of_rows
 
 __all__ = ["SurfaceSample", "sample_surface", "pseudo_normals", "measure_epsilon", "face_spacing_for_count"]
 
@@ -181,8 +182,7 @@ def sample_surface(
     face = np.concatenate([vertex_face, edge_face[eo], fo])
     # Drop coincident samples (within 1e-9 of the spacing): the Delaunay step would join them by slivers.
     grid = np.round(points / (1e-9 * float(np.min(spacing)))).astype(np.int64)
-    _, first = np.unique(grid, axis=0, return_index=True)
-    first.sort()
+    first = first_of_rows(grid)
     return SurfaceSample(points[first], normal[first], face[first])
 
 

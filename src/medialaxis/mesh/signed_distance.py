@@ -105,7 +105,7 @@ class SignedDistance:
             k = min(k, n_faces)
             left = []
             for batch in np.array_split(todo, max(1, len(todo) * k // budget)):
-                centroid_dist, near = self._centroid_tree.query(points[batch], k)
+                centroid_dist, near = self._centroid_tree.query(points[batch], k, workers=-1)
                 centroid_dist, near = centroid_dist.reshape(len(batch), k), near.reshape(len(batch), k)
                 s, c = self.query(points[batch], near, rings=False)
                 done = (centroid_dist[:, -1] - self._reach >= np.abs(s)) | (k == n_faces) | (k >= max_k)

@@ -30,6 +30,7 @@ from medialaxis.core.arrays import unique_ints
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError, ResourceLimitError
+from medialaxis.mesh._rows import first_of_rows
 from medialaxis.mesh.inputs import load_mesh, shell_labels
 from medialaxis.mesh.sampling import (
     PseudoNormals,
@@ -118,8 +119,7 @@ def _lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
     h = face_spacing_for_count(area, np.ones(len(area)), count)
     # About ``count`` points are wanted; far more means needle-like faces.
     points = sample_surface(mesh, h, normals, limit=len(mesh.vertices) + 100 * count).points
-    _, first = np.unique(np.floor(points / h[0]).astype(np.int64), axis=0, return_index=True)
-    dt = tetrahedralise(points[np.sort(first)])
+    dt = tetrahedralise(points[first_of_rows(np.floor(points / h[0]).astype(np.int64))])
     diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
     medial = (dt.longest >= 2.0 * h[0]) & (dt.radii < diag) & (6.0 * dt.volume > 1e-6 * h[0] ** 3)
     if medial.sum() < 4:
@@ -128,8 +128,7 @@ def _lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
     level = np.floor(np.log2(np.maximum(dt.radii[medial], h[0]) / h[0]))
     cell = (LFS_CELL * h[0]) * 2.0**level
     key = np.c_[level, np.floor(centres / cell[:, None])].astype(np.int64)
-    _, first = np.unique(key, axis=0, return_index=True)
-    return cKDTree(centres[np.sort(first)])
+    return cKDTree(centres[first_of_rows(key)])
 
 
 def _adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:

@@ -133,22 +133,29 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
     if len(ring_tets) == 0:
         return inner
     volume = dt.volume
-    seen_by_stray = seen_by_pocket = None
+    # A point's groups depend on its star alone: a call needs to look only at the points with a
+    # tetrahedron written since the same call last ran (a flag set back counts: pockets filled
+    # and strays dropped can alternate on the same tetrahedra round after round).
+    written_stray, written_pocket = np.ones(len(inner), bool), np.ones(len(inner), bool)
     for _ in range(UNPINCH_ROUNDS):
         pinched = np.flatnonzero(ring_rises(ring_ptr, ring_tets, inner) >= 2)
         # around a point, the inner tetrahedra must be one group and the
         # outer ones one group: drop inner strays, fill outer pockets
-        # only the stars changed since the same call last ran can have split (all on the first round)
-        active = _corners_of(dt, inner, seen_by_stray)
-        seen_by_stray = inner.copy()
+        active = _corners_of(dt, written_stray)
+        written_stray[:] = False
         stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False, active)
         inner[stray] = False
-        active = _corners_of(dt, inner, seen_by_pocket)
-        seen_by_pocket = inner.copy()
+        written_stray |= stray
+        written_pocket |= stray
+        active = _corners_of(dt, written_pocket)
+        written_pocket[:] = False
         pocket = minor_star_groups(dt.simplices, dt.neighbors, ~inner, volume, len(dt.points), True, active)
         inner[pocket] = True
+        written_stray |= pocket
+        written_pocket |= pocket
         if len(pinched) == 0 and not stray.any() and not pocket.any():
             break
+        before = inner.copy()
         for k in pinched:
             ring = ring_tets[ring_ptr[k] : ring_ptr[k + 1]]
             if inner[ring].all() or not inner[ring].any():  # changed by an earlier ring of this round
@@ -158,15 +165,15 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
             for g, rows in enumerate(runs):
                 if g != largest:
                     inner[ring[rows]] = False
+        written_stray |= inner != before
+        written_pocket |= inner != before
     return inner
 
 
-def _corners_of(dt: Tetrahedralisation, flag: np.ndarray, before: np.ndarray | None) -> np.ndarray:
-    """Which sample points are corners of tetrahedra whose flag differs from ``before`` (all when it is None)."""
-    if before is None:
-        return np.ones(len(dt.points), bool)
+def _corners_of(dt: Tetrahedralisation, tets: np.ndarray) -> np.ndarray:
+    """Which sample points are corners of the flagged tetrahedra."""
     out = np.zeros(len(dt.points), bool)
-    out[dt.simplices[flag != before]] = True
+    out[dt.simplices[tets]] = True
     return out
 
 
