@@ -84,14 +84,14 @@ def torus_samples(n_vertices: int) -> tuple[np.ndarray, int]:
     from bench_mesh_voronoi import bumpy_torus
 
     from medialaxis.mesh.inputs import load_mesh
-    from medialaxis.mesh.sampling import pseudo_normals, sample_surface
-    from medialaxis.mesh.voronoi import _adaptive_spacing, _lfs_estimate, _sample_count
+    from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, pseudo_normals, sample_surface
+    from medialaxis.mesh.voronoi import _sample_count
 
     work = load_mesh(bumpy_torus(n_vertices), watertight=True).mesh
     count = _sample_count(None, len(work.vertices))  # the number of vertices (at least 20,000)
     normals = pseudo_normals(work)
-    tree = _lfs_estimate(work, max(count // 8, 2000), normals)
-    spacing = _adaptive_spacing(work, tree, count)
+    tree = lfs_estimate(work, max(count // 8, 2000), normals)
+    spacing = adaptive_spacing(work, tree, count)
     return np.asarray(sample_surface(work, spacing, normals).points, np.float64), len(work.vertices)
 
 

@@ -243,10 +243,9 @@ def test_sampling_metadata_and_adaptivity():
     assert md["n_samples"] > len(flat.vertices)
     assert 0 < md["epsilon"] < md["lam"] < md["lam_bound"]
     assert 0 < md["epsilon_lfs"] < 1
-    from medialaxis.mesh.sampling import pseudo_normals
-    from medialaxis.mesh.voronoi import _adaptive_spacing, _lfs_estimate
+    from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, pseudo_normals
 
-    spacing = _adaptive_spacing(flat, _lfs_estimate(flat, 2000, pseudo_normals(flat)), 10_000)
+    spacing = adaptive_spacing(flat, lfs_estimate(flat, 2000, pseudo_normals(flat)), 10_000)
     rim = np.abs(flat.triangles_center[:, 2]) < 0.05
     assert np.median(spacing[rim]) < 0.6 * np.median(spacing[~rim])
 

@@ -24,21 +24,13 @@ import time
 from typing import Any, Literal
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError, ResourceLimitError
-from medialaxis.mesh._rows import first_of_rows
 from medialaxis.mesh.inputs import load_mesh, shell_labels
-from medialaxis.mesh.sampling import (
-    PseudoNormals,
-    face_spacing_for_count,
-    measure_epsilon,
-    pseudo_normals,
-    sample_surface,
-)
+from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, measure_epsilon, pseudo_normals, sample_surface
 from medialaxis.mesh.signed_distance import SignedDistance
 from medialaxis.mesh.voronoi_complex import THIN_SPACINGS, THIN_SPAN, TOPOLOGY_MODES, medial_complex
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
@@ -61,17 +53,11 @@ VOLUME_TOLERANCE = 2e-3
 #: of radius R sampled at spacing s lie about s / (8 R) deep: 1e-5 keeps them
 #: up to R = 12,500 s; 1e-3 leaves samples covered on the uv ellipsoid again.
 FLAT_DEPTH = 1e-5
-#: Spacing adapts to local feature size within this ratio (finest : coarsest).
-ADAPTIVE_RANGE = 4.0
 #: A circumcentre inside is a medial point when its distance to the mesh is
 #: at least its circumradius minus this many epsilons (the surface cannot
 #: reach further into a ball empty of samples; 2 allows for epsilon being
 #: measured on random points, from below).
 EMPTY_BALL_SLACK = 2.0
-#: Cell of the grids that thin the medial points of the local feature size
-#: estimate, relative to their radius (see :func:`_lfs_estimate`).
-LFS_CELL = 0.1
-
 
 def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | None = None) -> int:
     """Euler characteristic ``V - E + F`` of a simplicial 2-complex.
@@ -98,47 +84,6 @@ def _sample_count(samples: Any, n_vertices: int) -> int:
             f"samples must be between 1000 and {MAX_SAMPLES}, got {samples}"
         )
     return int(samples)
-
-
-def _lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
-    """Tree of approximate medial points (inner and outer) from a coarse sample.
-
-    The coarse sample (about ``count`` points) is the structured sample at a
-    uniform spacing ``h``, thinned to one point per grid cell of size ``h``
-    so that dense meshes (whose vertices are always sampled) stay cheap. The
-    medial points are thinned too, to one per grid cell of ``LFS_CELL``
-    times their radius rounded down to a power of two times ``h`` (at
-    least ``h``), so a distance to them changes by at most
-    ``sqrt(3) LFS_CELL`` of their radius (0.17), which the distance from
-    the surface is at least: they crowd on the axis of rounded parts, where
-    nearest-neighbour queries from the surface, nearly equidistant from
-    them all, cost a k-d tree most (3.3 s instead of 0.3 s for the faces
-    of a 99k-vertex uv ellipsoid).
-    """
-    area = np.asarray(mesh.area_faces, np.float64)
-    h = face_spacing_for_count(area, np.ones(len(area)), count)
-    # About ``count`` points are wanted; far more means needle-like faces.
-    points = sample_surface(mesh, h, normals, limit=len(mesh.vertices) + 100 * count).points
-    dt = tetrahedralise(points[first_of_rows(np.floor(points / h[0]).astype(np.int64))])
-    diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
-    medial = (dt.longest >= 2.0 * h[0]) & (dt.radii < diag) & (6.0 * dt.volume > 1e-6 * h[0] ** 3)
-    if medial.sum() < 4:
-        medial = dt.radii < diag
-    centres = dt.centres[medial]
-    level = np.floor(np.log2(np.maximum(dt.radii[medial], h[0]) / h[0]))
-    cell = (LFS_CELL * h[0]) * 2.0**level
-    key = np.c_[level, np.floor(centres / cell[:, None])].astype(np.int64)
-    return cKDTree(centres[first_of_rows(key)])
-
-
-def _adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:
-    centroids = np.asarray(mesh.triangles_center, np.float64)
-    lfs, _ = tree.query(centroids, workers=-1)
-    area = np.asarray(mesh.area_faces, np.float64)
-    order = np.argsort(lfs)
-    median = lfs[order][np.searchsorted(np.cumsum(area[order]), 0.5 * area.sum())]
-    rel = np.clip(lfs, median / ADAPTIVE_RANGE, median)
-    return face_spacing_for_count(area, rel, count)
 
 
 def _classify_tets(
@@ -332,8 +277,8 @@ def voronoi_medial_axis(
 
     t0 = time.perf_counter()
     normals = pseudo_normals(work)
-    tree = _lfs_estimate(work, max(count // 8, 2000), normals)
-    spacing = _adaptive_spacing(work, tree, count)
+    tree = lfs_estimate(work, max(count // 8, 2000), normals)
+    spacing = adaptive_spacing(work, tree, count)
     smp = sample_surface(work, spacing, normals)
     timings["sampling"] = time.perf_counter() - t0
 
