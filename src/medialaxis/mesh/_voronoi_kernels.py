@@ -103,7 +103,7 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
         count[facet_sides[k]] += 1
     facet_alive = np.ones(n_facets, np.bool_)
     side_alive = np.ones(n_sides, np.bool_)
-    # the heap holds ranks in (length, index) order: plain integers compare faster than tuples
+    # the heap holds ranks in (length, index) order, the order of the (length, index) tuples it held
     order = np.argsort(length, kind="mergesort")
     rank = np.empty(n_facets, np.int64)
     for r in range(n_facets):
@@ -307,7 +307,8 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active
     is the volume of its tetrahedra; ties go to the group met first.
 
     Only the stars of the ``active`` points (a ``(p,)`` bool array) are
-    looked at: those whose tetrahedra changed since the last call.
+    looked at (the caller's: those with a tetrahedron written since its
+    last call).
 
     Returns
     -------

@@ -226,8 +226,9 @@ def check_self_intersection(mesh: Any) -> None:
     # tolerance on orientation determinants (volumes), from the typical edge
     edge = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)
     tol = 1e-9 * float(np.median(edge)) ** 3
-    pairs = _sphere_pairs(tri, np.ascontiguousarray(f))
-    k = first_crossing(tri, np.ascontiguousarray(f), pairs, tol)
+    f = np.ascontiguousarray(f)
+    pairs = _sphere_pairs(tri, f)
+    k = first_crossing(tri, f, pairs, tol)
     if k >= 0:
         i, j = (int(x) for x in pairs[k])
         raise InvalidInputError(

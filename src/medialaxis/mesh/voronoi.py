@@ -59,6 +59,7 @@ FLAT_DEPTH = 1e-5
 #: measured on random points, from below).
 EMPTY_BALL_SLACK = 2.0
 
+
 def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | None = None) -> int:
     """Euler characteristic ``V - E + F`` of a simplicial 2-complex.
 
@@ -304,11 +305,11 @@ def voronoi_medial_axis(
         )
 
     t0 = time.perf_counter()
-    # thin parts narrower than lam keep their sheets
     # A Voronoi ball is empty of samples, so the surface reaches into it by at most epsilon: a
     # circumcentre far nearer the surface than its four samples is not a medial point but the
     # arbitrary centre of a flat tetrahedron (four co-circular samples near a faceted surface)
     medial = (signed < 0) & (dt.radii + signed <= EMPTY_BALL_SLACK * eps)
+    # thin parts narrower than lam keep their sheets
     cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing)
     if len(cx.faces) == 0:
         raise ComputationError(

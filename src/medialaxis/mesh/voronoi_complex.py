@@ -201,11 +201,6 @@ def _by_ends(ends: np.ndarray, n: int) -> np.ndarray:
     return ends[np.argsort(ends[:, 0] * n + ends[:, 1])]
 
 
-def _all_in_ring(ring_ptr: np.ndarray, ring_tets: np.ndarray, flag: np.ndarray) -> np.ndarray:
-    """For each ring: are all its tetrahedra flagged."""
-    return ring_all(ring_ptr, ring_tets, flag)
-
-
 def medial_complex(
     dt: Tetrahedralisation,
     inner: np.ndarray,
@@ -252,7 +247,7 @@ def medial_complex(
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
         inner = unpinch(dt, ring_ptr, ring_tets, inner)
     member = centre_inside if topology == "lambda" else inner
-    keep = _all_in_ring(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
+    keep = ring_all(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, keep)
     length = length[keep]
     wide = length >= lam
@@ -261,7 +256,7 @@ def medial_complex(
         local = np.maximum(spacing[pairs[:, 0]], spacing[pairs[:, 1]])
         ball = np.maximum.reduceat(dt.radii[ring_tets], ring_ptr[:-1]) if len(ring_tets) else np.zeros(0)
         wide |= (length >= THIN_SPACINGS * local) & (length >= THIN_SPAN * ball)
-    certified = wide & _all_in_ring(ring_ptr, ring_tets, centre_inside)
+    certified = wide & ring_all(ring_ptr, ring_tets, centre_inside)
     n_curve = 0
     curve = np.empty((0, 2), np.int64)
     side_id = ring_side_ids(ring_ptr, ring_tets, dt.neighbors)  # the triangle after each ring entry

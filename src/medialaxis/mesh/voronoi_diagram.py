@@ -20,6 +20,7 @@ from medialaxis.mesh.delaunay import delaunay_tetrahedra
 
 __all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings"]
 
+
 @dataclasses.dataclass(frozen=True)
 class Tetrahedralisation:
     """Delaunay tetrahedra of a point set with their circumspheres.
