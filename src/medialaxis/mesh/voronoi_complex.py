@@ -76,7 +76,7 @@ class MedialComplex:
     n_curve_edges: int
 
 
-def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Fan triangulation of each ring polygon from its first vertex.
 
     Returns
@@ -84,18 +84,13 @@ def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarr
     tris : (k, 3) int64 ndarray
     owner : (k,) int64 ndarray
         Ring of each triangle.
-    sides : (r, 2) int64 ndarray
-        Consecutive vertex pairs of every ring (its polygon sides), aligned with ``ring_tets``.
     """
     counts = np.diff(ring_ptr)
     n_tri = np.maximum(counts - 2, 0)
     owner = np.repeat(np.arange(len(counts)), n_tri)
     step = np.arange(n_tri.sum()) - np.repeat(np.cumsum(n_tri) - n_tri, n_tri)
     base = ring_ptr[owner]
-    tris = np.c_[ring_tets[base], ring_tets[base + step + 1], ring_tets[base + step + 2]]
-    nxt = np.arange(len(ring_tets)) + 1
-    nxt[ring_ptr[1:][counts > 0] - 1] = ring_ptr[:-1][counts > 0]
-    return tris, owner, np.c_[ring_tets, ring_tets[nxt]]
+    return np.c_[ring_tets[base], ring_tets[base + step + 1], ring_tets[base + step + 2]], owner
 
 
 def _select(ring_ptr: np.ndarray, ring_tets: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -287,7 +282,7 @@ def medial_complex(
     side_id = side_id[np.repeat(alive, np.diff(ring_ptr))]
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, alive)
     length, certified = length[alive], certified[alive]
-    tris, owner, _ = fan_triangles(ring_ptr, ring_tets)
+    tris, owner = fan_triangles(ring_ptr, ring_tets)
     side_count = np.bincount(side_id, minlength=4 * n_tets)
     border_ids = np.flatnonzero((side_count != 0) & (side_count != 2))
     border = _by_ends(np.c_[border_ids // 4, dt.neighbors.ravel()[border_ids]], n_tets)

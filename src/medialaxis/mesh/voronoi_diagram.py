@@ -18,7 +18,7 @@ from medialaxis.mesh._ring_kernels import edge_order, gather_rings
 from medialaxis.mesh._voronoi_kernels import all_edge_rings, tet_geometry
 from medialaxis.mesh.delaunay import delaunay_tetrahedra
 
-__all__ = ["Tetrahedralisation", "tetrahedralise", "circumspheres", "edge_rings"]
+__all__ = ["Tetrahedralisation", "tetrahedralise", "edge_rings"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -30,7 +30,8 @@ class Tetrahedralisation:
     points : (p, 3) float64 ndarray
     simplices : (t, 4) int64 ndarray
     centres : (t, 3) float64 ndarray
-        Circumcentres (Voronoi vertices); see :func:`circumspheres` for flat tetrahedra.
+        Circumcentres (Voronoi vertices); see
+        :func:`~medialaxis.mesh._voronoi_kernels.tet_geometry` for flat tetrahedra.
     radii : (t,) float64 ndarray
         Circumradii (``inf`` where undefined).
     longest : (t,) float64 ndarray
@@ -48,17 +49,6 @@ class Tetrahedralisation:
     longest: np.ndarray
     volume: np.ndarray
     neighbors: np.ndarray
-
-
-def circumspheres(points: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Circumcentres ``(t, 3)`` and circumradii ``(t,)`` of tetrahedra.
-
-    Flat tetrahedra (zero volume) get the circumcentre of their first three
-    points (on the line of Voronoi vertices they span); fully degenerate
-    ones get ``nan`` centres and ``inf`` radii.
-    """
-    centres, radii, _, _ = tet_geometry(np.ascontiguousarray(points, np.float64), np.asarray(simplices, np.int64))
-    return centres, radii
 
 
 def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
