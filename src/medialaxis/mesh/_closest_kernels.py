@@ -4,7 +4,9 @@
 among a per-query list of candidate triangles (a CSR list), with the Voronoi
 region of the triangle it falls in (a vertex, an edge or the face), so the
 caller can sign the distance with the angle-weighted pseudo-normal
-(Baerentzen and Aanaes 2005). :func:`closest_point_reference` is a
+(Baerentzen and Aanaes 2005). A candidate whose bounding sphere
+(:func:`face_spheres`) lies farther than the best distance found is skipped
+unread. :func:`closest_point_reference` is a
 brute-force NumPy version over every triangle, used by the tests.
 """
 
@@ -14,12 +16,26 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["closest_on_candidates", "closest_point_reference", "REGION_FACE"]
+__all__ = ["closest_on_candidates", "closest_point_reference", "face_spheres", "REGION_FACE"]
 
 #: Region codes: 0, 1, 2 = vertex a, b, c; 3, 4, 5 = edge ab, bc, ca; 6 = face.
 REGION_FACE = 6
 #: Most steps of the local descent from the best face found.
 MAX_WALK = 16
+
+
+def face_spheres(tri_a: np.ndarray, tri_b: np.ndarray, tri_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Bounding sphere of each triangle: centroid, and distance to its farthest corner, padded for rounding.
+
+    Returns
+    -------
+    centre : (f, 3) float64 ndarray
+    reach : (f,) float64 ndarray
+    """
+    centre = (tri_a + tri_b + tri_c) / 3.0
+    reach = np.sqrt(np.max([np.einsum("ij,ij->i", v - centre, v - centre) for v in (tri_a, tri_b, tri_c)], axis=0))
+    scale = float(np.abs(centre).max()) if len(centre) else 0.0
+    return centre, reach * (1.0 + 1e-9) + 1e-12 * scale
 
 
 @njit(cache=True, nogil=True)
@@ -61,7 +77,7 @@ def _closest_on_triangle(px, py, pz, a, b, c):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):  # type: ignore[no-untyped-def]
+def closest_on_candidates(query, tri_a, tri_b, tri_c, centre, reach, near, ring_ptr, ring_idx):  # type: ignore[no-untyped-def]
     """Closest point among the faces around a few given faces, per query.
 
     Parameters
@@ -69,6 +85,9 @@ def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):
     query : (q, 3) float64 ndarray
     tri_a, tri_b, tri_c : (f, 3) float64 ndarray
         Triangle corners.
+    centre : (f, 3) float64 ndarray
+    reach : (f,) float64 ndarray
+        Bounding spheres of the triangles (:func:`face_spheres`).
     near : (q, k) int64 ndarray
         Faces near each query; the candidates are their rings, then the
         rings of the best face found, repeatedly (up to ``MAX_WALK`` steps)
@@ -98,15 +117,18 @@ def closest_on_candidates(query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx):
     for block in prange(n_blocks):
         stamp = np.full(tri_a.shape[0], -1, np.int64)
         for i in range(block * nq // n_blocks, (block + 1) * nq // n_blocks):
-            _closest_one(i, query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx, stamp, point, face, region, dist)
+            _closest_one(
+                i, query, tri_a, tri_b, tri_c, centre, reach, near, ring_ptr, ring_idx, stamp, point, face, region, dist
+            )
     return dist, point, face, region
 
 
 @njit(cache=True, nogil=True)
-def _closest_one(i, query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx, stamp, point, face, region, dist):  # type: ignore[no-untyped-def]
+def _closest_one(i, query, tri_a, tri_b, tri_c, centre, reach, near, ring_ptr, ring_idx, stamp, point, face, region, dist):  # type: ignore[no-untyped-def]
     """One query of :func:`closest_on_candidates` (faces with ``stamp == i`` are skipped, then stamped)."""
     p = query[i]
     best = np.inf
+    best_dist = np.inf
     # scan the rings of the given faces, then walk: scan the ring of the
     # best face found until it no longer changes (local descent on the mesh)
     n_near = near.shape[1]
@@ -124,6 +146,12 @@ def _closest_one(i, query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx, stamp,
             if stamp[f] == i:
                 continue
             stamp[f] = i
+            # no point of the triangle is nearer than its bounding sphere (1.94 -> 1.43 s for
+            # the 2M tetrahedron centroids of the uv ellipsoid; same answers)
+            e0, e1, e2 = p[0] - centre[f, 0], p[1] - centre[f, 1], p[2] - centre[f, 2]
+            bound = best_dist + reach[f]
+            if e0 * e0 + e1 * e1 + e2 * e2 >= bound * bound:
+                continue
             a_, b_, c_ = tri_a[f], tri_b[f], tri_c[f]
             v, w, r = _closest_on_triangle(p[0], p[1], p[2], a_, b_, c_)
             x0 = a_[0] + v * (b_[0] - a_[0]) + w * (c_[0] - a_[0])
@@ -132,6 +160,7 @@ def _closest_one(i, query, tri_a, tri_b, tri_c, near, ring_ptr, ring_idx, stamp,
             d2 = (p[0] - x0) ** 2 + (p[1] - x1) ** 2 + (p[2] - x2) ** 2
             if d2 < best:
                 best = d2
+                best_dist = np.sqrt(d2)
                 point[i, 0], point[i, 1], point[i, 2] = x0, x1, x2
                 face[i] = f
                 region[i] = r

@@ -8,7 +8,7 @@ import numpy as np
 from scipy import sparse
 from scipy.spatial import cKDTree
 
-from medialaxis.mesh._closest_kernels import REGION_FACE, closest_on_candidates
+from medialaxis.mesh._closest_kernels import REGION_FACE, closest_on_candidates, face_spheres
 from medialaxis.mesh.sampling import PseudoNormals, pseudo_normals
 
 __all__ = ["SignedDistance"]
@@ -34,6 +34,7 @@ class SignedDistance:
         self.normals = pseudo_normals(mesh) if normals is None else normals
         tri = self.vertices[self.faces]
         self.corners = tuple(np.ascontiguousarray(tri[:, k]) for k in range(3))
+        self.spheres = face_spheres(*self.corners)
         nf, nv = len(self.faces), len(self.vertices)
         incidence = sparse.csr_matrix(
             (np.ones(3 * nf), (np.repeat(np.arange(nf), 3), self.faces.ravel())), shape=(nf, nv)
@@ -62,6 +63,7 @@ class SignedDistance:
         dist, closest, face, region = closest_on_candidates(
             np.ascontiguousarray(points, np.float64),
             *self.corners,
+            *self.spheres,
             np.ascontiguousarray(near_faces, np.int64),
             *((self.ring_ptr, self.ring_idx) if rings else (self._own_ptr, self._own_idx)),
         )
@@ -93,10 +95,8 @@ class SignedDistance:
         """
         points = np.asarray(points, np.float64)
         if not hasattr(self, "_centroid_tree"):
-            tri = np.stack(self.corners, axis=1)
-            centroid = tri.mean(axis=1)
-            self._centroid_tree = cKDTree(centroid)
-            self._reach = float(np.linalg.norm(tri - centroid[:, None], axis=2).max())
+            self._centroid_tree = cKDTree(self.spheres[0])
+            self._reach = float(self.spheres[1].max())
         n_faces = len(self.faces)
         signed = np.empty(len(points))
         closest = np.empty((len(points), 3))
