@@ -79,8 +79,9 @@ def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore
 
     The members are binned on a grid of side ``cell`` (at least the largest
     sum of two of their radii), so each is compared with those of its own
-    and the 26 surrounding cells only; nothing is materialised for the many
-    pairs of adjacent faces, which share a vertex.
+    and the surrounding cells only, each pair of cells once; nothing is
+    materialised for the many pairs of adjacent faces, which share a vertex.
+    The pairs come in grid order.
     """
     n = members.shape[0]
     key = np.empty(n, np.int64)
@@ -91,6 +92,26 @@ def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore
     # members in cell order, their spheres copied alongside: the inner loop reads memory in sequence
     sorted_key, tri_id = key[order], members[order]
     sc, sr = centre[tri_id], radius[tri_id]
+    heads = np.flatnonzero(np.diff(sorted_key)) + 1
+    n_cells = heads.shape[0] + 1
+    cell_start = np.empty(n_cells + 1, np.int64)
+    cell_start[0], cell_start[n_cells] = 0, n
+    cell_start[1:n_cells] = heads
+    cell_key = sorted_key[cell_start[:n_cells]]
+    # the occupied cells among the 27 around each cell, found once per cell (ascending; -1 ends the list)
+    around = np.full((n_cells, 27), -1, np.int64)
+    for c in prange(n_cells):
+        q = cell_start[c]
+        gx, gy, gz = np.floor(sc[q, 0] / cell), np.floor(sc[q, 1] / cell), np.floor(sc[q, 2] / cell)
+        m = 0
+        for dx in range(-1, 2):
+            for dy in range(-1, 2):
+                for dz in range(-1, 2):
+                    k = _cell_key(gx + dx, gy + dy, gz + dz)
+                    r = np.searchsorted(cell_key, k)
+                    if r < n_cells and cell_key[r] == k:
+                        around[c, m] = r
+                        m += 1
     count = np.zeros(n, np.int64)
     pairs = np.empty((0, 2), np.int64)
     for sweep in range(2):
@@ -98,30 +119,30 @@ def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore
             start = np.zeros(n + 1, np.int64)
             start[1:] = np.cumsum(count)
             pairs = np.empty((start[n], 2), np.int64)
-        for q in prange(n):
-            i = tri_id[q]
-            gx, gy, gz = np.floor(sc[q, 0] / cell), np.floor(sc[q, 1] / cell), np.floor(sc[q, 2] / cell)
-            found = 0
-            for dx in range(-1, 2):
-                for dy in range(-1, 2):
-                    for dz in range(-1, 2):
-                        k = _cell_key(gx + dx, gy + dy, gz + dz)
-                        r = np.searchsorted(sorted_key, k)
-                        while r < n and sorted_key[r] == k:
-                            j = tri_id[r]
-                            d2 = (sc[q, 0] - sc[r, 0]) ** 2 + (sc[q, 1] - sc[r, 1]) ** 2 + (sc[q, 2] - sc[r, 2]) ** 2
-                            reach = sr[q] + sr[r]
-                            r += 1
-                            if j <= i or d2 > reach * reach:
-                                continue
-                            if _boxes_apart(triangles[i], triangles[j]) or _shares_vertex(faces, i, j):
-                                continue
-                            if sweep == 1:
-                                pairs[start[q] + found, 0] = i
-                                pairs[start[q] + found, 1] = j
-                            found += 1
-            if sweep == 0:
-                count[q] = found
+        for c in prange(n_cells):
+            for q in range(cell_start[c], cell_start[c + 1]):
+                i = tri_id[q]
+                found = 0
+                for m in range(27):
+                    other = around[c, m]
+                    if other < 0:
+                        break
+                    if other < c:  # that pair of cells is done from the other one
+                        continue
+                    for r in range(q + 1 if other == c else cell_start[other], cell_start[other + 1]):
+                        j = tri_id[r]
+                        d2 = (sc[q, 0] - sc[r, 0]) ** 2 + (sc[q, 1] - sc[r, 1]) ** 2 + (sc[q, 2] - sc[r, 2]) ** 2
+                        reach = sr[q] + sr[r]
+                        if d2 > reach * reach:
+                            continue
+                        if _boxes_apart(triangles[i], triangles[j]) or _shares_vertex(faces, i, j):
+                            continue
+                        if sweep == 1:
+                            pairs[start[q] + found, 0] = min(i, j)
+                            pairs[start[q] + found, 1] = max(i, j)
+                        found += 1
+                if sweep == 0:
+                    count[q] = found
     return pairs
 
 
