@@ -1,7 +1,7 @@
 """Compiled kernels of the Voronoi medial complex: tetrahedron geometry, Delaunay edge rings, star groups, collapses.
 
 :func:`tet_geometry` gives the circumspheres, longest edges and volumes of
-the Delaunay tetrahedra;
+the Delaunay tetrahedra, :func:`tet_centroids` their centroids;
 :func:`all_edge_rings` walks the tetrahedra around every Delaunay edge (the
 Voronoi facets); :func:`minor_star_groups` finds the tetrahedra that pinch
 the union of the inner ones at a sample point (:func:`~medialaxis.mesh.voronoi_complex.unpinch`);
@@ -17,7 +17,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["all_edge_rings", "collapse_facets", "collapse_free_sides", "minor_star_groups", "tet_geometry"]
+__all__ = ["all_edge_rings", "collapse_facets", "collapse_free_sides", "minor_star_groups", "tet_centroids", "tet_geometry"]
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -67,6 +67,17 @@ def tet_geometry(points, simplices):  # type: ignore[no-untyped-def]
             d = max(d, ex * ex + ey * ey + ez * ez)
         longest[t] = np.sqrt(d)
     return centres, radii, longest, volume
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def tet_centroids(points, simplices):  # type: ignore[no-untyped-def]
+    """Centroids of tetrahedra, the same bits as ``points[simplices].mean(axis=1)`` (0.6 s for 2M in NumPy)."""
+    out = np.empty((simplices.shape[0], 3))
+    for t in prange(simplices.shape[0]):
+        a, b, c, d = simplices[t, 0], simplices[t, 1], simplices[t, 2], simplices[t, 3]
+        for k in range(3):
+            out[t, k] = (((points[a, k] + points[b, k]) + points[c, k]) + points[d, k]) / 4.0
+    return out
 
 
 @njit(cache=True, nogil=True)

@@ -29,10 +29,11 @@ from medialaxis.core.arrays import unique_ints
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError, ResourceLimitError
+from medialaxis.mesh._voronoi_kernels import tet_centroids
 from medialaxis.mesh.inputs import load_mesh, shell_labels
 from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, measure_epsilon, pseudo_normals, sample_surface
 from medialaxis.mesh.signed_distance import SignedDistance
-from medialaxis.mesh.voronoi_complex import THIN_SPACINGS, THIN_SPAN, TOPOLOGY_MODES, medial_complex
+from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, medial_complex
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
@@ -87,41 +88,18 @@ def _sample_count(samples: Any, n_vertices: int) -> int:
     return int(samples)
 
 
-def _classify_tets(
-    dt: Any, smp: Any, sd: SignedDistance, diag: float, lam: float, tolerance: float, spacing: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inner tetrahedra (centroid inside), and the signed distance of the circumcentres that may matter.
+def _inner_tets(dt: Any, smp: Any, sd: SignedDistance, tolerance: float) -> np.ndarray:
+    """Inner tetrahedra: centroid deeper than ``tolerance`` and than ``FLAT_DEPTH`` times the longest edge.
 
-    Returns
-    -------
-    inner : (t,) bool ndarray
-        Centroid deeper than ``tolerance`` and than ``FLAT_DEPTH`` times the
-        longest edge inside the mesh. Flat tetrahedra lying on a face of the
-        mesh are not inner, nor those lying on a nearly flat part of it: on
-        the cap of a uv sphere, stacks of them with three nearly collinear
-        samples are a hair inside, cover samples of the cap (every
-        tetrahedron around such a sample is inner, its Voronoi cell is
-        closed and the medial complex gains a void: 57 on a 224 x 224 uv
-        ellipsoid) and bring circumcentres from far away.
-    centre_signed : (t,) float64 ndarray
-        Signed distance of the circumcentre (negative inside) for tetrahedra
-        with a bounded circumsphere and an edge of at least ``lam`` or one
-        that may span a thin part (see
-        :func:`~medialaxis.mesh.voronoi_complex.medial_complex`), ``inf``
-        for the others.
-    closest : (t, 3) float64 ndarray
-        Closest surface point of those circumcentres (``nan`` elsewhere).
+    Flat tetrahedra lying on a face of the mesh are not inner, nor those
+    lying on a nearly flat part of it: on the cap of a uv sphere, stacks of
+    them with three nearly collinear samples are a hair inside, cover
+    samples of the cap (every tetrahedron around such a sample is inner, its
+    Voronoi cell is closed and the medial complex gains a void: 57 on a
+    224 x 224 uv ellipsoid) and bring circumcentres from far away.
     """
-    near = smp.face[dt.simplices]
-    centroid_signed, _ = sd.query(dt.points[dt.simplices].mean(axis=1), near)
-    n = len(dt.simplices)
-    centre_signed = np.full(n, np.inf)
-    closest = np.full((n, 3), np.nan)
-    thin = (dt.longest >= THIN_SPAN * dt.radii) & (dt.longest >= THIN_SPACINGS * spacing[dt.simplices].min(axis=1))
-    long = np.flatnonzero(((dt.longest >= lam) | thin) & (dt.radii < diag))
-    centre_signed[long], closest[long] = sd.query(dt.centres[long], near[long])
-    inner = centroid_signed < -np.maximum(tolerance, FLAT_DEPTH * dt.longest)
-    return inner, centre_signed, closest
+    centroid_signed, _ = sd.query(tet_centroids(dt.points, dt.simplices), smp.face[dt.simplices])
+    return centroid_signed < -np.maximum(tolerance, FLAT_DEPTH * dt.longest)
 
 
 def voronoi_medial_axis(
@@ -295,7 +273,7 @@ def voronoi_medial_axis(
     t0 = time.perf_counter()
     sd = SignedDistance(work, normals)
     point_spacing = np.asarray(spacing)[smp.face]  # that of its face (a sample on an edge takes one of them)
-    inner, signed, closest = _classify_tets(dt, smp, sd, diag, lam_used, 1e-6 * float(spacing.min()), point_spacing)
+    inner = _inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
     timings["inside"] = time.perf_counter() - t0
     union_volume = float(dt.volume[inner].sum())
     if abs(union_volume - src.mesh.volume) > VOLUME_TOLERANCE * src.mesh.volume:
@@ -305,10 +283,22 @@ def voronoi_medial_axis(
         )
 
     t0 = time.perf_counter()
-    # A Voronoi ball is empty of samples, so the surface reaches into it by at most epsilon: a
-    # circumcentre far nearer the surface than its four samples is not a medial point but the
-    # arbitrary centre of a flat tetrahedron (four co-circular samples near a faceted surface)
-    medial = (signed < 0) & (dt.radii + signed <= EMPTY_BALL_SLACK * eps)
+    n_tets = len(dt.simplices)
+    signed = np.full(n_tets, np.inf)  # of the circumcentres queried (negative inside)
+    closest = np.full((n_tets, 3), np.nan)
+
+    def medial(tets: np.ndarray) -> np.ndarray:
+        """Circumcentres inside, bounded, and at least as far from the mesh as their samples, up to epsilon."""
+        bounded = dt.radii[tets] < diag
+        ask = tets[bounded]
+        signed[ask], closest[ask] = sd.query(dt.centres[ask], smp.face[dt.simplices[ask]])
+        # A Voronoi ball is empty of samples, so the surface reaches into it by at most epsilon: a
+        # circumcentre far nearer the surface than its four samples is not a medial point but the
+        # arbitrary centre of a flat tetrahedron (four co-circular samples near a faceted surface)
+        out = np.zeros(len(tets), bool)
+        out[bounded] = (signed[ask] < 0) & (dt.radii[ask] + signed[ask] <= EMPTY_BALL_SLACK * eps)
+        return out
+
     # thin parts narrower than lam keep their sheets
     cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing)
     if len(cx.faces) == 0:

@@ -22,6 +22,7 @@ in ``metadata["n_filling_faces"]``.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
@@ -199,7 +200,7 @@ def _by_ends(ends: np.ndarray, n: int) -> np.ndarray:
 def medial_complex(
     dt: Tetrahedralisation,
     inner: np.ndarray,
-    centre_inside: np.ndarray,
+    centre_inside: Callable[[np.ndarray], np.ndarray],
     lam: float,
     topology: Literal["preserve", "lambda"] = "preserve",
     spacing: np.ndarray | None = None,
@@ -212,8 +213,13 @@ def medial_complex(
     inner : (t,) bool ndarray
         Tetrahedra whose centroid lies strictly inside the solid (their
         union is the solid, up to the sampling); used by ``"preserve"``.
-    centre_inside : (t,) bool ndarray
-        Tetrahedra whose circumcentre (Voronoi vertex) lies inside the solid.
+    centre_inside : callable
+        ``centre_inside(tets)``: bool ndarray, for the given tetrahedra,
+        whether their circumcentre (Voronoi vertex) is a medial point inside
+        the solid. Called only for the tetrahedra that matter (those of
+        facets at least ``lam`` wide, or spanning a thin part; all those with
+        an edge of at least ``lam`` for ``"lambda"``): the test is an exact
+        closest-point query, and most tetrahedra need none.
     lam : float
         Smallest contact-set width (Delaunay edge length) of a kept facet.
     topology : {"preserve", "lambda"}
@@ -235,13 +241,15 @@ def medial_complex(
     if topology not in TOPOLOGY_MODES:
         raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
     n_tets = len(dt.simplices)
+    medial = np.zeros(n_tets, bool)
     if topology == "lambda":
         tets = np.flatnonzero(dt.longest >= lam)
+        medial[tets] = centre_inside(tets)
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, tets, lam)
     else:
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
         inner = unpinch(dt, ring_ptr, ring_tets, inner)
-    member = centre_inside if topology == "lambda" else inner
+    member = medial if topology == "lambda" else inner
     keep = ring_all(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, keep)
     length = length[keep]
@@ -251,7 +259,10 @@ def medial_complex(
         local = np.maximum(spacing[pairs[:, 0]], spacing[pairs[:, 1]])
         ball = np.maximum.reduceat(dt.radii[ring_tets], ring_ptr[:-1]) if len(ring_tets) else np.zeros(0)
         wide |= (length >= THIN_SPACINGS * local) & (length >= THIN_SPAN * ball)
-    certified = wide & ring_all(ring_ptr, ring_tets, centre_inside)
+    if topology != "lambda":
+        tets = unique_ints(ring_tets[np.repeat(wide, np.diff(ring_ptr))])
+        medial[tets] = centre_inside(tets)
+    certified = wide & ring_all(ring_ptr, ring_tets, medial)
     n_curve = 0
     curve = np.empty((0, 2), np.int64)
     side_id = ring_side_ids(ring_ptr, ring_tets, dt.neighbors)  # the triangle after each ring entry
