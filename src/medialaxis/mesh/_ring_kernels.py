@@ -13,7 +13,18 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["ring_side_ids", "csr_transpose", "ring_rises", "ring_all", "edge_order", "gather_rings"]
+__all__ = [
+    "ring_side_ids",
+    "csr_transpose",
+    "ring_rises",
+    "ring_all",
+    "ring_max",
+    "edge_order",
+    "gather_rings",
+    "flagged_sides",
+    "take",
+    "odd_sides",
+]
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -129,3 +140,83 @@ def gather_rings(ring_ptr, ring_tets, rows):  # type: ignore[no-untyped-def]
         for q in range(ptr[k + 1] - ptr[k]):
             out[ptr[k] + q] = ring_tets[src + q]
     return ptr, out
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def ring_max(ring_ptr, ring_tets, values):  # type: ignore[no-untyped-def]
+    """Largest ``values`` of each ring's tetrahedra (``-inf`` for an empty ring)."""
+    n = ring_ptr.shape[0] - 1
+    out = np.full(n, -np.inf)
+    for r in prange(n):
+        for q in range(ring_ptr[r], ring_ptr[r + 1]):
+            out[r] = max(out[r], values[ring_tets[q]])
+    return out
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def flagged_sides(neighbors, flag):  # type: ignore[no-untyped-def]
+    """Triangles shared by two flagged tetrahedra, numbered by their id ``4 * lo + k`` (see :func:`ring_side_ids`).
+
+    Returns
+    -------
+    slot : (4 t,) int64 ndarray
+        Number of each triangle id, -1 where the triangle is not such a side.
+    ends : (s, 2) int64 ndarray
+        The two tetrahedra of each side, the lower first.
+    """
+    n = neighbors.shape[0]
+    n_blocks = max(1, min(n, 256))
+    count = np.zeros(n_blocks + 1, np.int64)
+    for b in prange(n_blocks):
+        c = 0
+        for t in range(b * n // n_blocks, (b + 1) * n // n_blocks):
+            if flag[t]:
+                for k in range(4):
+                    u = neighbors[t, k]
+                    if u > t and flag[u]:
+                        c += 1
+        count[b + 1] = c
+    for b in range(n_blocks):
+        count[b + 1] += count[b]
+    slot = np.empty(4 * n, np.int64)
+    ends = np.empty((count[n_blocks], 2), np.int64)
+    for b in prange(n_blocks):
+        c = count[b]
+        for t in range(b * n // n_blocks, (b + 1) * n // n_blocks):
+            for k in range(4):
+                u = neighbors[t, k]
+                if flag[t] and u > t and flag[u]:
+                    slot[4 * t + k] = c
+                    ends[c, 0], ends[c, 1] = t, u
+                    c += 1
+                else:
+                    slot[4 * t + k] = -1
+    return slot, ends
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def take(values, index):  # type: ignore[no-untyped-def]
+    """``values[index]`` for a 1-d ``values``, on all cores (a random gather of millions)."""
+    out = np.empty(index.shape[0], values.dtype)
+    for q in prange(index.shape[0]):
+        out[q] = values[index[q]]
+    return out
+
+
+@njit(cache=True, nogil=True)
+def odd_sides(side_id, n_ids):  # type: ignore[no-untyped-def]
+    """Ids in ``[0, n_ids)`` met neither zero times nor twice in ``side_id``, ascending."""
+    seen = np.zeros(n_ids, np.uint8)  # a triangle lies on three Delaunay edges: at most three rings
+    for q in range(side_id.shape[0]):
+        seen[side_id[q]] += 1
+    n = 0
+    for i in range(n_ids):
+        if seen[i] != 0 and seen[i] != 2:
+            n += 1
+    out = np.empty(n, np.int64)
+    n = 0
+    for i in range(n_ids):
+        if seen[i] != 0 and seen[i] != 2:
+            out[n] = i
+            n += 1
+    return out

@@ -29,7 +29,17 @@ import numpy as np
 
 from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
-from medialaxis.mesh._ring_kernels import csr_transpose, gather_rings, ring_all, ring_rises, ring_side_ids
+from medialaxis.mesh._ring_kernels import (
+    csr_transpose,
+    flagged_sides,
+    gather_rings,
+    odd_sides,
+    ring_all,
+    ring_max,
+    ring_rises,
+    ring_side_ids,
+    take,
+)
 from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides, minor_star_groups
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 
@@ -257,7 +267,7 @@ def medial_complex(
     if spacing is not None:
         pairs = edge_ij[keep]
         local = np.maximum(spacing[pairs[:, 0]], spacing[pairs[:, 1]])
-        ball = np.maximum.reduceat(dt.radii[ring_tets], ring_ptr[:-1]) if len(ring_tets) else np.zeros(0)
+        ball = ring_max(ring_ptr, ring_tets, dt.radii)
         wide |= (length >= THIN_SPACINGS * local) & (length >= THIN_SPAN * ball)
     if topology != "lambda":
         tets = unique_ints(ring_tets[np.repeat(wide, np.diff(ring_ptr))])
@@ -268,21 +278,18 @@ def medial_complex(
     side_id = ring_side_ids(ring_ptr, ring_tets, dt.neighbors)  # the triangle after each ring entry
     if topology == "preserve":
         # Sides of D: triangles shared by two inner tetrahedra, as 4 * tet + face (the lower tetrahedron's face).
-        nb = dt.neighbors
-        ids = np.flatnonzero((nb > np.arange(n_tets)[:, None]) & inner[:, None] & inner[np.maximum(nb, 0)])
-        side_ends = np.c_[ids // 4, nb.ravel()[ids]]
-        slot = np.full(4 * n_tets, -1, np.int64)
-        slot[ids] = np.arange(len(ids))
-        facet_sides = slot[side_id]
+        slot, side_ends = flagged_sides(dt.neighbors, inner)
+        facet_sides = take(slot, side_id)
+        n_sides = len(side_ends)
         # facets numbered by collapse order (length, then index): the collapse then reads them
         # nearly in sequence (1.7 -> 1.1 s on 1.5M facets); the result is the same
         by_length = np.argsort(length, kind="stable")
         fptr, fsides = gather_rings(ring_ptr, facet_sides, by_length)
-        sptr, sidx = csr_transpose(fptr, fsides, len(ids))
+        sptr, sidx = csr_transpose(fptr, fsides, n_sides)
         alive_sorted, side_alive = collapse_facets(fptr, fsides, sptr, sidx, length[by_length], certified[by_length])
         facet_alive = np.empty_like(alive_sorted)
         facet_alive[by_length] = alive_sorted
-        side_used = np.zeros(len(ids), bool)
+        side_used = np.zeros(n_sides, bool)
         side_used[facet_sides[np.repeat(facet_alive, np.diff(ring_ptr))]] = True
         side_alive = collapse_free_sides(side_alive, side_used, side_ends, n_tets)
         curve = _by_ends(side_ends[side_alive & ~side_used], n_tets)
@@ -294,8 +301,7 @@ def medial_complex(
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, alive)
     length, certified = length[alive], certified[alive]
     tris, owner = fan_triangles(ring_ptr, ring_tets)
-    side_count = np.bincount(side_id, minlength=4 * n_tets)
-    border_ids = np.flatnonzero((side_count != 0) & (side_count != 2))
+    border_ids = odd_sides(side_id, 4 * n_tets)
     border = _by_ends(np.c_[border_ids // 4, dt.neighbors.ravel()[border_ids]], n_tets)
     used = unique_ints(np.concatenate([ring_tets, curve.ravel()]))
     new_index = np.full(n_tets, -1, np.int64)
