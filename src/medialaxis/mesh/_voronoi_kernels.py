@@ -307,7 +307,7 @@ def _root(parent, a):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
-def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active):  # type: ignore[no-untyped-def]
+def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, written):  # type: ignore[no-untyped-def]
     """Flagged tetrahedra in a group that is not the largest of some point's star.
 
     Around each sample point, two flagged tetrahedra are in one group when a
@@ -317,9 +317,9 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active
     flagged cell around each hull point, of infinite volume. A group's size
     is the volume of its tetrahedra; ties go to the group met first.
 
-    Only the stars of the ``active`` points (a ``(p,)`` bool array) are
-    looked at (the caller's: those with a tetrahedron written since its
-    last call).
+    Only the stars of the points of ``written`` tetrahedra (a ``(t,)`` bool
+    array: the caller's, those written since its last call) are looked at,
+    and only the tetrahedra with a corner among them get nodes.
 
     Returns
     -------
@@ -327,16 +327,21 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active
         The flagged tetrahedra outside the largest group at one of their active corners.
     """
     n_tets = simplices.shape[0]
+    active = np.zeros(n_points, np.bool_)
+    for t in range(n_tets):
+        if written[t]:
+            for c in range(4):
+                active[simplices[t, c]] = True
     rank = np.full(n_tets, -1, np.int64)
     m = 0
     for t in range(n_tets):
-        if flag[t]:
+        if flag[t] and (active[simplices[t, 0]] or active[simplices[t, 1]] or active[simplices[t, 2]] or active[simplices[t, 3]]):
             rank[t] = m
             m += 1
     n_nodes = 4 * m + (n_points if hull else 0)
     parent = np.arange(n_nodes)
     for t in range(n_tets):
-        if not flag[t]:
+        if rank[t] < 0:
             continue
         for k in range(4):
             nb = neighbors[t, k]
@@ -360,7 +365,7 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active
                     parent[max(a, b)] = min(a, b)
     size = np.zeros(n_nodes)
     for t in range(n_tets):
-        if flag[t]:
+        if rank[t] >= 0:
             for c in range(4):
                 size[_root(parent, 4 * rank[t] + c)] += volume[t]
     if hull:
@@ -369,7 +374,7 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active
                 size[_root(parent, 4 * m + p)] = np.inf
     best = np.full(n_points, -1, np.int64)
     for t in range(n_tets):
-        if flag[t]:
+        if rank[t] >= 0:
             for c in range(4):
                 p = simplices[t, c]
                 if not active[p]:
@@ -379,7 +384,7 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, active
                     best[p] = r
     minor = np.zeros(n_tets, np.bool_)
     for t in range(n_tets):
-        if flag[t]:
+        if rank[t] >= 0:
             for c in range(4):
                 if active[simplices[t, c]] and _root(parent, 4 * rank[t] + c) != best[simplices[t, c]]:
                     minor[t] = True

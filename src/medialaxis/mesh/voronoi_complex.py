@@ -147,15 +147,13 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
         pinched = np.flatnonzero(ring_rises(ring_ptr, ring_tets, inner) >= 2)
         # around a point, the inner tetrahedra must be one group and the
         # outer ones one group: drop inner strays, fill outer pockets
-        active = _corners_of(dt, written_stray)
+        stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False, written_stray)
         written_stray[:] = False
-        stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False, active)
         inner[stray] = False
         written_stray |= stray
         written_pocket |= stray
-        active = _corners_of(dt, written_pocket)
+        pocket = minor_star_groups(dt.simplices, dt.neighbors, ~inner, volume, len(dt.points), True, written_pocket)
         written_pocket[:] = False
-        pocket = minor_star_groups(dt.simplices, dt.neighbors, ~inner, volume, len(dt.points), True, active)
         inner[pocket] = True
         written_stray |= pocket
         written_pocket |= pocket
@@ -174,13 +172,6 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
         written_stray |= inner != before
         written_pocket |= inner != before
     return inner
-
-
-def _corners_of(dt: Tetrahedralisation, tets: np.ndarray) -> np.ndarray:
-    """Which sample points are corners of the flagged tetrahedra."""
-    out = np.zeros(len(dt.points), bool)
-    out[dt.simplices[tets]] = True
-    return out
 
 
 def _gaps(flag: np.ndarray) -> list[np.ndarray]:
