@@ -7,18 +7,24 @@ install run by a user without a writable home, a read-only container). Then
 the kernels are cached in a private folder under the system's temporary
 directory, and if even that cannot be written they are compiled in memory
 on first use (slower start, same results).
+
+:class:`Beside` runs a function on a second thread while the caller runs a
+serial kernel, where numba's threading layer lets two threads launch
+parallel kernels at once.
 """
 
 from __future__ import annotations
 
 import os
 import tempfile
+import threading
 from collections.abc import Callable
 from typing import Any
 
 import numba
+import numpy as np
 
-__all__ = ["njit", "prange"]
+__all__ = ["njit", "prange", "Beside", "concurrent_kernels"]
 
 prange = numba.prange
 
@@ -60,3 +66,53 @@ def njit(*args: Any, **options: Any) -> Any:
         return numba.njit(*args, **{**options, "cache": False})(fn)
 
     return decorate
+
+
+@njit(parallel=True, cache=True)
+def _touch(n: int) -> int:  # pragma: no cover - compiled
+    total = 0
+    for i in prange(n):
+        total += i
+    return total
+
+
+def concurrent_kernels() -> bool:
+    """Whether two threads may run parallel kernels at once: numba's ``omp`` and ``tbb`` layers allow it,
+    ``workqueue`` aborts the process."""
+    _touch(np.int64(2))  # the layer is chosen at the first parallel launch
+    return numba.threading_layer() in ("omp", "tbb")
+
+
+class Beside:
+    """``fn(*args)`` on a daemon thread, or at once when :func:`concurrent_kernels` says no.
+
+    :meth:`result` waits for it and returns its value or raises its
+    exception. Meant for work that overlaps a long serial kernel of the
+    caller (the Delaunay insertion), on the core that kernel leaves idle:
+    its own parallel kernels run on one thread.
+    """
+
+    def __init__(self, fn: Callable[..., Any], *args: Any) -> None:
+        self._value: Any = None
+        self._error: BaseException | None = None
+        self._thread: threading.Thread | None = None
+        if concurrent_kernels():
+            self._thread = threading.Thread(target=self._run, args=(fn, args), daemon=True)
+            self._thread.start()
+        else:
+            self._run(fn, args)
+
+    def _run(self, fn: Callable[..., Any], args: tuple[Any, ...]) -> None:
+        try:
+            if self._thread is not None:
+                numba.set_num_threads(1)  # per thread: leave the other cores to the caller
+            self._value = fn(*args)
+        except BaseException as exc:  # handed to the caller by result()
+            self._error = exc
+
+    def result(self) -> Any:
+        if self._thread is not None:
+            self._thread.join()
+        if self._error is not None:
+            raise self._error
+        return self._value

@@ -264,7 +264,7 @@ def _drop_bad_faces(vertices: np.ndarray, faces: np.ndarray, repairs: list[str])
     return faces
 
 
-def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> MeshInput:
+def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, crossing: bool = True) -> MeshInput:
     """Read and check a mesh.
 
     Parameters
@@ -275,6 +275,9 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> Me
     repair : bool
         Try to close small holes (``trimesh.repair.fill_holes``) before
         refusing a non-watertight mesh; the repair is reported.
+    crossing : bool
+        Run :func:`check_self_intersection` on a watertight mesh (``False``:
+        the caller runs it, e.g. beside other work).
 
     Raises
     ------
@@ -342,5 +345,6 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False) -> Me
         if not work.volume > 0:
             raise EmptyShapeError(f"the mesh encloses no volume (volume {work.volume:.3g})")
         check_shells(work)
-        check_self_intersection(work)
+        if crossing:
+            check_self_intersection(work)
     return MeshInput(work, tuple(repairs))
