@@ -10,7 +10,7 @@ from mesh_balls import interpolated_balls
 import medialaxis as mx
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.mesh._closest_kernels import closest_on_candidates, closest_point_reference, face_spheres
-from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides
+from medialaxis.mesh._collapse_kernels import collapse_facets, collapse_free_sides
 from medialaxis.mesh.voronoi import euler_characteristic, voronoi_medial_axis
 
 

@@ -1,4 +1,4 @@
-"""Compiled kernels of the Voronoi medial complex: tetrahedron geometry, Delaunay edge rings, star groups, collapses.
+"""Compiled kernels of the Voronoi medial complex: tetrahedron geometry, Delaunay edge rings, star groups.
 
 :func:`tet_geometry` gives the circumspheres, longest edges and volumes of
 the Delaunay tetrahedra, :func:`tet_centroids` their centroids;
@@ -11,13 +11,11 @@ complex through free faces (:func:`~medialaxis.mesh.voronoi_complex.medial_compl
 
 from __future__ import annotations
 
-import heapq
-
 import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["all_edge_rings", "collapse_facets", "collapse_free_sides", "minor_star_groups", "tet_centroids", "tet_geometry"]
+__all__ = ["all_edge_rings", "minor_star_groups", "tet_centroids", "tet_geometry"]
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -78,136 +76,6 @@ def tet_centroids(points, simplices):  # type: ignore[no-untyped-def]
         for k in range(3):
             out[t, k] = (((points[a, k] + points[b, k]) + points[c, k]) + points[d, k]) / 4.0
     return out
-
-
-@njit(cache=True, nogil=True)
-def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, length, protected):  # type: ignore[no-untyped-def]
-    """Topology-preserving collapse of a 2-complex of polygons, shortest contacts first.
-
-    An unprotected facet is removed together with one of its free sides (a
-    side no other present facet uses): an elementary collapse, which keeps
-    the homotopy type. Protected facets are never removed. Candidates are
-    taken by increasing ``length``.
-
-    Parameters
-    ----------
-    facet_ptr : (f + 1,) int64 ndarray
-    facet_sides : (r,) int64 ndarray
-        Side ids of facet ``k``: ``facet_sides[facet_ptr[k]:facet_ptr[k + 1]]``.
-    side_facet_ptr, side_facet_idx : int64 ndarray
-        The transposed incidence (facets of each side).
-    length : (f,) float64 ndarray
-        Removal priority (smallest first).
-    protected : (f,) bool ndarray
-
-    Returns
-    -------
-    facet_alive : (f,) bool ndarray
-    side_alive : (s,) bool ndarray
-        Sides removed by a collapse are dead; the others stay (as 1D edges
-        when no facet uses them any more).
-    """
-    n_facets = facet_ptr.shape[0] - 1
-    n_sides = side_facet_ptr.shape[0] - 1
-    count = np.zeros(n_sides, np.int64)
-    for k in range(facet_sides.shape[0]):
-        count[facet_sides[k]] += 1
-    facet_alive = np.ones(n_facets, np.bool_)
-    side_alive = np.ones(n_sides, np.bool_)
-    # the heap holds ranks in (length, index) order, the order of the (length, index) tuples it held
-    order = np.argsort(length, kind="mergesort")
-    rank = np.empty(n_facets, np.int64)
-    for r in range(n_facets):
-        rank[order[r]] = r
-    heap = [np.int64(0)]
-    heap.pop()
-    for f in range(n_facets):
-        if not protected[f]:
-            for k in range(facet_ptr[f], facet_ptr[f + 1]):
-                if count[facet_sides[k]] == 1:
-                    heap.append(rank[f])
-                    break
-    heapq.heapify(heap)
-    while len(heap) > 0:
-        f = order[heapq.heappop(heap)]
-        if not facet_alive[f]:
-            continue
-        free = -1
-        for k in range(facet_ptr[f], facet_ptr[f + 1]):
-            s = facet_sides[k]
-            if side_alive[s] and count[s] == 1:
-                free = s
-                break
-        if free < 0:
-            continue
-        facet_alive[f] = False
-        side_alive[free] = False
-        for k in range(facet_ptr[f], facet_ptr[f + 1]):
-            s = facet_sides[k]
-            count[s] -= 1
-            if side_alive[s] and count[s] == 1:
-                for j in range(side_facet_ptr[s], side_facet_ptr[s + 1]):
-                    g = side_facet_idx[j]
-                    if facet_alive[g] and not protected[g]:
-                        heapq.heappush(heap, rank[g])
-    return facet_alive, side_alive
-
-
-@njit(cache=True, nogil=True)
-def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: ignore[no-untyped-def]
-    """Remove dangling 1D sides (no facet) ending at a vertex of degree one, repeatedly.
-
-    Parameters
-    ----------
-    side_alive : (s,) bool ndarray
-    side_used : (s,) bool ndarray
-        True where a remaining facet uses the side (never removed).
-    side_ends : (s, 2) int64 ndarray
-    n_vertices : int
-
-    Returns
-    -------
-    (s,) bool ndarray
-        The sides still present.
-    """
-    alive = side_alive.copy()
-    degree = np.zeros(n_vertices, np.int64)
-    for s in range(alive.shape[0]):
-        if alive[s]:
-            degree[side_ends[s, 0]] += 1
-            degree[side_ends[s, 1]] += 1
-    # vertex -> sides incidence
-    ptr = np.zeros(n_vertices + 1, np.int64)
-    for s in range(alive.shape[0]):
-        ptr[side_ends[s, 0] + 1] += 1
-        ptr[side_ends[s, 1] + 1] += 1
-    for v in range(n_vertices):
-        ptr[v + 1] += ptr[v]
-    fill = ptr[:-1].copy()
-    inc = np.empty(ptr[-1], np.int64)
-    for s in range(alive.shape[0]):
-        for e in range(2):
-            v = side_ends[s, e]
-            inc[fill[v]] = s
-            fill[v] += 1
-    stack = [np.int64(v) for v in range(n_vertices) if degree[v] == 1]
-    while len(stack) > 0:
-        v = stack.pop()
-        if degree[v] != 1:
-            continue
-        for j in range(ptr[v], ptr[v + 1]):
-            s = inc[j]
-            if alive[s]:
-                if side_used[s]:
-                    break
-                alive[s] = False
-                for e in range(2):
-                    w = side_ends[s, e]
-                    degree[w] -= 1
-                    if degree[w] == 1:
-                        stack.append(w)
-                break
-    return alive
 
 
 @njit(cache=True, nogil=True)

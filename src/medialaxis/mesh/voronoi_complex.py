@@ -29,6 +29,7 @@ import numpy as np
 
 from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
+from medialaxis.mesh._collapse_kernels import collapse_facets, collapse_free_sides
 from medialaxis.mesh._ring_kernels import (
     csr_transpose,
     flagged_sides,
@@ -40,7 +41,7 @@ from medialaxis.mesh._ring_kernels import (
     ring_side_ids,
     take,
 )
-from medialaxis.mesh._voronoi_kernels import collapse_facets, collapse_free_sides, minor_star_groups
+from medialaxis.mesh._voronoi_kernels import minor_star_groups
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 
 __all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "TOPOLOGY_MODES"]
