@@ -98,7 +98,9 @@ def _optimum(qa, qb, qc, s1, s2, reg):  # type: ignore[no-untyped-def]
     return s, max(cost, 0.0)
 
 
-def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = None) -> MedialAxis:
+def simplify_medial_mesh(
+    ma: MedialAxis, simplify: int | float, surface: Any = None, signed: Any = None
+) -> MedialAxis:
     """Reduce a medial mesh to fewer spheres by edge collapses of least spherical quadric error.
 
     Parameters
@@ -122,6 +124,8 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
         before the first whose root quadric error exceeds the bound.
     surface : trimesh.Trimesh, optional
         The input surface, for the Hausdorff distance (default ``ma.shape``).
+    signed : SignedDistance, optional
+        Of ``surface``, when the caller has one (made here otherwise).
 
     Returns
     -------
@@ -165,9 +169,9 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     metadata = dict(ma.metadata, simplified=True, diagonal=diag)
     if isinstance(simplify, (int, np.integer)):
         parts = _reduce(ma, int(simplify), None, sample)
-        errors = two_sided_distance(*parts, surface, sample) if measured else None
+        errors = two_sided_distance(*parts, surface, sample, signed=signed) if measured else None
     elif measured:
-        parts, errors = _fewest(ma, float(simplify) * diag, surface, sample)
+        parts, errors = _fewest(ma, float(simplify) * diag, surface, sample, signed)
         metadata["target_met"] = max(errors) <= float(simplify) * diag
     else:
         parts, errors = _reduce(ma, 1, float(simplify) * diag, None), None
@@ -179,7 +183,9 @@ def simplify_medial_mesh(ma: MedialAxis, simplify: int | float, surface: Any = N
     return MedialAxis(centres, radii, curve, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
 
 
-def _fewest(ma: MedialAxis, bound: float, surface: Any, sample: Any) -> tuple[tuple, tuple[float, float]]:
+def _fewest(
+    ma: MedialAxis, bound: float, surface: Any, sample: Any, signed: Any = None
+) -> tuple[tuple, tuple[float, float]]:
     """The fewest spheres (to a tenth) whose two-sided error is at most ``bound``: doubling, then bisection.
 
     The search goes up to twice the spheres ``ma`` holds (those past its
@@ -189,7 +195,7 @@ def _fewest(ma: MedialAxis, bound: float, surface: Any, sample: Any) -> tuple[tu
     from medialaxis.mesh.signed_distance import SignedDistance
 
     tried: dict[int, tuple[tuple, tuple[float, float]]] = {}
-    signed = SignedDistance(surface)  # one for every count tried
+    signed = SignedDistance(surface) if signed is None else signed  # one for every count tried
 
     def error(k: int) -> float:
         if k not in tried:

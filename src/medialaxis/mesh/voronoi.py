@@ -385,4 +385,4 @@ def voronoi_medial_axis(
         return result
     from medialaxis.mesh.qmat import simplify_medial_mesh
 
-    return simplify_medial_mesh(result, simplify, surface=src.mesh)
+    return simplify_medial_mesh(result, simplify, surface=src.mesh, signed=sd)
