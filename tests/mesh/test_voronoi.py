@@ -270,6 +270,25 @@ def test_closest_point_kernel_matches_brute_force():
     assert np.allclose(np.linalg.norm(q - point, axis=1), dist)
 
 
+def test_exact_signed_distance_matches_brute_force_where_many_faces_are_nearly_equidistant():
+    # points on the axis of a faceted surface of revolution (whole rings of faces nearly equidistant),
+    # deep inside it and outside: distance against a brute force over every face, sign against
+    # trimesh's own containment test
+    from medialaxis.mesh.signed_distance import SignedDistance
+
+    mesh = trimesh.creation.uv_sphere(radius=1.0, count=[64, 64])
+    mesh.apply_scale([3, 1, 1])
+    rng = np.random.default_rng(1)
+    on_axis = np.c_[rng.uniform(-2.5, 2.5, 200), np.zeros((200, 2))]
+    inside = rng.uniform(-0.9, 0.9, (200, 3)) * [3, 1, 1]
+    outside = rng.normal(size=(200, 3)) * 2.0
+    points = np.r_[on_axis, inside, outside]
+    signed, closest = SignedDistance(mesh).exact(points, budget=5_000)  # small batches: the padding path runs
+    assert np.allclose(np.abs(signed), closest_point_reference(points, np.asarray(mesh.triangles)), atol=1e-12)
+    assert np.allclose(np.linalg.norm(points - closest, axis=1), np.abs(signed), atol=1e-12)
+    assert np.array_equal(signed < 0, mesh.contains(points))
+
+
 def test_collapse_kernels_match_python_and_keep_euler():
     # a 3x3 grid of squares (a disc) with one protected square: collapses to it
     ptr, sides, ends = [0], [], {}

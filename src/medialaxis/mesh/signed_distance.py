@@ -76,41 +76,47 @@ class SignedDistance:
         side = np.einsum("ij,ij->i", points - closest, normal)
         return np.where(side < 0, -dist, dist), closest
 
-    def exact(
-        self, points: np.ndarray, k: int = 32, budget: int = 2_000_000, max_k: int = 2048
-    ) -> tuple[np.ndarray, np.ndarray]:
+    def exact(self, points: np.ndarray, k: int = 32, budget: int = 2_000_000) -> tuple[np.ndarray, np.ndarray]:
         """Signed distance and closest point, exact: every face that may be nearer is searched.
 
         The local search of :meth:`query` can stop at a face a little farther
         than the nearest one where many faces are nearly equidistant (the
-        centre of a faceted cap). Here a point's candidates are its ``k``
-        faces of nearest centroid; a face beyond them is at
-        least (``k``-th centroid distance - the largest centroid-to-corner
-        distance) away, and when that is not below the distance found the
-        answer is exact; otherwise ``k`` grows fourfold for that point, up to
-        ``max_k``: beyond it (a point on the axis of a finely faceted surface of
-        revolution is nearly equidistant from whole rings of faces) the best
-        of the ``max_k`` faces is kept. Points go in batches of at most
-        ``budget`` candidate faces in all.
+        centre of a faceted cap). Here a point's first candidates are its ``k``
+        faces of nearest centroid; a face beyond them is at least (``k``-th
+        centroid distance - the largest centroid-to-corner distance) away, and
+        when that is not below the distance found the answer is exact.
+        Otherwise every face whose centroid lies within the distance found
+        plus that largest reach is searched (points deep inside a finely
+        faceted surface: a medial point is nearly equidistant from whole
+        patches of faces), in batches of at most ``budget`` candidates.
         """
-        points = np.asarray(points, np.float64)
+        points = np.asarray(points, np.float64).reshape(-1, 3)
         if not hasattr(self, "_centroid_tree"):
             self._centroid_tree = cKDTree(self.spheres[0])
             self._reach = float(self.spheres[1].max())
-        n_faces = len(self.faces)
-        signed = np.empty(len(points))
-        closest = np.empty((len(points), 3))
-        todo = np.arange(len(points))
-        while len(todo):
-            k = min(k, n_faces)
-            left = []
-            for batch in np.array_split(todo, max(1, len(todo) * k // budget)):
-                centroid_dist, near = self._centroid_tree.query(points[batch], k, workers=-1)
-                centroid_dist, near = centroid_dist.reshape(len(batch), k), near.reshape(len(batch), k)
-                s, c = self.query(points[batch], near, rings=False)
-                done = (centroid_dist[:, -1] - self._reach >= np.abs(s)) | (k == n_faces) | (k >= max_k)
-                signed[batch[done]], closest[batch[done]] = s[done], c[done]
-                left.append(batch[~done])
-            todo = np.concatenate(left)
-            k *= 4
+        k = min(k, len(self.faces))
+        centroid_dist, near = self._centroid_tree.query(points, k, workers=-1)
+        centroid_dist, near = centroid_dist.reshape(len(points), k), near.reshape(len(points), k)
+        signed, closest = self.query(points, near, rings=False)
+        todo = np.flatnonzero((centroid_dist[:, -1] - self._reach < np.abs(signed)) & (k < len(self.faces)))
+        if not len(todo):
+            return signed, closest
+        found = self._centroid_tree.query_ball_point(
+            points[todo], np.abs(signed[todo]) + self._reach, workers=-1, return_sorted=False
+        )
+        count = np.fromiter((len(f) for f in found), np.int64, len(todo))
+        by_count = np.argsort(count, kind="stable")
+        start = 0
+        while start < len(by_count):  # similar counts together: little padding
+            stop = start + 1
+            while stop < len(by_count) and (stop + 1 - start) * count[by_count[stop]] <= budget:
+                stop += 1
+            rows = by_count[start:stop]
+            width = int(count[rows[-1]])
+            cand = np.empty((len(rows), width), np.int64)
+            for r, q in enumerate(rows):
+                cand[r, : count[q]] = found[q]
+                cand[r, count[q] :] = found[q][0]  # padding repeats a candidate (searched once)
+            signed[todo[rows]], closest[todo[rows]] = self.query(points[todo[rows]], cand, rings=False)
+            start = stop
         return signed, closest
