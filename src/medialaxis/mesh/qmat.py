@@ -98,6 +98,16 @@ def _optimum(qa, qb, qc, s1, s2, reg):  # type: ignore[no-untyped-def]
     return s, max(cost, 0.0)
 
 
+@njit(cache=True, nogil=True)
+def _pair_costs(qa, qb, qc, spheres, reg, pairs):  # type: ignore[no-untyped-def]
+    """:func:`_optimum`'s error of merging each pair ``(i, j)`` of spheres."""
+    out = np.empty(pairs.shape[0])
+    for k in range(pairs.shape[0]):
+        i, j = pairs[k, 0], pairs[k, 1]
+        _, out[k] = _optimum(qa[i] + qa[j], qb[i] + qb[j], qc[i] + qc[j], spheres[i], spheres[j], reg)
+    return out
+
+
 def simplify_medial_mesh(
     ma: MedialAxis, simplify: int | float, surface: Any = None, signed: Any = None
 ) -> MedialAxis:
@@ -250,14 +260,12 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tup
     alive = np.ones(n, bool)
     heap: list[tuple[float, int, int, int, int]] = []
 
-    def push(i: int, j: int) -> None:
-        _, cost = _optimum(qa[i] + qa[j], qb[i] + qb[j], qc[i] + qc[j], spheres[i], spheres[j], reg)
-        heapq.heappush(heap, (cost, i, j, int(version[i]), int(version[j])))
+    def push(pairs: list[tuple[int, int]]) -> None:  # one compiled call per batch of pairs (i < j)
+        ends = np.array(pairs, np.int64).reshape(-1, 2)
+        for (i, j), cost in zip(pairs, _pair_costs(qa, qb, qc, spheres, reg, ends).tolist()):
+            heapq.heappush(heap, (cost, i, j, int(version[i]), int(version[j])))
 
-    for i in range(n):
-        for j in nbr[i]:
-            if i < j:
-                push(i, j)
+    push([(i, j) for i in range(n) for j in nbr[i] if i < j])
     left = n
     while left > target and heap:
         cost, i, j, vi, vj = heapq.heappop(heap)
@@ -291,8 +299,7 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tup
         nbr[i].discard(j)
         nbr[j] = set()
         version[i] += 1
-        for k in nbr[i]:
-            push(min(i, k), max(i, k))
+        push([(min(i, k), max(i, k)) for k in nbr[i]])
 
     keep = np.flatnonzero(alive)
     new = np.full(n, -1, np.int64)
