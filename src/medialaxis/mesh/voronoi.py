@@ -206,7 +206,9 @@ def voronoi_medial_axis(
         bounding-box diagonal standing for the diameter: a worst-case bound,
         usually larger than the shape, hence the practical default ``lam``),
         ``euler_characteristic``, ``n_filling_faces``, ``timings`` (seconds
-        per step) and ``delaunay_share``. The compact complex keeps a subset
+        per step; ``epsilon`` is the wait for the work done beside the
+        Delaunay insertion: the self-intersection check, epsilon and the
+        closest-point structure) and ``delaunay_share``. The compact complex keeps a subset
         of these points (extras follow them) and adds ``compact`` (the
         collapse rule that ran), ``compact_tolerance``, ``full_points`` and
         ``full_faces``.
