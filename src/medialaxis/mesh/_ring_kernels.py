@@ -205,10 +205,11 @@ def take(values, index):  # type: ignore[no-untyped-def]
 
 @njit(cache=True, nogil=True)
 def odd_sides(side_id, n_ids):  # type: ignore[no-untyped-def]
-    """Ids in ``[0, n_ids)`` met neither zero times nor twice in ``side_id``, ascending."""
+    """Ids in ``[0, n_ids)`` met neither zero times nor twice in ``side_id``, ascending (-1 entries are no triangle)."""
     seen = np.zeros(n_ids, np.uint8)  # a triangle lies on three Delaunay edges: at most three rings
     for q in range(side_id.shape[0]):
-        seen[side_id[q]] += 1
+        if side_id[q] >= 0:
+            seen[side_id[q]] += 1
     n = 0
     for i in range(n_ids):
         if seen[i] != 0 and seen[i] != 2:
