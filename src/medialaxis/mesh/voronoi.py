@@ -298,9 +298,9 @@ def voronoi_medial_axis(
     inner = _inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
     timings["inside"] = time.perf_counter() - t0
     union_volume = float(dt.volume[inner].sum())
-    if abs(union_volume - src.mesh.volume) > VOLUME_TOLERANCE * src.mesh.volume:
+    if abs(union_volume - src.volume) > VOLUME_TOLERANCE * src.volume:
         raise InvalidInputError(
-            f"the mesh encloses {union_volume:.6g} but its signed volume is {src.mesh.volume:.6g}: it is most likely "
+            f"the mesh encloses {union_volume:.6g} but its signed volume is {src.volume:.6g}: it is most likely "
             "self-intersecting or has nested shells; fix it (e.g. a mesh boolean union) first"
         )
 
@@ -351,7 +351,7 @@ def voronoi_medial_axis(
         "n_tetrahedra": int(len(dt.simplices)),
         "mesh_vertices": int(len(src.mesh.vertices)),
         "mesh_faces": int(len(src.mesh.faces)),
-        "mesh_volume": float(src.mesh.volume),
+        "mesh_volume": src.volume,
         "mesh_euler_characteristic": int(src.mesh.euler_number),
         "euler_characteristic": chi,
         "repairs": list(src.repairs),
