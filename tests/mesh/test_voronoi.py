@@ -390,6 +390,21 @@ def test_rejects_open_mesh_and_repairs_on_request(box_mesh):
     assert any("fill_holes" in r for r in ma.metadata["repairs"])
 
 
+def test_signed_volume_is_exact_far_from_the_origin_and_load_mesh_turns_an_inward_mesh_out():
+    from medialaxis.mesh.inputs import load_mesh, signed_volume
+
+    box = trimesh.creation.box(extents=(2.0, 3.0, 4.0))
+    box.apply_translation([1e6, -2e6, 3e6])
+    assert signed_volume(box.triangles) == pytest.approx(24.0, rel=1e-9)  # truth: 2 x 3 x 4
+    inward = box.copy()
+    inward.invert()
+    assert signed_volume(inward.triangles) == pytest.approx(-24.0, rel=1e-9)
+    loaded = load_mesh(inward)
+    assert loaded.volume == pytest.approx(24.0, rel=1e-9)
+    assert any("flipped" in r for r in loaded.repairs)
+    assert signed_volume(loaded.mesh.triangles) > 0
+
+
 def test_rejects_self_intersecting_mesh():
     a = trimesh.creation.box(extents=(2.0, 1.0, 1.0))
     b = trimesh.creation.box(extents=(1.0, 2.0, 1.0))
