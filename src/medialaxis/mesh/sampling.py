@@ -266,7 +266,9 @@ def lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
     level = np.floor(np.log2(np.maximum(radii, h[0]) / h[0]))
     cell = (LFS_CELL * h[0]) * 2.0**level
     key = np.c_[level, np.floor(centres / cell[:, None])].astype(np.int64)
-    return cKDTree(centres[first_of_rows(key)])  # the smallest ball of each cell: the nearest to the surface
+    # the smallest ball of each cell (the nearest to the surface); a sliding-midpoint tree without
+    # shrunk node boxes answers these queries from afar fastest (the torus's faces 0.54 -> 0.34 s)
+    return cKDTree(centres[first_of_rows(key)], balanced_tree=False, compact_nodes=False)
 
 
 def adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:
