@@ -50,8 +50,8 @@ class MeshInput:
 def signed_volume(triangles: np.ndarray) -> float:
     """Signed volume bounded by ``(f, 3, 3)`` triangles (positive for outward normals), about their centre.
 
-    The divergence theorem, one determinant per face: 0.01 s for 200k faces
-    where trimesh's full mass properties take 0.2 s.
+    The divergence theorem, one determinant per face: 0.04 s for the 200k
+    faces of a uv ellipsoid, where trimesh's full mass properties take 0.35 s.
     """
     tri = np.asarray(triangles, np.float64)
     if not len(tri):
