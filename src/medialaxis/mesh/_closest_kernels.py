@@ -16,7 +16,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["closest_on_candidates", "closest_point_reference", "face_spheres", "REGION_FACE"]
+__all__ = ["closest_on_candidates", "closest_point_reference", "face_spheres", "pseudo_normal_sign", "REGION_FACE"]
 
 #: Region codes: 0, 1, 2 = vertex a, b, c; 3, 4, 5 = edge ab, bc, ca; 6 = face.
 REGION_FACE = 6
@@ -165,6 +165,30 @@ def _closest_one(i, query, tri_a, tri_b, tri_c, centre, reach, near, ring_ptr, r
                 face[i] = f
                 region[i] = r
     dist[i] = np.sqrt(best)
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def pseudo_normal_sign(points, closest, dist, face, region, faces, face_normal, vertex_normal, edge_normal, face_edges):  # type: ignore[no-untyped-def]
+    """``dist`` signed by the pseudo-normal of the closest feature: negative where ``points - closest`` points against it.
+
+    The feature is the face, one of its vertices or one of its edges
+    (``region`` as :func:`closest_on_candidates` gives it); one compiled
+    pass instead of NumPy gathers of (q, 3) normals (0.25 s for the 2M
+    centroids of the uv ellipsoid).
+    """
+    out = np.empty(points.shape[0])
+    for q in prange(points.shape[0]):
+        f, r = face[q], region[q]
+        if r < 3:
+            n = vertex_normal[faces[f, r]]
+        elif r < REGION_FACE:
+            n = edge_normal[face_edges[f, r - 3]]
+        else:
+            n = face_normal[f]
+        side = (points[q, 0] - closest[q, 0]) * n[0] + (points[q, 1] - closest[q, 1]) * n[1]
+        side += (points[q, 2] - closest[q, 2]) * n[2]
+        out[q] = -dist[q] if side < 0 else dist[q]
+    return out
 
 
 def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:

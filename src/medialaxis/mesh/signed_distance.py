@@ -8,7 +8,7 @@ import numpy as np
 from scipy import sparse
 from scipy.spatial import cKDTree
 
-from medialaxis.mesh._closest_kernels import REGION_FACE, closest_on_candidates, face_spheres
+from medialaxis.mesh._closest_kernels import closest_on_candidates, face_spheres, pseudo_normal_sign
 from medialaxis.mesh.sampling import PseudoNormals, pseudo_normals
 
 __all__ = ["SignedDistance"]
@@ -68,13 +68,11 @@ class SignedDistance:
             *((self.ring_ptr, self.ring_idx) if rings else (self._own_ptr, self._own_idx)),
         )
         pn = self.normals
-        normal = pn.face[face].copy()
-        vert = region < 3
-        normal[vert] = pn.vertex[self.faces[face[vert], region[vert]]]
-        edge = (region >= 3) & (region < REGION_FACE)
-        normal[edge] = pn.edge[pn.face_edges[face[edge], region[edge] - 3]]
-        side = np.einsum("ij,ij->i", points - closest, normal)
-        return np.where(side < 0, -dist, dist), closest
+        signed = pseudo_normal_sign(
+            np.ascontiguousarray(points, np.float64), closest, dist, face, region, self.faces,
+            pn.face, pn.vertex, pn.edge, pn.face_edges,
+        )
+        return signed, closest
 
     def exact(self, points: np.ndarray, k: int = 32, budget: int = 2_000_000) -> tuple[np.ndarray, np.ndarray]:
         """Signed distance and closest point, exact: every face that may be nearer is searched.
