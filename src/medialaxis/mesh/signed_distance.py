@@ -60,8 +60,9 @@ class SignedDistance:
         signed : (q,) float64 ndarray
         closest : (q, 3) float64 ndarray
         """
+        points = np.ascontiguousarray(points, np.float64)
         dist, closest, face, region = closest_on_candidates(
-            np.ascontiguousarray(points, np.float64),
+            points,
             *self.corners,
             *self.spheres,
             np.ascontiguousarray(near_faces, np.int64),
@@ -69,8 +70,7 @@ class SignedDistance:
         )
         pn = self.normals
         signed = pseudo_normal_sign(
-            np.ascontiguousarray(points, np.float64), closest, dist, face, region, self.faces,
-            pn.face, pn.vertex, pn.edge, pn.face_edges,
+            points, closest, dist, face, region, self.faces, pn.face, pn.vertex, pn.edge, pn.face_edges
         )
         return signed, closest
 
