@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
+from medialaxis.core._kernels import peel_leaves_kernel
 
 __all__ = ["collapse_facets", "collapse_free_sides"]
 
@@ -165,21 +166,6 @@ def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: 
             v = side_ends[s, e]
             inc[fill[v]] = s
             fill[v] += 1
-    stack = [np.int64(v) for v in range(n_vertices) if degree[v] == 1]
-    while len(stack) > 0:
-        v = stack.pop()
-        if degree[v] != 1:
-            continue
-        for j in range(ptr[v], ptr[v + 1]):
-            s = inc[j]
-            if alive[s]:
-                if side_used[s]:
-                    break
-                alive[s] = False
-                for e in range(2):
-                    w = side_ends[s, e]
-                    degree[w] -= 1
-                    if degree[w] == 1:
-                        stack.append(w)
-                break
+    # the leaf peeling of the planar pruning: a side a remaining facet uses is never removed
+    peel_leaves_kernel(ptr, inc, inc, degree, side_ends, ~side_used, alive)
     return alive
