@@ -87,3 +87,23 @@ def test_the_compact_complexs_balls_stay_within_its_tolerance_of_the_surface(mod
     diag = float(np.linalg.norm(mesh.extents))
     tolerance = ma.metadata["compact_tolerance"]
     assert reach.max() <= tolerance + 1e-3 * diag, (reach.max() / diag, tolerance / diag)
+
+
+def test_exact_distance_of_the_medial_points_matches_a_brute_force(model):
+    # the medial points of a scanned model are nearly equidistant from whole patches of faces: the case
+    # SignedDistance.exact is for. Truth: the distance to every face (brute force) and trimesh's own
+    # containment test; the compact radii are balls empty of the surface
+    from medialaxis.mesh._closest_kernels import closest_point_reference
+    from medialaxis.mesh.signed_distance import SignedDistance
+
+    _, mesh, ma = model
+    points = ma.points
+    signed, closest = SignedDistance(mesh).exact(points)
+    tri = np.asarray(mesh.triangles)
+    truth = np.concatenate([closest_point_reference(points[k : k + 16], tri) for k in range(0, len(points), 16)])
+    diag = float(np.linalg.norm(mesh.extents))
+    assert np.allclose(np.abs(signed), truth, rtol=0, atol=1e-12 * diag)
+    assert np.allclose(np.linalg.norm(points - closest, axis=1), truth, rtol=0, atol=1e-9 * diag)
+    assert np.array_equal(signed < 0, mesh.contains(points))
+    assert (signed < 0).all()
+    assert (ma.radii <= truth + 1e-9 * diag).all()
