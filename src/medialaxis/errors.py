@@ -14,6 +14,7 @@ __all__ = [
     "EmptyShapeError",
     "InputFileError",
     "UnsupportedFormatError",
+    "UnsupportedFeatureError",
     "ResourceLimitError",
     "MissingDependencyError",
     "ComputationError",
@@ -40,6 +41,10 @@ class InputFileError(MedialAxisError, OSError):
 
 class UnsupportedFormatError(InvalidInputError):
     """A file extension or object type that no reader or writer handles."""
+
+
+class UnsupportedFeatureError(UnsupportedFormatError):
+    """A file of a supported format uses a feature no reader handles (an SVG mask, a DXF proxy entity)."""
 
 
 class ResourceLimitError(MedialAxisError, MemoryError):
