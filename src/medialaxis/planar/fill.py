@@ -145,6 +145,41 @@ def fill_rings(rings: Sequence[np.ndarray], rule: Literal["nonzero", "evenodd"] 
     return region
 
 
+def _mitres(points: np.ndarray, closed: bool, half: float, limit: float) -> list[Any]:
+    """The mitre corners (beyond the bevel) of a polyline's joins whose mitre ratio is within ``limit``.
+
+    At a join whose segments turn by the angle ``phi`` between their outer
+    normals ``n1`` and ``n2``, the mitre tip lies at ``half * (n1 + n2) /
+    (1 + n1.n2)`` from the vertex and the mitre ratio (SVG's
+    ``stroke-miterlimit``) is ``1 / cos(phi / 2)``.
+    """
+    if closed:
+        if np.array_equal(points[0], points[-1]):
+            points = points[:-1]
+        prev, vert, nxt = np.roll(points, 1, axis=0), points, np.roll(points, -1, axis=0)
+    else:
+        prev, vert, nxt = points[:-2], points[1:-1], points[2:]
+    if len(vert) == 0:
+        return []
+    u = vert - prev
+    v = nxt - vert
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    v /= np.linalg.norm(v, axis=1, keepdims=True)
+    turn = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    side = np.where(turn > 0, 1.0, -1.0)[:, None]  # the outer side is right of a left turn
+    n1 = side * np.c_[u[:, 1], -u[:, 0]]
+    n2 = side * np.c_[v[:, 1], -v[:, 0]]
+    cos_phi = (n1 * n2).sum(1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = 1.0 / np.sqrt((1.0 + cos_phi) / 2.0)
+    keep = (np.abs(turn) > 1e-12) & (cos_phi > -1.0 + 1e-12) & (ratio <= limit)
+    out = []
+    for p, a, b, c in zip(vert[keep], n1[keep], n2[keep], cos_phi[keep]):
+        tip = p + half * (a + b) / (1.0 + c)
+        out.append(Polygon([p, p + half * a, tip, p + half * b]))
+    return out
+
+
 _CAPS = {"butt": "flat", "round": "round", "square": "square"}
 _JOINS = {"miter": "mitre", "miter-clip": "mitre", "arcs": "mitre", "round": "round", "bevel": "bevel"}
 
@@ -204,14 +239,18 @@ def stroke_region(
         if closed and not np.array_equal(points[0], points[-1]):
             points = np.vstack([points, points[:1]])
         geom = LinearRing(points) if closed and len(points) >= 4 else LineString(points)
+        style = _JOINS.get(join, "mitre")
+        # GEOS cuts a mitre over the limit at the limit; SVG bevels it: bevel everywhere, then add the
+        # mitres within the limit.
         parts.append(
             geom.buffer(
                 width / 2,
                 quad_segs=quad_segs,
                 cap_style=_CAPS.get(cap, "flat"),
-                join_style=_JOINS.get(join, "mitre"),
-                mitre_limit=max(float(miter_limit), 1.0),
+                join_style="bevel" if style == "mitre" else style,
             )
         )
+        if style == "mitre":
+            parts.extend(_mitres(points, closed, width / 2, max(float(miter_limit), 1.0)))
     parts = [p for p in parts if not p.is_empty]
     return shapely.union_all(parts) if parts else Polygon()

@@ -26,6 +26,7 @@ https://www.w3.org/TR/SVG11/
 
 from __future__ import annotations
 
+import copy
 import io
 import math
 import xml.etree.ElementTree as ET
@@ -63,21 +64,91 @@ def _local_name(tag: Any) -> str:
     return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
 
 
-def _prepared_source(path: Path) -> io.BytesIO:
-    """The document with referenced-only containers moved into ``<defs>``.
+_XLINK = "{http://www.w3.org/1999/xlink}href"
 
-    svgelements draws the children of elements it does not know (``symbol``,
-    ``marker``, ``mask``) where they stand; in ``<defs>`` they are drawn only
-    through the ``<use>`` that references them, as SVG says.
-    """
+
+def _href(element: Any) -> str | None:
+    return element.get(_XLINK) or element.get("href")
+
+
+def _parse_tree(path: Path) -> Any:
     try:
-        tree = ET.parse(path)
+        return ET.parse(path)
     except Exception as exc:  # noqa: BLE001 - ParseError, OSError, LookupError (bad encoding), ValueError...
         raise InputFileError(f"cannot parse SVG {str(path)!r}: {exc}") from exc
+
+
+def _external_target(path: Path, href: str, cache: dict[Path, Any]) -> Any:
+    """The element ``file#id`` of another SVG file, next to ``path``."""
+    name, _, ident = href.partition("#")
+    other = (path.parent / name).resolve()
+    if other not in cache:
+        if not other.is_file():
+            raise InputFileError(f"SVG {str(path)!r} uses {href!r}, but {str(other)!r} does not exist")
+        cache[other] = _parse_tree(other).getroot()
+    root = cache[other]
+    found = next((e for e in root.iter() if e.get("id") == ident), None) if ident else root
+    if found is None:
+        raise InputFileError(f"SVG {str(path)!r} uses {href!r}, but {name!r} has no element with id {ident!r}")
+    return found
+
+
+def _symbol_viewport(use: Any, symbol: Any) -> Any:
+    """A ``<use>`` of a ``<symbol>`` as SVG 1.1 section 5.6 draws it: a nested ``<svg>`` of the use's size."""
+    group = ET.Element(f"{_SVG_NS}g", {k: v for k, v in use.attrib.items() if k not in (_XLINK, "href", "x", "y",
+                                                                                        "width", "height", "id")})
+    x, y = use.get("x", "0"), use.get("y", "0")
+    if x not in ("0", "") or y not in ("0", ""):
+        group.set("transform", f"{group.get('transform', '')} translate({x or 0},{y or 0})".strip())
+    viewport = ET.SubElement(group, f"{_SVG_NS}svg", {"width": use.get("width", "100%"),
+                                                      "height": use.get("height", "100%")})
+    for key in ("viewBox", "preserveAspectRatio", "overflow", "style"):
+        if symbol.get(key) is not None:
+            viewport.set(key, symbol.get(key))
+    viewport.extend(copy.deepcopy(list(symbol)))
+    return group
+
+
+def _prepared_source(path: Path) -> tuple[io.BytesIO, dict[str, Any]]:
+    """The document made plain for svgelements, as SVG defines it.
+
+    - Containers drawn only where referenced (``symbol``, ``marker``, ``mask``,
+      gradients) move into ``<defs>``: svgelements would draw the children of
+      elements it does not know where they stand.
+    - A ``<use>`` of a ``<symbol>`` becomes a nested ``<svg>`` of the use's
+      size (SVG 1.1 section 5.6), so the symbol's viewBox and clipping apply.
+    - A ``<use>`` of an element of another file gets a copy of that element.
+    """
+    tree = _parse_tree(path)
     root = tree.getroot()
     if _local_name(root.tag) != "svg":
         raise InputFileError(f"{str(path)!r} is not an SVG document (root element <{_local_name(root.tag)}>)")
-    moved = []
+    ids = {e.get("id"): e for e in root.iter() if e.get("id")}
+    external: dict[Path, Any] = {}
+    copies = []
+    for parent in list(root.iter()):
+        for index, child in enumerate(list(parent)):
+            if _local_name(child.tag) != "use" or not _href(child):
+                continue
+            href = _href(child).strip()
+            if href.startswith("#"):
+                target = ids.get(href[1:])
+            elif "(" in href or "#" not in href:
+                continue  # not an IRI of an element: svgelements draws nothing for it, as SVG says
+            else:
+                target = _external_target(path, href, external)
+                if _local_name(target.tag) != "symbol":
+                    ident = f"medialaxis-external-{len(copies)}"
+                    copied = copy.deepcopy(target)
+                    copied.set("id", ident)
+                    copies.append(copied)
+                    child.set(_XLINK, f"#{ident}")
+                    child.attrib.pop("href", None)
+                    continue
+            if target is not None and _local_name(target.tag) == "symbol":
+                parent.remove(child)
+                parent.insert(index, _symbol_viewport(child, target))
+    moved = list(copies)
     for parent in root.iter():
         if _local_name(parent.tag) in _REFERENCED_ONLY and parent is not root:
             continue
@@ -89,12 +160,13 @@ def _prepared_source(path: Path) -> io.BytesIO:
                 parent.remove(child)
                 moved.append(child)
     if moved:
-        defs = ET.SubElement(root, f"{_SVG_NS}defs")
+        defs = ET.Element(f"{_SVG_NS}defs")
         defs.extend(moved)
+        root.insert(0, defs)  # first: a <use> finds what it references wherever it stands
     out = io.BytesIO()
     tree.write(out, encoding="utf-8", xml_declaration=True)
     out.seek(0)
-    return out
+    return out, {e.get("id"): e for e in root.iter() if e.get("id")}
 
 
 def _matrix(m: Any) -> np.ndarray:
@@ -179,10 +251,57 @@ def _number(values: dict, key: str, default: float) -> float:
         return default
 
 
-def _painted(paint: Any, values: dict, opacity_key: str) -> bool:
+def _gradient_stops(gradient: Any, ids: dict[str, Any]) -> list[Any]:
+    """The stops of a gradient, inherited through ``xlink:href`` when it has none of its own."""
+    seen = set()
+    while gradient is not None and id(gradient) not in seen:
+        seen.add(id(gradient))
+        stops = [e for e in gradient if _local_name(e.tag) == "stop"]
+        if stops:
+            return stops
+        href = _href(gradient)
+        gradient = ids.get(href.strip()[1:]) if href and href.strip().startswith("#") else None
+    return []
+
+
+def _stop_opacity(stop: Any) -> float:
+    raw = stop.get("stop-opacity")
+    for item in (stop.get("style") or "").split(";"):
+        key, _, value = item.partition(":")
+        if key.strip() == "stop-opacity":
+            raw = value
+    try:
+        return float(raw) if raw is not None else 1.0
+    except ValueError:
+        return 1.0
+
+
+def _painted(paint: Any, values: dict, key: str, ids: dict[str, Any], where: str) -> bool:
+    """Whether a fill or stroke paints: a colour, or a paint server with something to paint.
+
+    A gradient without stops, or whose stops are all transparent, paints
+    nothing (SVG 1.1 section 13.2.4); a reference to nothing paints its
+    fallback colour, if any. Patterns paint only where their tiles do, which
+    this reader cannot draw: refused.
+    """
+    raw = str(values.get(key, "") or "").strip()
+    if _number(values, f"{key}-opacity", 1.0) <= 0:
+        return False
+    if raw.startswith("url("):
+        ident, _, fallback = raw[4:].partition(")")
+        server = ids.get(ident.strip().strip("'\"").lstrip("#"))
+        if server is None:
+            return fallback.strip() not in ("", "none")
+        kind = _local_name(server.tag)
+        if kind == "pattern":
+            raise UnsupportedFeatureError(f"SVG {where} paints with a pattern ({raw}), which is not read")
+        if kind in ("linearGradient", "radialGradient"):
+            stops = _gradient_stops(server, ids)
+            return any(_stop_opacity(stop) > 0 for stop in stops)
+        return False
     if paint is None or getattr(paint, "value", None) is None:
         return False
-    return _number(values, opacity_key, 1.0) > 0 and getattr(paint, "alpha", 255) > 0
+    return getattr(paint, "alpha", 255) > 0
 
 
 def _dashed(lines: list[tuple[np.ndarray, bool]], dashes: list[float], offset: float) -> list[tuple[np.ndarray, bool]]:
@@ -215,12 +334,18 @@ def _stroke(shape: Any, lines: list[tuple[np.ndarray, bool]]) -> Any:
         return Polygon()
     dash_raw = str(values.get("stroke-dasharray", "none")).strip()
     if dash_raw not in ("none", "", "inherit"):
+        from svgelements import Length
+
         try:
-            dashes = [float(v) for v in dash_raw.replace(",", " ").split()]
-        except ValueError as exc:
-            raise UnsupportedFeatureError(f"stroke-dasharray {dash_raw!r} (lengths with units) is not read") from exc
+            dashes = [float(Length(v).value()) for v in dash_raw.replace(",", " ").split()]
+        except (ValueError, TypeError) as exc:
+            raise UnsupportedFeatureError(f"stroke-dasharray {dash_raw!r} is not read") from exc
         if dashes and all(d >= 0 for d in dashes) and sum(dashes) > 0:
-            lines = _dashed(lines, dashes, _number(values, "stroke-dashoffset", 0.0))
+            try:
+                offset = float(Length(str(values.get("stroke-dashoffset", "0")).strip() or "0").value())
+            except (ValueError, TypeError):
+                offset = 0.0
+            lines = _dashed(lines, dashes, offset)
     return stroke_region(
         lines,
         width,
@@ -237,8 +362,9 @@ def _singular_max(matrix: np.ndarray) -> float:
 class _Reader:
     """One pass over the parsed document, collecting painted regions in root user units."""
 
-    def __init__(self, svg: Any, tol: float, strokes: bool, where: str):
+    def __init__(self, svg: Any, ids: dict[str, Any], tol: float, strokes: bool, where: str):
         self.svg = svg
+        self.ids = ids
         self.tol = tol
         self.strokes = strokes
         self.where = where
@@ -267,6 +393,14 @@ class _Reader:
         if str(values.get("visibility", "visible")).strip() in ("hidden", "collapse"):
             return True
         return _number(values, "opacity", 1.0) <= 0
+
+    def viewport_clip(self, nested: Any, region: Any) -> Any:
+        """A nested ``<svg>`` (or a used ``<symbol>``) clips to its viewport unless its overflow is visible."""
+        if region.is_empty or str(nested.values.get("overflow", "hidden")).strip() in ("visible", "auto"):
+            return region
+        x, y, w, h = (float(v or 0.0) for v in (nested.x, nested.y, nested.width, nested.height))
+        box = shapely.box(x, y, x + w, y + h)
+        return region.intersection(_apply(self.root_inverse @ _matrix(nested.transform), box))
 
     def clip(self, element: Any, region: Any) -> Any:
         clip = getattr(element, "clip_path", None)
@@ -307,10 +441,10 @@ class _Reader:
         values = shape.values
         lines = _subpaths(shape.segments(transformed=False), self.tol / scale)
         parts = []
-        if not isinstance(shape, SimpleLine) and _painted(shape.fill, values, "fill-opacity"):
+        if not isinstance(shape, SimpleLine) and _painted(shape.fill, values, "fill", self.ids, self.where):
             rule = str(values.get("fill-rule", "nonzero")).strip()
             parts.append(fill_rings([p for p, _ in lines], rule if rule in ("nonzero", "evenodd") else "nonzero"))
-        if self.strokes and _painted(shape.stroke, values, "stroke-opacity"):
+        if self.strokes and _painted(shape.stroke, values, "stroke", self.ids, self.where):
             parts.append(_stroke(shape, lines))
         parts = [p for p in parts if not p.is_empty]
         if not parts:
@@ -319,7 +453,7 @@ class _Reader:
         return _apply(self.root_inverse @ full, local)
 
     def region(self, node: Any) -> Any:
-        from svgelements import Image, Shape, Text
+        from svgelements import SVG, Image, Shape, Text
 
         if self.hidden(node) and not isinstance(node, list):
             return Polygon()
@@ -337,8 +471,12 @@ class _Reader:
         if isinstance(node, list):
             if _number(getattr(node, "values", {}), "opacity", 1.0) <= 0:
                 return Polygon()
+            if hasattr(node, "values"):
+                self.check_properties(node)
             parts = [r for r in (self.region(child) for child in node) if not r.is_empty]
             merged = shapely.union_all(parts) if parts else Polygon()
+            if isinstance(node, SVG) and node is not self.svg:
+                merged = self.viewport_clip(node, merged)
             return self.clip(node, merged)
         return Polygon()
 
@@ -402,10 +540,19 @@ def read_svg(path: Path, *, tolerance: float | None = None, strokes: bool = True
     from svgelements import SVG
 
     where = repr(str(path))
-    source = _prepared_source(path)
+    source, ids = _prepared_source(path)
+    errors = []
     try:
         svg = SVG.parse(source, reify=False, on_error="raise")
-    except (ValueError, IndexError, KeyError, TypeError, ET.ParseError) as exc:
+    except ValueError as exc:
+        # SVG 1.1 section F.2: a path is drawn up to its first error; the error goes into the warnings.
+        errors.append(f"path data in error, drawn up to the error: {exc}")
+        source.seek(0)
+        try:
+            svg = SVG.parse(source, reify=False, on_error="ignore")
+        except (ValueError, IndexError, KeyError, TypeError, ET.ParseError) as again:
+            raise InputFileError(f"cannot parse SVG {where}: {again}") from again
+    except (IndexError, KeyError, TypeError, ET.ParseError) as exc:
         raise InputFileError(f"cannot parse SVG {where}: {exc}") from exc
     if not isinstance(svg, SVG):
         raise InputFileError(f"{where} is not an SVG document")
@@ -414,7 +561,7 @@ def read_svg(path: Path, *, tolerance: float | None = None, strokes: bool = True
     tol = float(tolerance) if tolerance is not None else 1e-4 * size
     if not tol > 0:
         raise EmptyShapeError(f"SVG {where} paints nothing")
-    reader = _Reader(svg, tol, strokes, where)
+    reader = _Reader(svg, ids, tol, strokes, where)
     region = reader.region(svg)
     if region.is_empty or region.area <= 0:
         raise EmptyShapeError(f"SVG {where} paints nothing" + (" but strokes (strokes=False)" if not strokes else ""))
@@ -426,5 +573,6 @@ def read_svg(path: Path, *, tolerance: float | None = None, strokes: bool = True
         "viewport": [float(v) for v in (a, b, c, d, e, f)],
         "size": [float(svg.width), float(svg.height)],
         "skipped": dict(reader.skipped),
+        "errors": errors,
     }
     return region, info
