@@ -124,7 +124,9 @@ def read_dxf(
         filled), ``skipped`` (entity type -> count of entities that bound no
         region, e.g. ``{"TEXT": 3}``), ``hidden`` (entities on layers off or
         frozen, or invisible), ``duplicates`` (curves dropped because they
-        repeat another), ``tolerance`` and ``join_tolerance``.
+        repeat another), ``slivers`` (pieces and holes thinner than ``1e-6``
+        of the size, left by rounding where rings meet, removed),
+        ``tolerance`` and ``join_tolerance``.
 
     Raises
     ------
@@ -185,7 +187,7 @@ def read_dxf(
     if layers is not None:
         known = {name: layer.dxf.name for name, layer in table.items()}
         for entity in msp:
-            name = entity.dxf.get("layer", "0")
+            name = _attr(entity, "layer", "0") or "0"
             known.setdefault(name.lower(), name)
         wanted = {str(name).lower() for name in layers}
         unknown = [name for name in layers if str(name).lower() not in known]
@@ -251,6 +253,7 @@ def read_dxf(
     parts += fills
     parts = [p for p in parts if not p.is_empty]
     region = _polygonal(shapely.union_all(parts)) if parts else Polygon()
+    region, n_slivers = _without_slivers(region, JOIN_FRACTION * size)
     if region.is_empty or not region.area > 0:
         raise EmptyShapeError(f"{where} has no closed shape on {_layer_phrase(layers)}{_skipped_phrase(gather)}")
 
@@ -263,6 +266,7 @@ def read_dxf(
         "skipped": dict(sorted(gather.skipped.items())),
         "hidden": gather.hidden,
         "duplicates": n_covered + n_repeated + n_same,
+        "slivers": n_slivers,
         "tolerance": chord,
         "join_tolerance": join,
     }
@@ -290,10 +294,10 @@ class _Gatherer:
     def walk(self, entities: Iterable[Any], inherited: str | None, context: str, depth: int) -> None:
         for entity in entities:
             kind = entity.dxftype()
-            own = entity.dxf.get("layer", "0") or "0"
+            own = _attr(entity, "layer", "0") or "0"
             layer = inherited if inherited is not None and own == "0" else own
             label = _label(entity, layer, context)
-            if entity.dxf.get("invisible", 0):
+            if _attr(entity, "invisible", 0):
                 self.hidden += 1
             elif kind == "INSERT":
                 self.insert(entity, layer, label, depth)
@@ -316,7 +320,7 @@ class _Gatherer:
             return
         if depth >= MAX_BLOCK_DEPTH:
             raise InputFileError(f"{self.where}: blocks nested more than {MAX_BLOCK_DEPTH} deep at {label}")
-        name = insert.dxf.get("name", "")
+        name = _attr(insert, "name", "")
         block = insert.block()
         if block is None:
             raise InputFileError(f"{self.where}: {label} refers to block {name!r}, which the drawing does not define")
@@ -368,8 +372,16 @@ def _has_proxy_graphic(entity: Any) -> bool:
     return unknown and bool(getattr(entity, "proxy_graphic", None)) and hasattr(entity, "virtual_entities")
 
 
+def _attr(entity: Any, name: str, default: Any) -> Any:
+    """A DXF attribute of an entity, or ``default`` if unset or not defined for its type (ezdxf raises then)."""
+    try:
+        return entity.dxf.get(name, default)
+    except AttributeError:  # ezdxf's DXFAttributeError: not an attribute of this entity type
+        return default
+
+
 def _label(entity: Any, layer: str, context: str) -> str:
-    handle = entity.dxf.get("handle")
+    handle = _attr(entity, "handle", None)
     name = f"{entity.dxftype()} #{handle}" if handle else entity.dxftype()
     return f"{name} on layer {layer!r}{context}"
 
@@ -483,8 +495,8 @@ def _fill_rings_of(ezdxf: Any, entity: Any, chord: float) -> list[np.ndarray]:
 
     ocs = entity.ocs()
     elevation = float(entity.dxf.elevation.z)
-    offset = entity.dxf.get("offset_vector", (0.0, 0.0, 0.0)) if kind == "MPOLYGON" else (0.0, 0.0, 0.0)
-    paths = list(entity.paths.rendering_paths(entity.dxf.get("hatch_style", 0))) or list(entity.paths)
+    offset = _attr(entity, "offset_vector", (0.0, 0.0, 0.0)) if kind == "MPOLYGON" else (0.0, 0.0, 0.0)
+    paths = list(entity.paths.rendering_paths(_attr(entity, "hatch_style", 0))) or list(entity.paths)
     rings = []
     for boundary in paths:
         if isinstance(boundary, EdgePath):
@@ -550,6 +562,31 @@ def _polygonal(geom: Any) -> Any:
         return geom
     polys = [g for g in shapely.get_parts(geom) if g.geom_type in ("Polygon", "MultiPolygon") and g.area > 0]
     return shapely.union_all(polys) if polys else Polygon()
+
+
+def _without_slivers(region: Any, width: float) -> tuple[Any, int]:
+    """Pieces and holes thinner than ``width`` (twice the area over the perimeter) removed, with their count.
+
+    The fill and the union leave such slivers where rings meet to within
+    rounding (a closed spline's seam): far below the join tolerance, and
+    below what the triangulation of the pipeline can resolve.
+    """
+    kept, dropped = [], 0
+    for part in shapely.get_parts(region):
+        shell = Polygon(part.exterior)
+        if 2.0 * shell.area <= width * shell.length:
+            dropped += 1
+            continue
+        holes = []
+        for ring in part.interiors:
+            if 2.0 * Polygon(ring).area <= width * ring.length:
+                dropped += 1
+            else:
+                holes.append(ring)
+        kept.append(Polygon(part.exterior, holes) if len(holes) < len(part.interiors) else part)
+    if not dropped:
+        return region, 0
+    return (shapely.MultiPolygon(kept) if len(kept) > 1 else kept[0] if kept else Polygon()), dropped
 
 
 def _drop_covered(
