@@ -52,7 +52,7 @@ REPRUNERS: dict[str, str] = {
 
 #: File extensions per domain. ``.tif``/``.tiff``/``.npy`` are resolved by peeking.
 EXTENSIONS: dict[str, tuple[str, ...]] = {
-    "planar": (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".svg", ".geojson", ".json", ".wkt"),
+    "planar": (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".svg", ".dxf", ".geojson", ".json", ".wkt"),
     "mesh": (".obj", ".ply", ".off", ".stl", ".glb", ".gltf"),
     "volume": (".nrrd", ".nhdr", ".nii", ".nii.gz", ".raw", ".dcm"),
 }

@@ -112,6 +112,9 @@ def add_compute(sub: Any) -> None:
                    help="volumes: run the blocks on a Dask cluster (tcp://host:8786); its workers must see the input")
     p.add_argument("--jobs", type=int, default=None, metavar="N", help="volumes: local worker threads for the blocks "
                                                                         "(default: all CPUs)")
+    p.add_argument("--layers", nargs="+", default=None, metavar="LAYER", help="DXF drawings: the layers to read "
+                   "(default: every layer that is on and not frozen)")
+    p.add_argument("--fills-only", action="store_true", help="SVG drawings: read fills only, not strokes")
     p.add_argument("--foreground", choices=["auto", "bright", "dark"], default=None,
                    help="images: which side of the threshold is the shape; auto (the default) takes the side "
                         "that does not own most of the image border, so a dark shape on light paper works")
@@ -138,6 +141,10 @@ def compute_options(args: argparse.Namespace) -> tuple[dict[str, Any], Any]:
         options["thickness"] = args.thickness[0] if len(args.thickness) == 1 else tuple(args.thickness)
     if args.repair:
         options["repair"] = True
+    if args.layers is not None:
+        options["layers"] = list(args.layers)
+    if args.fills_only:
+        options["strokes"] = False
     if args.chunks is not None:
         if len(args.chunks) not in (1, 3):
             raise UsageError(f"--chunks takes one size or Z Y X, got {len(args.chunks)} values")

@@ -32,15 +32,6 @@ def test_vector_files(tmp_path):
         np.testing.assert_allclose(ma.points[ma.junctions].mean(0), [50, 40], atol=1e-6)
 
 
-def test_svg_holes_by_even_odd(tmp_path):
-    (tmp_path / "h.svg").write_text(
-        '<svg xmlns="http://www.w3.org/2000/svg"><rect x="0" y="0" width="100" height="50"/>'
-        '<circle cx="30" cy="25" r="10"/><path d="M60 15 L80 15 L80 35 L60 35 Z"/></svg>'
-    )
-    ma = mx.medial_axis(tmp_path / "h.svg")
-    assert ma.n_cycles == 2
-
-
 def test_geometry_kinds():
     _check_rect(mx.medial_axis(RECT))
     _check_rect(mx.medial_axis(np.asarray(RECT.exterior.coords)[:-1]))

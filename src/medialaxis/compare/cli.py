@@ -14,12 +14,13 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis._dispatch import EXTENSIONS
 from medialaxis._help import HelpFormatter, UsageError
 
 __all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture", "save_search_grid"]
 
 #: File types ``search`` ranks inside a folder.
-PLANAR_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff", ".svg", ".geojson", ".json", ".wkt", ".npz")
+PLANAR_SUFFIXES = (*EXTENSIONS["planar"], ".tif", ".tiff", ".npz")
 
 
 def _add_matching_options(p: argparse.ArgumentParser) -> None:

@@ -245,8 +245,8 @@ def read_dxf(
             raise InputFileError(f"cannot read {label} of {where}: {_describe(exc)}") from exc
 
     duplicate_tolerance = 2.0 * join
-    pieces, piece_labels, n_covered = _drop_covered(pieces, piece_labels, loops, duplicate_tolerance)
-    chained, n_repeated = _chain(pieces, piece_labels, join, duplicate_tolerance, where)
+    along = _along_loops(pieces, loops, duplicate_tolerance)
+    chained, n_repeated = _chain(pieces, piece_labels, along, join, duplicate_tolerance, where)
     loops, n_same = _drop_repeated_loops(loops + chained, duplicate_tolerance)
 
     parts = [fill_rings(loops, "evenodd")] if loops else []
@@ -265,7 +265,7 @@ def read_dxf(
         "loops": len(loops) + n_fill_rings,
         "skipped": dict(sorted(gather.skipped.items())),
         "hidden": gather.hidden,
-        "duplicates": n_covered + n_repeated + n_same,
+        "duplicates": n_repeated + n_same,
         "slivers": n_slivers,
         "tolerance": chord,
         "join_tolerance": join,
@@ -589,38 +589,42 @@ def _without_slivers(region: Any, width: float) -> tuple[Any, int]:
     return (shapely.MultiPolygon(kept) if len(kept) > 1 else kept[0] if kept else Polygon()), dropped
 
 
-def _drop_covered(
-    pieces: list[np.ndarray], labels: list[str], loops: list[np.ndarray], tol: float
-) -> tuple[list[np.ndarray], list[str], int]:
-    """Open curves lying along a closed loop (a LINE drawn over a polyline's edge) are dropped."""
+def _along_loops(pieces: list[np.ndarray], loops: list[np.ndarray], tol: float) -> np.ndarray:
+    """(k,) bool: which open curves lie along a closed loop, to within ``tol`` (a LINE over a polyline's edge)."""
+    along = np.zeros(len(pieces), dtype=bool)
     if not pieces or not loops:
-        return pieces, labels, 0
+        return along
     outlines = [LineString(np.vstack([r, r[:1]])) for r in loops]
     tree = shapely.STRtree(outlines)
     bands: dict[int, Any] = {}
-    keep = []
-    for piece in pieces:
+    for i, piece in enumerate(pieces):
         line = LineString(piece)
         near = tree.query(line, predicate="dwithin", distance=tol)
-        covered = False
         if len(near):
             for j in near:
                 if j not in bands:
                     bands[j] = outlines[j].buffer(tol, quad_segs=2)
-            covered = line.difference(shapely.union_all([bands[j] for j in near])).length <= tol
-        keep.append(not covered)
-    kept = [p for p, k in zip(pieces, keep) if k]
-    return kept, [label for label, k in zip(labels, keep) if k], len(pieces) - len(kept)
+            along[i] = line.difference(shapely.union_all([bands[j] for j in near])).length <= tol
+    return along
 
 
 def _chain(
-    pieces: list[np.ndarray], labels: list[str], join: float, duplicate_tol: float, where: str
+    pieces: list[np.ndarray],
+    labels: list[str],
+    along_loops: np.ndarray,
+    join: float,
+    duplicate_tol: float,
+    where: str,
 ) -> tuple[list[np.ndarray], int]:
     """Open curves joined end to end into closed rings; an open drawing raises with its gaps.
 
     Ends closer than ``join`` are one node. Where more than two curves meet,
     the rings pair them arbitrarily: the even-odd fill depends only on the
-    curves, not on how they are grouped into rings.
+    curves, not on how they are grouped into rings. A curve drawn twice
+    (same ends, same course within ``duplicate_tol``) or along a closed loop
+    (``along_loops``) is left out where both its ends would otherwise be
+    loose: the stray copy CAD drawings often hold. Elsewhere it stays, so
+    two outlines that share an edge fill their union.
     """
     if not pieces:
         return [], 0
@@ -630,20 +634,23 @@ def _chain(
     _, node = connected_components(links, directed=False)
     start, stop = node[0::2], node[1::2]
 
-    # The same curve drawn twice (same ends, same course) counts once.
+    degree = np.bincount(np.r_[start, stop], minlength=len(ends))
     keep = np.ones(len(pieces), dtype=bool)
     by_ends: dict[tuple[int, int], list[int]] = {}
     for i in range(len(pieces)):
         key = (min(start[i], stop[i]), max(start[i], stop[i]))
-        for j in by_ends.get(key, []):
-            if shapely.hausdorff_distance(LineString(pieces[i]), LineString(pieces[j])) <= duplicate_tol:
-                keep[i] = False
-                break
+        repeated = bool(along_loops[i]) or any(
+            shapely.hausdorff_distance(LineString(pieces[i]), LineString(pieces[j])) <= duplicate_tol
+            for j in by_ends.get(key, [])
+        )
+        if repeated and start[i] != stop[i] and degree[start[i]] % 2 and degree[stop[i]] % 2:
+            keep[i] = False
+            degree[start[i]] -= 1
+            degree[stop[i]] -= 1
         else:
             by_ends.setdefault(key, []).append(i)
     kept = np.flatnonzero(keep)
 
-    degree = np.bincount(np.r_[start[kept], stop[kept]], minlength=len(ends))
     odd = np.flatnonzero(degree % 2)
     if len(odd):
         raise InvalidInputError(_open_message(odd, degree, node, ends, labels, join, where))

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import warnings
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -17,7 +19,7 @@ import numpy as np
 import shapely
 
 from medialaxis.core.validate import check_spacing
-from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
+from medialaxis.errors import InputFileError, InvalidInputError, MedialAxisWarning, UnsupportedFormatError
 from medialaxis.planar.images import (
     FOREGROUNDS,
     IMAGE_EXTENSIONS,
@@ -30,7 +32,12 @@ from medialaxis.planar.images import (
 )
 from medialaxis.planar.vectors import loop_polygon, read_vector, validate_polygonal
 
-__all__ = ["PlanarInput", "load_planar", "max_pixels", "shape_side", "contour_region", "FOREGROUNDS"]
+__all__ = ["PlanarInput", "load_planar", "max_pixels", "shape_side", "contour_region", "FOREGROUNDS", "DRAWINGS"]
+
+#: Drawing formats: what they paint is read by the library made for the format.
+DRAWINGS = (".svg", ".dxf")
+#: Other vector formats: their geometry is the shape.
+VECTORS = (".wkt", ".geojson", ".json")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -54,6 +61,9 @@ class PlanarInput:
         Which side of the threshold is the shape, for raster inputs.
     repaired : str or None
         How an invalid polygon was repaired, if it was.
+    drawing : dict or None
+        What the reader of a drawing (SVG, DXF) found: its format, units or
+        viewport, and the elements it skipped (see :func:`read_drawing`).
     """
 
     region: Any
@@ -63,33 +73,76 @@ class PlanarInput:
     threshold: float | None = None
     side: str | None = None
     repaired: str | None = None
+    drawing: dict[str, Any] | None = None
 
     @property
     def is_raster(self) -> bool:
         return self.image is not None
 
 
-# ----------------------------------------------------------------- rasters
+def read_drawing(
+    path: Path, *, tolerance: float | None = None, strokes: bool | None = None, layers: Sequence[str] | None = None
+) -> tuple[Any, dict[str, Any]]:
+    """The region an SVG or DXF drawing paints, and what its reader found.
 
+    Elements that bound no region (text, raster images, dimensions) are
+    skipped with a :class:`~medialaxis.MedialAxisWarning` that counts them;
+    the counts are in ``info["skipped"]``.
+    """
+    ext = path.suffix.lower()
+    if ext == ".svg":
+        if layers is not None:
+            raise InvalidInputError(f"layers= applies to DXF drawings; {str(path)!r} is an SVG")
+        from medialaxis.planar.svg import read_svg
 
-# ----------------------------------------------------------------- vectors
+        region, info = read_svg(path, tolerance=tolerance, strokes=True if strokes is None else bool(strokes))
+    else:
+        if strokes is not None:
+            raise InvalidInputError(f"strokes= applies to SVG drawings; {str(path)!r} is a DXF")
+        from medialaxis.planar.dxf import read_dxf
+
+        region, info = read_dxf(path, layers=layers, tolerance=tolerance)
+    skipped = {k: v for k, v in info.get("skipped", {}).items() if v}
+    if skipped:
+        counts = ", ".join(f"{n} {kind}" for kind, n in sorted(skipped.items()))
+        warnings.warn(
+            f"{str(path)!r}: not read (they bound no region): {counts}", MedialAxisWarning, stacklevel=3
+        )
+    for error in info.get("errors", []):
+        warnings.warn(f"{str(path)!r}: {error}", MedialAxisWarning, stacklevel=3)
+    return region, info
 
 
 # ------------------------------------------------------------------ entry
 def load_planar(
-    shape: Any, *, threshold: float | None = None, spacing: Any = None, foreground: str = "auto"
+    shape: Any,
+    *,
+    threshold: float | None = None,
+    spacing: Any = None,
+    foreground: str = "auto",
+    tolerance: float | None = None,
+    strokes: bool | None = None,
+    layers: Sequence[str] | None = None,
 ) -> PlanarInput:
     """Read and validate any planar input.
 
     ``foreground`` ("auto", "bright" or "dark", see :func:`shape_side`)
     says which side of the threshold of an image is the shape; vector
-    inputs accept only "auto".
+    inputs accept only "auto". ``tolerance`` is the chord error of the
+    curves of drawings; ``strokes`` (SVG: read strokes as regions, default
+    True) and ``layers`` (DXF: the layers to read, default all visible)
+    apply to drawings only.
 
     Raises
     ------
-    InvalidInputError, EmptyShapeError, InputFileError, ResourceLimitError
+    InvalidInputError, EmptyShapeError, InputFileError, ResourceLimitError,
+    UnsupportedFeatureError
     """
     foreground = check_foreground(foreground)
+    is_drawing = isinstance(shape, (str, os.PathLike)) and Path(shape).suffix.lower() in DRAWINGS
+    if not is_drawing and (strokes is not None or layers is not None):
+        name = "strokes" if strokes is not None else "layers"
+        raise InvalidInputError(f"{name}= applies to drawings (SVG, DXF files), not to {_what(shape)}")
     if isinstance(shape, (str, os.PathLike)):
         path = Path(shape)
         if not path.is_file():
@@ -97,7 +150,12 @@ def load_planar(
         ext = path.suffix.lower()
         if ext in IMAGE_EXTENSIONS:
             return _image_input(read_image(path), threshold, check_spacing(spacing, 2), foreground)
-        if ext in (".svg", ".wkt", ".geojson", ".json"):
+        if ext in DRAWINGS:
+            _vector_only_auto(foreground, str(path))
+            region, info = read_drawing(path, tolerance=tolerance, strokes=strokes, layers=layers)
+            geom, repaired = validate_polygonal(region, str(path))
+            return PlanarInput(geom, np.ones(2), repaired=repaired, drawing=info)
+        if ext in VECTORS:
             _vector_only_auto(foreground, str(path))
             geom, repaired = validate_polygonal(read_vector(path), str(path))
             return PlanarInput(geom, np.ones(2), repaired=repaired)
@@ -127,6 +185,12 @@ def load_planar(
 def _image_input(arr: np.ndarray, threshold: float | None, spacing: np.ndarray, foreground: str) -> PlanarInput:
     region, mask, level, side = image_region(arr, threshold, spacing, foreground)
     return PlanarInput(region, spacing, image=arr, foreground=mask, threshold=level, side=side)
+
+
+def _what(shape: Any) -> str:
+    if isinstance(shape, (str, os.PathLike)):
+        return repr(str(shape))
+    return f"a {type(shape).__name__}"
 
 
 def _vector_only_auto(foreground: str, what: str) -> None:

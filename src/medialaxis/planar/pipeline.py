@@ -10,6 +10,7 @@ pruning (:mod:`medialaxis.planar.pruning`).
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 from typing import Any, Literal
 
 import numpy as np
@@ -162,11 +163,20 @@ def planar_stages(
     detour: float | None = None,
     boundary: Literal["contour", "canny"] = "contour",
     foreground: Literal["auto", "bright", "dark"] = "auto",
+    strokes: bool | None = None,
+    layers: Sequence[str] | None = None,
 ) -> Stages:
     """Run the planar pipeline and keep every stage (see :func:`voronoi_medial_axis`)."""
     if boundary not in ("contour", "canny"):
         raise InvalidInputError(f"boundary must be 'contour' or 'canny', got {boundary!r}")
-    src = load_planar(shape, threshold=threshold, spacing=spacing, foreground=foreground)
+    if tolerance is not None:
+        tolerance = check_number(tolerance, "tolerance")
+    if isinstance(layers, str):
+        layers = [layers]
+    src = load_planar(
+        shape, threshold=threshold, spacing=spacing, foreground=foreground, tolerance=tolerance, strokes=strokes,
+        layers=layers,
+    )
     region = src.region
     size = shape_size(region)
     if tolerance is None:
@@ -221,6 +231,8 @@ def planar_stages(
         metadata["foreground"] = src.side
     if src.repaired:
         metadata["repaired"] = src.repaired
+    if src.drawing is not None:
+        metadata["drawing"] = src.drawing
     raw = MedialAxis(
         points,
         radii,
@@ -247,6 +259,8 @@ def voronoi_medial_axis(
     detour: float | None = None,
     boundary: Literal["contour", "canny"] = "contour",
     foreground: Literal["auto", "bright", "dark"] = "auto",
+    strokes: bool | None = None,
+    layers: Sequence[str] | None = None,
 ) -> MedialAxis:
     """Medial axis of a planar shape from the Voronoi diagram of boundary samples.
 
@@ -292,6 +306,12 @@ def voronoi_medial_axis(
         image border (the outermost rows and columns); a tie goes to the
         side with fewer pixels, then to the bright side. The side taken is
         ``metadata["foreground"]``. Vector inputs accept only ``"auto"``.
+    strokes : bool, optional
+        SVG: read strokes as the regions the pen paints (default True);
+        False reads fills only.
+    layers : sequence of str, optional
+        DXF: the layers to read (default every layer that is on and not
+        frozen).
 
     Returns
     -------
@@ -341,6 +361,8 @@ def voronoi_medial_axis(
         detour=detour,
         boundary=boundary,
         foreground=foreground,
+        strokes=strokes,
+        layers=layers,
     ).result
 
 
