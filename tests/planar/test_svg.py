@@ -268,3 +268,11 @@ def test_w3c_file_through_the_whole_route():
     assert inside.all()
     distance = shapely.distance(shapely.points(ma.points), ma.shape.boundary)
     np.testing.assert_allclose(ma.radii, distance, atol=ma.metadata["tolerance"] * 2)
+
+
+def test_inherit_takes_the_parents_value(tmp_path):
+    body = ('<g fill="none" stroke="black" stroke-width="4"><rect width="10" height="10" fill="inherit"'
+            ' style="stroke-width: inherit"/></g>'
+            '<g display="none"><rect x="50" width="10" height="10" display="inherit"/></g>')
+    region = _read(tmp_path, body)
+    assert region.area == pytest.approx(14 * 14 - 6 * 6)  # unfilled, stroked 4 wide; the hidden one not read

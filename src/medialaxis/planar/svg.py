@@ -109,6 +109,39 @@ def _symbol_viewport(use: Any, symbol: Any) -> Any:
     return group
 
 
+def _style_items(element: Any) -> list[tuple[str, str]]:
+    items = []
+    for item in (element.get("style") or "").split(";"):
+        key, sep, value = item.partition(":")
+        if sep:
+            items.append((key.strip(), value.strip()))
+    return items
+
+
+def _resolve_inherit(element: Any, parent_values: dict[str, str]) -> None:
+    """Replace the keyword ``inherit`` by the parent's value (SVG 1.1 section 6.2), in attributes and styles.
+
+    svgelements would take the keyword for a value (a colour named "inherit").
+    """
+    values = dict(parent_values)
+    for key, value in list(element.attrib.items()):
+        if value.strip() == "inherit":
+            if key in parent_values:
+                element.set(key, parent_values[key])
+            else:
+                del element.attrib[key]
+    items = _style_items(element)
+    if any(value == "inherit" for _, value in items):
+        kept = [(k, parent_values[k] if v == "inherit" else v) for k, v in items if v != "inherit" or k in parent_values]
+        element.set("style", "; ".join(f"{k}: {v}" for k, v in kept))
+    values.update({k: v for k, v in element.attrib.items() if isinstance(k, str) and not k.startswith("{")})
+    values.update(dict(_style_items(element)))
+    for key in ("id", "transform", "x", "y", "width", "height", "d", "points", "style", "class"):
+        values.pop(key, None)
+    for child in element:
+        _resolve_inherit(child, values)
+
+
 def _prepared_source(path: Path) -> tuple[io.BytesIO, dict[str, Any]]:
     """The document made plain for svgelements, as SVG defines it.
 
@@ -123,6 +156,7 @@ def _prepared_source(path: Path) -> tuple[io.BytesIO, dict[str, Any]]:
     root = tree.getroot()
     if _local_name(root.tag) != "svg":
         raise InputFileError(f"{str(path)!r} is not an SVG document (root element <{_local_name(root.tag)}>)")
+    _resolve_inherit(root, {})
     ids = {e.get("id"): e for e in root.iter() if e.get("id")}
     external: dict[Path, Any] = {}
     copies = []
