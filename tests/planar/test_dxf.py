@@ -262,6 +262,39 @@ def test_insert_block_entities_on_layer_0_take_the_insert_layer(tmp_path):
     assert region.area == pytest.approx(6 + math.pi / 2, rel=1e-3) and info["layers"] == ["CUT"]
 
 
+def test_insert_non_uniform_scale_grid_and_nesting(tmp_path):
+    doc, msp = new_drawing()
+    disc = doc.blocks.new("DISC")
+    disc.add_circle((0, 0), 1)
+    pair = doc.blocks.new("PAIR")  # a block of two scaled DISCs: nested inserts
+    pair.add_blockref("DISC", (0, 0), dxfattribs={"xscale": 2, "yscale": 1})  # an ellipse 2 x 1
+    pair.add_blockref("DISC", (10, 0))
+    msp.add_blockref("PAIR", (0, 0))
+    grid = msp.add_blockref("DISC", (0, 20))
+    grid.grid(size=(2, 3), spacing=(5, 5))  # MINSERT: 2 rows, 3 columns
+    region, info = read_dxf(save(doc, tmp_path))
+    assert len(region.geoms) == 8 and info["loops"] == 8
+    perimeter = 9.6884 + 7 * 2 * math.pi  # the ellipse's and seven circles'
+    assert abs(region.area - 9 * math.pi) <= info["tolerance"] * perimeter
+
+
+def test_old_style_polyline_with_bulges(tmp_path):
+    doc = ezdxf.new("R12")
+    doc.modelspace().add_polyline2d([(0, 0, 0), (3, 0, 0), (3, 2, 0), (0, 2, 1.0)], format="xyb", close=True)
+    region, _ = read_dxf(save(doc, tmp_path))
+    assert abs(region.area - (6 + math.pi / 2)) <= 4e-4 * (8 + math.pi)  # chord tolerance times perimeter
+
+
+@pytest.mark.parametrize(("style", "area"), [(0, 100 - 16), (1, 100 - 16), (2, 100)])
+def test_hatch_style_decides_the_islands(tmp_path, style, area):
+    doc, msp = new_drawing()
+    hatch = msp.add_hatch(dxfattribs={"hatch_style": style})
+    hatch.paths.add_polyline_path([(0, 0), (10, 0), (10, 10), (0, 10)], is_closed=True, flags=1)  # external
+    hatch.paths.add_polyline_path([(3, 3), (7, 3), (7, 7), (3, 7)], is_closed=True, flags=16)  # outermost
+    region, _ = read_dxf(save(doc, tmp_path))
+    assert region.area == pytest.approx(area)
+
+
 def test_hatch_with_a_hole(tmp_path):
     doc, msp = new_drawing()
     hatch = msp.add_hatch()
@@ -381,6 +414,22 @@ def test_a_hole_drawn_twice_stays_a_hole(tmp_path):
     msp.add_line((0, 0), (10, 0))  # a LINE over the polyline's edge
     region, info = read_dxf(save(doc, tmp_path))
     assert holes(region) == 1 and info["duplicates"] == 2
+
+
+def test_squares_sharing_an_edge_fill_their_union(tmp_path):
+    doc, msp = new_drawing()
+    # Two unit squares side by side, each drawn as four LINEs: their common edge is drawn twice.
+    for x0 in (0, 1):
+        corners = [(x0, 0), (x0 + 1, 0), (x0 + 1, 1), (x0, 1)]
+        for k in range(4):
+            msp.add_line(corners[k], corners[(k + 1) % 4])
+    # A closed polyline and a copy of it as four LINEs, one of them drawn twice.
+    msp.add_lwpolyline([(5, 0), (6, 0), (6, 1), (5, 1)], close=True)
+    for k, (start, end) in enumerate(zip([(5, 0), (6, 0), (6, 1), (5, 1)], [(6, 0), (6, 1), (5, 1), (5, 0)])):
+        msp.add_line(start, end) if k % 2 else msp.add_line(end, start)
+    msp.add_line((5, 0), (6, 0))
+    region, info = read_dxf(save(doc, tmp_path))
+    assert region.area == pytest.approx(3.0) and len(region.geoms) == 2 and info["duplicates"] == 2
 
 
 def test_lines_meeting_at_a_vertex_shared_by_two_squares(tmp_path):
