@@ -331,6 +331,22 @@ def test_open_chain_names_the_gap(tmp_path):
     assert region.area == pytest.approx(100.0) and info["join_tolerance"] == 0.6
 
 
+def test_a_line_ending_on_another_is_named(tmp_path):
+    doc, msp = new_drawing()
+    msp.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], close=True)
+    msp.add_line((5, 0), (5, 10))  # a bend line across the plate: it meets the outline mid-edge
+    with pytest.raises(InvalidInputError, match="both ends of one curve are loose") as err:
+        read_dxf(save(doc, tmp_path))
+    assert "(5, 0)" in str(err.value) and "(5, 10)" in str(err.value)
+    assert "curves must meet end to end" not in str(err.value)  # the outline is a loop, not a curve to meet
+    doc, msp = new_drawing()
+    for start, end in (((0, 0), (10, 0)), ((10, 0), (10, 10)), ((10, 10), (0, 10)), ((0, 10), (0, 0))):
+        msp.add_line(start, end)
+    msp.add_line((5, 0), (5, 10))
+    with pytest.raises(InvalidInputError, match="ends on LINE .* curves must meet end to end"):
+        read_dxf(save(doc, tmp_path))
+
+
 def test_text_and_dimensions_are_skipped_and_counted(tmp_path):
     doc, msp = new_drawing()
     msp.add_circle((0, 0), 1)

@@ -49,7 +49,7 @@ import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
-from shapely.geometry import LineString, Polygon
+from shapely.geometry import LineString, Point, Polygon
 
 from medialaxis._optional import require
 from medialaxis.core.validate import check_coordinates, check_number
@@ -203,46 +203,17 @@ def read_dxf(
 
     items = gather.items
     if not items:
-        raise EmptyShapeError(f"{where} has no closed shape on {_layer_phrase(layers)}{_skipped_phrase(gather)}")
+        raise EmptyShapeError(f"{where} has no closed shape in model space on {_layer_phrase(layers)}{_skipped_phrase(gather)}")
     size = _drawing_size(ezdxf, [entity for entity, _, _ in items], where)
     if not size > 0:
-        raise EmptyShapeError(f"{where}: the curves on {_layer_phrase(layers)} have no extent")
+        raise EmptyShapeError(
+            f"{where}: the curves on {_layer_phrase(layers)} have no measurable extent "
+            "(all are points, or their coordinates overflow)"
+        )
     chord = DEFAULT_TOLERANCE * size if tolerance is None else tolerance
     join = max(JOIN_FRACTION * size, chord)
 
-    loops: list[np.ndarray] = []
-    pieces: list[np.ndarray] = []
-    piece_labels: list[str] = []
-    fills: list[Any] = []
-    n_fill_rings = 0
-    for entity, layer, label in items:
-        kind = entity.dxftype()
-        try:
-            if kind in _FILLS:
-                rings = [_flat(ring, f"{where}: {label}", join) for ring in _fill_rings_of(ezdxf, entity, chord)]
-                rings = [r for r in rings if len(r) >= 3]
-                check_coordinates(np.vstack(rings) if rings else np.empty((0, 2)), f"{where}, {label}")
-                filled = fill_rings(rings, "evenodd")
-                if not filled.is_empty:
-                    fills.append(filled)
-                    n_fill_rings += len(rings)
-                    gather.used_layers.add(layer)
-                continue
-            for piece in _curve_pieces(entity, chord):
-                piece = _flat(piece, f"{where}: {label}", join)
-                if len(piece) < 2 or float(np.ptp(piece, axis=0).max()) <= join:
-                    continue  # a point, or a curve shorter than the join tolerance
-                check_coordinates(piece, f"{where}, {label}")
-                gather.used_layers.add(layer)
-                if np.hypot(*(piece[-1] - piece[0])) <= join:
-                    loops.append(piece)
-                else:
-                    pieces.append(piece)
-                    piece_labels.append(label)
-        except (UnsupportedFeatureError, InvalidInputError):
-            raise
-        except (ezdxf.DXFError, ValueError, ArithmeticError, IndexError) as exc:
-            raise InputFileError(f"cannot read {label} of {where}: {_describe(exc)}") from exc
+    loops, pieces, piece_labels, fills, n_fill_rings = _flatten(ezdxf, gather, chord, join)
 
     duplicate_tolerance = 2.0 * join
     along = _along_loops(pieces, loops, duplicate_tolerance)
@@ -255,7 +226,7 @@ def read_dxf(
     region = _polygonal(shapely.union_all(parts)) if parts else Polygon()
     region, n_slivers = _without_slivers(region, JOIN_FRACTION * size)
     if region.is_empty or not region.area > 0:
-        raise EmptyShapeError(f"{where} has no closed shape on {_layer_phrase(layers)}{_skipped_phrase(gather)}")
+        raise EmptyShapeError(f"{where} has no closed shape in model space on {_layer_phrase(layers)}{_skipped_phrase(gather)}")
 
     info = {
         "format": "dxf",
@@ -364,6 +335,47 @@ class _Gatherer:
         self.walk(children, layer, context or f" in {label.split(' on layer')[0]}", depth + 1)
 
 
+def _flatten(
+    ezdxf: Any, gather: _Gatherer, chord: float, join: float
+) -> tuple[list[np.ndarray], list[np.ndarray], list[str], list[Any], int]:
+    """The gathered entities as closed loops, open pieces (with their labels), filled regions, and the rings filled."""
+    where = gather.where
+    loops: list[np.ndarray] = []
+    pieces: list[np.ndarray] = []
+    piece_labels: list[str] = []
+    fills: list[Any] = []
+    n_fill_rings = 0
+    for entity, layer, label in gather.items:
+        kind = entity.dxftype()
+        try:
+            if kind in _FILLS:
+                rings = [_flat(ring, f"{where}: {label}", join) for ring in _fill_rings_of(ezdxf, entity, chord)]
+                rings = [r for r in rings if len(r) >= 3]
+                check_coordinates(np.vstack(rings) if rings else np.empty((0, 2)), f"{where}, {label}")
+                filled = fill_rings(rings, "evenodd")
+                if not filled.is_empty:
+                    fills.append(filled)
+                    n_fill_rings += len(rings)
+                    gather.used_layers.add(layer)
+                continue
+            for piece in _curve_pieces(entity, chord):
+                piece = _flat(piece, f"{where}: {label}", join)
+                if len(piece) < 2 or float(np.ptp(piece, axis=0).max()) <= join:
+                    continue  # a point, or a curve shorter than the join tolerance
+                check_coordinates(piece, f"{where}, {label}")
+                gather.used_layers.add(layer)
+                if np.hypot(*(piece[-1] - piece[0])) <= join:
+                    loops.append(piece)
+                else:
+                    pieces.append(piece)
+                    piece_labels.append(label)
+        except (UnsupportedFeatureError, InvalidInputError):
+            raise
+        except (ezdxf.DXFError, ValueError, ArithmeticError, IndexError) as exc:
+            raise InputFileError(f"cannot read {label} of {where}: {_describe(exc)}") from exc
+    return loops, pieces, piece_labels, fills, n_fill_rings
+
+
 def _has_proxy_graphic(entity: Any) -> bool:
     """A proxy entity, or one of a class ezdxf does not know, that carries the graphics CAD shows for it."""
     from ezdxf.entities import ACADProxyEntity, DXFTagStorage
@@ -421,16 +433,21 @@ def _units(ezdxf: Any, code: Any) -> str | None:
 
 def _drawing_size(ezdxf: Any, entities: list[Any], where: str) -> float:
     """Largest side of the bounding box of ``entities`` (from control points: fast, never too small)."""
-    import ezdxf.bbox
+    from ezdxf.bbox import extents
 
     try:
-        box = ezdxf.bbox.extents(entities, fast=True)
+        box = extents(entities, fast=True)
     except (ezdxf.DXFError, ValueError, ArithmeticError, IndexError) as exc:
         raise InputFileError(f"cannot measure the entities of {where}: {_describe(exc)}") from exc
     if not box.has_data:
         return 0.0
-    size = float(max(box.size.x, box.size.y))
-    return size if math.isfinite(size) else math.inf
+    corners = np.array([box.extmin.xyz, box.extmax.xyz], dtype=np.float64)
+    check_coordinates(corners[:, :2], where)
+    with np.errstate(over="ignore"):
+        size = float(np.max(corners[1, :2] - corners[0, :2]))
+    if not math.isfinite(size):
+        raise InvalidInputError(f"{where}: the drawing spans {size}; coordinates this large cannot be measured")
+    return size
 
 
 def _xyz(points: Iterable[Any]) -> np.ndarray:
@@ -653,7 +670,7 @@ def _chain(
 
     odd = np.flatnonzero(degree % 2)
     if len(odd):
-        raise InvalidInputError(_open_message(odd, degree, node, ends, labels, join, where))
+        raise InvalidInputError(_open_message(odd, degree, node, ends, pieces, labels, join, where))
 
     incident: dict[int, list[int]] = {}
     for i in kept:
@@ -685,26 +702,39 @@ def _chain(
 
 
 def _open_message(
-    odd: np.ndarray, degree: np.ndarray, node: np.ndarray, ends: np.ndarray, labels: list[str], join: float, where: str
+    odd: np.ndarray,
+    degree: np.ndarray,
+    node: np.ndarray,
+    ends: np.ndarray,
+    pieces: list[np.ndarray],
+    labels: list[str],
+    join: float,
+    where: str,
 ) -> str:
     """Where a drawing is open: its loose ends, paired with their nearest loose end, smallest gaps first."""
     first_end = {}
     for e in range(len(ends) - 1, -1, -1):
         first_end[node[e]] = e
-    where_end = np.array([ends[first_end[n]] for n in odd])
-    owner = [labels[first_end[n] // 2] for n in odd]
+    end_index = np.array([first_end[n] for n in odd])
+    where_end, owner = ends[end_index], end_index // 2
+    tree: list[Any] = []
 
     def at(k: int) -> str:
         x, y = where_end[k]
-        branch = f"; {degree[odd[k]]} curve ends meet there" if degree[odd[k]] > 1 else ""
-        return f"({x:.6g}, {y:.6g}) [an end of {owner[k]}{branch}]"
+        note = f"; {degree[odd[k]]} curve ends meet there" if degree[odd[k]] > 1 else ""
+        if degree[odd[k]] == 1:  # does it end on another curve, away from that curve's ends?
+            if not tree:
+                tree.append(shapely.STRtree([LineString(p) for p in pieces]))
+            hits = [h for h in tree[0].query(Point(x, y), predicate="dwithin", distance=join) if h != owner[k]]
+            if hits:
+                note = f"; it ends on {labels[hits[0]]}, away from that curve's ends: curves must meet end to end"
+        return f"({x:.6g}, {y:.6g}) [an end of {labels[owner[k]]}{note}]"
 
     gaps, alone = [], []
     if len(odd) > 1:
         distance, nearest = cKDTree(where_end).query(where_end, k=2)
-        order = np.argsort(distance[:, 1], kind="stable")
         paired = np.zeros(len(odd), dtype=bool)
-        for k in order:
+        for k in np.argsort(distance[:, 1], kind="stable"):
             m = nearest[k, 1]
             if paired[k]:
                 continue
@@ -715,10 +745,15 @@ def _open_message(
                 alone.append(k)
     else:
         alone.append(0)
-    notes = [f"gap of {g:.6g} between {at(k)} and {at(m)}" for g, k, m in gaps[:MAX_GAPS_LISTED]]
+    notes, largest = [], None
+    for gap, k, m in gaps[:MAX_GAPS_LISTED]:
+        if owner[k] == owner[m]:
+            notes.append(f"both ends of one curve are loose: {at(k)} and {at(m)}")
+        else:
+            notes.append(f"gap of {gap:.6g} between {at(k)} and {at(m)}")
+            largest = gap if largest is None else max(largest, gap)
     notes += [f"loose end at {at(k)}" for k in alone[: max(0, MAX_GAPS_LISTED - len(notes))]]
     more = len(gaps) + len(alone) - len(notes)
-    largest = max((g for g, _, _ in gaps[:MAX_GAPS_LISTED]), default=None)
     hint = (
         f"; close the gaps in the drawing, or pass tolerance={largest * 1.01:.3g} or more (it also sets the "
         "chord tolerance of curves)"
