@@ -276,3 +276,15 @@ def test_inherit_takes_the_parents_value(tmp_path):
             '<g display="none"><rect x="50" width="10" height="10" display="inherit"/></g>')
     region = _read(tmp_path, body)
     assert region.area == pytest.approx(14 * 14 - 6 * 6)  # unfilled, stroked 4 wide; the hidden one not read
+
+
+def test_slot_axis_is_the_segment_between_arc_centres(tmp_path):
+    # a stadium: centres (40, 50) and (160, 50), radius 20; drawn with two arcs, as drawing programs write it
+    d = "M 40 30 L 160 30 A 20 20 0 0 1 160 70 L 40 70 A 20 20 0 0 1 40 30 Z"
+    ma = mx.medial_axis(_svg(tmp_path, f'<path d="{d}"/>'))
+    size = 160.0  # the part's length
+    ends = np.sort(ma.points[ma.endpoints][:, 0])
+    np.testing.assert_allclose(ends, [40, 160], atol=1e-3 * size)
+    np.testing.assert_allclose(ma.points[:, 1], 50, atol=1e-3 * size)
+    np.testing.assert_allclose(ma.radii, 20, atol=1e-3 * size)
+    assert len(ma.endpoints) == 2 and len(ma.junctions) == 0
