@@ -442,7 +442,7 @@ def test_squares_sharing_an_edge_fill_their_union(tmp_path):
     # A closed polyline and a copy of it as four LINEs, one of them drawn twice.
     msp.add_lwpolyline([(5, 0), (6, 0), (6, 1), (5, 1)], close=True)
     for k, (start, end) in enumerate(zip([(5, 0), (6, 0), (6, 1), (5, 1)], [(6, 0), (6, 1), (5, 1), (5, 0)])):
-        msp.add_line(start, end) if k % 2 else msp.add_line(end, start)
+        msp.add_line(*((start, end) if k % 2 else (end, start)))  # every other one reversed
     msp.add_line((5, 0), (6, 0))
     region, info = read_dxf(save(doc, tmp_path))
     assert region.area == pytest.approx(3.0) and len(region.geoms) == 2 and info["duplicates"] == 2

@@ -23,6 +23,9 @@ own coordinates (WCS x and y; nothing is rescaled):
    are joined end to end into loops, ends closer than the *join tolerance*
    ``max(1e-6 * size, tolerance)`` being one point. A drawing left open (an
    end that meets no other end) is refused with the positions of the gaps.
+   A curve drawn twice, or along a closed loop, is left out where both its
+   ends would otherwise be loose (the stray copy CAD drawings often hold),
+   and a closed loop drawn twice counts once.
 4. The region is the even-odd fill of all loops (holes by nesting, see
    :func:`medialaxis.planar.fill.fill_rings`), united with the filled
    entities (HATCH and MPOLYGON by their boundary paths and hatch style,
@@ -30,7 +33,10 @@ own coordinates (WCS x and y; nothing is rescaled):
    area give the area once.
 
 Entities that do not bound a region (TEXT, MTEXT, DIMENSION, POINT,
-XLINE, IMAGE, ...) are skipped and counted; those that do but cannot be read
+XLINE, IMAGE, WIPEOUT, ...) are skipped and counted; MLINE and proxy
+entities are read through the entities ezdxf decomposes them into. The
+width of polylines is not read (a polyline is its centre line). Those that
+bound a region but cannot be read
 (ACIS REGION and solids, meshes, clipped block references, external
 references) raise :class:`~medialaxis.errors.UnsupportedFeatureError` naming
 the entity.
