@@ -175,9 +175,9 @@ def _ours(svg: Path, ref: np.ndarray, dump: Path | None = None) -> tuple[str, st
             warnings.simplefilter("ignore")
             region, info = read_svg(svg)
     except MedialAxisError as exc:
-        return "error", f"{type(exc).__name__}: {exc}", None
+        return "error", f"{type(exc).__name__}: {_without_path(str(exc), svg)}", None
     except Exception as exc:  # noqa: BLE001 - a crash is what this benchmark counts
-        return "crash", f"{type(exc).__name__}: {exc}", None
+        return "crash", f"{type(exc).__name__}: {_without_path(str(exc), svg)}", None
     ours = raster(region, info["viewport"], ref.shape)
     fraction = score(ours, ref)
     if dump is not None and fraction > BAD_FRACTION:
@@ -186,6 +186,10 @@ def _ours(svg: Path, ref: np.ndarray, dump: Path | None = None) -> tuple[str, st
         io.imsave(dump / (svg.stem + ".png"), picture, check_contrast=False)
     skipped = ", ".join(f"{v} {k}" for k, v in info["skipped"].items())
     return ("right" if fraction <= BAD_FRACTION else "wrong"), skipped, fraction
+
+
+def _without_path(message: str, svg: Path) -> str:
+    return message.replace(f"SVG {str(svg)!r} ", "").replace(repr(str(svg)), "<file>")
 
 
 def _old(reader, svg: Path, ref: np.ndarray) -> str:

@@ -44,9 +44,11 @@ the entity.
 
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -173,8 +175,41 @@ def read_dxf(
     >>> len(region.interiors), round(region.area, 3), info["loops"]
     (1, 7.215, 2)
     """
-    ezdxf = require("ezdxf", "ezdxf")
-    path = Path(path)
+    ezdxf = require("ezdxf", "medialaxis[dxf]")
+    with _ezdxf_messages() as messages:
+        region, info = _read(ezdxf, Path(path), layers, tolerance)
+    if messages:
+        info["ezdxf_messages"] = sorted(set(messages))[:MAX_GAPS_LISTED]
+    return region, info
+
+
+class _Collected(logging.Handler):
+    def __init__(self, messages: list[str]):
+        super().__init__(logging.WARNING)
+        self.messages = messages
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.messages.append(record.getMessage())
+
+
+@contextlib.contextmanager
+def _ezdxf_messages() -> Iterator[list[str]]:
+    """ezdxf's warnings while reading, kept for the result's metadata instead of printed on stderr."""
+    logger = logging.getLogger("ezdxf")
+    messages: list[str] = []
+    handler = _Collected(messages)
+    propagate = logger.propagate
+    logger.addHandler(handler)
+    logger.propagate = False
+    try:
+        yield messages
+    finally:
+        logger.removeHandler(handler)
+        logger.propagate = propagate
+
+
+def _read(ezdxf: Any, path: Path, layers: Sequence[str] | None, tolerance: float | None) -> tuple[Any, dict[str, Any]]:
+    """:func:`read_dxf` once ezdxf is imported and its log is collected."""
     where = f"DXF {str(path)!r}"
     if tolerance is not None:
         tolerance = check_number(tolerance, "tolerance", positive=True)
