@@ -11,9 +11,10 @@ from typing import Any
 from medialaxis._dispatch import DEFAULT_METHOD, METHODS
 from medialaxis._help import HelpFormatter, UsageError
 from medialaxis._help import print_error as _fail
+from medialaxis.core.io import WRITERS
 from medialaxis.errors import MedialAxisError
 
-__all__ = ["add_compute", "compute_options", "check_outputs"]
+__all__ = ["add_compute", "compute_options", "check_kinds", "check_outputs"]
 
 
 def _parse_option(text: str) -> tuple[str, Any]:
@@ -42,6 +43,27 @@ def check_outputs(
                 f"{option}: unsupported output format {out.suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(formats)}"
             )
         check_writable(out)
+
+
+def check_kinds(outputs: Sequence[Path], domain: str, method: str | None, source: Path | None = None) -> None:
+    """Refuse, before any work, outputs that cannot hold what ``method`` gives for ``domain`` inputs.
+
+    A saved result (its kind is known once read) and a method unknown here are let through: saving
+    checks again before writing anything. ``source``: the input, named in the message of a batch
+    (its outputs come from ``--format``).
+    """
+    from medialaxis.core.io import kind_refusal
+    from medialaxis.core.outputs import method_kind
+
+    if domain not in METHODS:
+        return
+    method = DEFAULT_METHOD[domain] if method is None else method
+    kind = method_kind(domain, method)
+    for out in outputs:
+        reason = kind_refusal(out, kind)
+        if reason is not None:
+            where = f"-o {str(out)!r}" if source is None else f"--format {out.suffix[1:]} for {str(source)!r}"
+            raise UsageError(f"{where}: the {domain} method {method!r} gives {kind}; {reason}")
 
 
 def _summary(ma: Any) -> str:
@@ -78,8 +100,9 @@ def add_compute(sub: Any) -> None:
                    help="image, SVG/GeoJSON/WKT, mesh or volume file, folder or glob pattern, or a saved result "
                         "(.json/.npz)")
     p.add_argument("-o", "--output", type=Path, action="append", default=[],
-                   help="output file of a single input; the extension picks the format (.json .npz .svg .png "
-                        ".graphml .geojson .ply .obj .vtk .vtu .swc); repeatable")
+                   help=f"output file of a single input; the extension picks the format ({' '.join(WRITERS)}); "
+                        "one that cannot hold the method's kind of result (SVG: planar axes; SWC: curves; GeoJSON: "
+                        "no surfaces) is refused before any work; repeatable")
     p.add_argument("--out-dir", type=Path, default=None, help="folder for the outputs of each input (created if needed)")
     p.add_argument("--format", default="json", help="output formats with --out-dir, comma-separated (e.g. json,svg)")
     p.add_argument("--method", default=None, metavar="METHOD",
@@ -182,6 +205,13 @@ def _run_batch(args: argparse.Namespace, inputs: list[Path]) -> int:
     plan = output_names(inputs, args.out_dir, formats)
     args.out_dir.mkdir(parents=True, exist_ok=True)
     check_outputs(inputs, [out for outs in plan.values() for out in outs])
+    for path in inputs:
+        try:
+            domain = mx._dispatch.classify(str(path), args.method)
+        except MedialAxisError:
+            continue  # reported in its turn
+        if args.method is None or args.method in METHODS.get(domain, ()):
+            check_kinds(plan[path], domain, args.method, source=path)
     options, spacing = compute_options(args)
     failed = 0
     for path in progress(inputs, desc="inputs"):
@@ -219,6 +249,7 @@ def _run_compute(args: argparse.Namespace) -> int:
         raise UsageError(
             f"--method {args.method!r} does not apply to {domain} input; choose one of {', '.join(METHODS[domain])}"
         )
+    check_kinds(args.output, domain, args.method)
     if args.frames is not None:
         if domain != "mesh" or args.method != "flow":
             raise UsageError("--frames is available for meshes with --method flow")

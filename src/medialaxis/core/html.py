@@ -1,4 +1,4 @@
-"""Interactive 3D pages of a result: light, offline, one viewer library per folder.
+"""Interactive pages of a result (3D, and 2D in the source's frame): light, offline, one viewer library per folder.
 
 A page holds its geometry as compressed binary arrays (float32 coordinates,
 32-bit indices, zlib-deflated, base64) that a few lines of script inflate
@@ -13,7 +13,8 @@ same folder share it, keep them together when moving them);
 The page draws the medial faces coloured by radius (legend and colour bar
 apart), the medial curves and lone points, the input as a translucent shell
 (``ma.shape`` or ``surface=``; thinned to ``max_shell_faces``), the spheres
-of a simplified result, on axes with one scale.
+of a simplified result, on axes with one scale. A 2D result's page draws the shape and the axis
+coloured by radius (:func:`planar_page`).
 """
 
 from __future__ import annotations
@@ -28,10 +29,11 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core import mesh_files, scene3d
+from medialaxis.core.frames import from_image, plane_xy, y_down
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError, MissingDependencyError
 
-__all__ = ["Page", "medial_page", "write_html", "write_page"]
+__all__ = ["Page", "medial_page", "planar_page", "write_html", "write_page"]
 
 VIEWERS = ("folder", "inline")
 COLORSCALE = "Viridis"
@@ -288,8 +290,81 @@ def medial_page(
     return page
 
 
+def _planar_outline(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray] | None:
+    """The shape's rings in output (x, y), exteriors one way round and holes the other, NaN between rings."""
+    if ma.shape is None:
+        return None
+    import shapely
+
+    rings = []
+    for poly in shapely.get_parts(shapely.orient_polygons(ma.shape)):
+        for ring in [poly.exterior, *poly.interiors]:
+            rings += [plane_xy(ma, np.asarray(ring.coords)[:, :2]), np.full((1, 2), np.nan)]
+    if not rings:
+        return None
+    xy = np.vstack(rings)
+    return xy[:, 0], xy[:, 1]
+
+
+def planar_page(ma: MedialAxis, *, radius_bands: int = 16, max_svg_points: int = 20000) -> Page:
+    """The page of a 2D result: the shape, the axis coloured by radius, its points with their radii on hover.
+
+    Drawn in the source's frame (:mod:`medialaxis.core.frames`): an image's x = column and y = row
+    downwards, an SVG drawing's user units with y down, other inputs with y up; one scale on both axes.
+    The axis edges are drawn in ``radius_bands`` colours (a plotly line has one colour), the points
+    (WebGL beyond ``max_svg_points``) carry the exact radius and the colour bar.
+
+    Raises
+    ------
+    InvalidInputError
+        If ``ma`` is not 2D.
+    """
+    if not isinstance(ma, MedialAxis) or ma.dim != 2:
+        raise InvalidInputError("the planar page is for 2D medial axes")
+    from plotly.colors import sample_colorscale
+
+    xy, r = plane_xy(ma, ma.points), ma.radii
+    colour = _colorbar(r)
+    page = Page(_title(ma, len(ma.points)))
+    outline = _planar_outline(ma)
+    if outline is not None:
+        page.data.append({"type": "scatter", "mode": "lines", "name": "shape", "fill": "toself",
+                          "fillcolor": "rgba(120,150,190,0.25)", "line": {"color": "#445", "width": 1},
+                          "x": page.array(outline[0]), "y": page.array(outline[1]), "hoverinfo": "skip"})
+    edges = np.asarray(ma.edges, np.int64).reshape(-1, 2)
+    if len(edges):
+        lo, hi = colour["cmin"], colour["cmax"]
+        level = np.clip((r[edges].mean(axis=1) - lo) / (hi - lo), 0.0, 1.0)
+        band = np.minimum((level * radius_bands).astype(np.int64), radius_bands - 1)
+        for k in np.unique(band).tolist():
+            e = edges[band == k]
+            seg = np.full((3 * len(e), 2), np.nan)
+            seg[0::3], seg[1::3] = xy[e[:, 0]], xy[e[:, 1]]
+            page.data.append({"type": "scatter", "mode": "lines", "name": "medial axis", "legendgroup": "axis",
+                              "showlegend": not any(t.get("legendgroup") == "axis" for t in page.data),
+                              "line": {"color": sample_colorscale(COLORSCALE, [(k + 0.5) / radius_bands])[0],
+                                       "width": 2.5},
+                              "x": page.array(seg[:, 0]), "y": page.array(seg[:, 1]), "hoverinfo": "skip"})
+    page.data.append({"type": "scattergl" if len(xy) > max_svg_points else "scatter", "mode": "markers",
+                      "name": "medial points", "x": page.array(xy[:, 0]), "y": page.array(xy[:, 1]),
+                      "marker": {"size": 3, "color": page.array(r), **colour},
+                      "hovertemplate": "x %{x:.4g}, y %{y:.4g}<br>radius %{marker.color:.4g}<extra></extra>"})
+    down = y_down(ma)
+    names = ("x (column)", "y (row)") if from_image(ma) else ("x", "y")
+    page.layout.update(
+        xaxis={"title": {"text": names[0]}, "constrain": "domain"},
+        yaxis={"title": {"text": names[1]}, "scaleanchor": "x", "scaleratio": 1,
+               "autorange": "reversed" if down else True},
+        legend={"x": 0.01, "y": 0.99, "xanchor": "left", "yanchor": "top", "bgcolor": "rgba(255,255,255,0.7)"},
+        margin={"l": 50, "r": 20, "t": 40, "b": 40}, plot_bgcolor="white",
+    )
+    return page
+
+
 def write_html(ma: MedialAxis, path: str | os.PathLike[str], surface: Any = None, *, viewer: str = "folder") -> list[Path]:
     """Write the interactive view of ``ma`` to ``path``; returns the files written.
+
+    A 3D result is shown by :func:`medial_page`, a 2D one by :func:`planar_page` (``surface`` is for 3D).
 
     ``viewer="folder"`` puts ``plotly-<version>.min.js`` beside the page once
     (shared by every page of the folder); ``"inline"`` embeds it.
@@ -305,4 +380,5 @@ def write_html(ma: MedialAxis, path: str | os.PathLike[str], surface: Any = None
     >>> [p.suffix for p in write_html(ma, folder / "again.html")]  # the library is there already
     ['.html']
     """
-    return write_page(medial_page(ma, surface), path, viewer=viewer)
+    page = planar_page(ma) if isinstance(ma, MedialAxis) and ma.dim == 2 else medial_page(ma, surface)
+    return write_page(page, path, viewer=viewer)

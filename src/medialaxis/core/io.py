@@ -2,16 +2,19 @@
 
 Lossless: ``.json`` and ``.npz`` (:mod:`~medialaxis.core.lossless`, read back
 by :func:`load`, including the unpruned axis so :meth:`MedialAxis.prune`
-still works). Exports: ``.graphml``,
-``.geojson``, ``.svg`` (axis over the shape), ``.png`` (plot coloured by
-radius), ``.graphml`` (nodes with position and radius, edges with length and
-radius), ``.obj`` (``v``, ``l`` for curve edges, ``f``; VTK reads the curves,
-meshio's and trimesh's OBJ readers only the faces), ``.ply``, ``.vtk``, ``.vtu`` and
-``.swc`` (:mod:`medialaxis.core.mesh_files`: files that meshio, trimesh,
-pyvista and neuron tools open) and ``.html`` (interactive offline 3D view,
+still works). Exports: ``.geojson``, ``.svg`` (axis over the shape),
+``.png`` (plot coloured by radius), ``.graphml`` (nodes with position and
+radius, edges with length and radius), ``.obj`` (``v``, ``l`` for curve
+edges, ``f``; VTK reads the curves, meshio's and trimesh's OBJ readers only
+the faces), ``.ply``, ``.vtk``, ``.vtu`` and ``.swc``
+(:mod:`medialaxis.core.mesh_files`: files that meshio, trimesh, pyvista and
+neuron tools open) and ``.html`` (interactive offline view, 2D or 3D,
 :mod:`medialaxis.core.html`; the viewer library is written beside it once).
-Every file is written to a temporary name in the target folder, then renamed,
-so a failure never leaves a half-written file (:mod:`~medialaxis.core.outputs`).
+A 2D result is written in its source's frame, with the same (x, y) in every
+format (:mod:`medialaxis.core.frames`). A format that cannot hold the kind of
+result (:data:`HOLDS`) is refused before anything is written. Every file is
+written to a temporary name in the target folder, then renamed, so a failure
+never leaves a half-written file (:mod:`~medialaxis.core.outputs`).
 """
 
 from __future__ import annotations
@@ -25,17 +28,21 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core import mesh_files
+from medialaxis.core.frames import coordinates_note, plane_xy, y_down
 from medialaxis.core.lossless import LOSSLESS, is_result_file, load, write_json, write_npz
 from medialaxis.core.lossless import jsonable as _jsonable
-from medialaxis.core.outputs import atomic_write, check_writable, output_batch, output_mode
+from medialaxis.core.outputs import KINDS, atomic_write, check_writable, output_batch, output_mode, result_kind
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError, UnsupportedFormatError
 
 __all__ = [
+    "HOLDS",
     "LOSSLESS",
     "WRITERS",
     "atomic_write",
+    "check_kind",
     "check_writable",
+    "kind_refusal",
     "is_result_file",
     "load",
     "output_batch",
@@ -47,13 +54,16 @@ __all__ = [
 
 # -------------------------------------------------------------- exports
 def _write_graphml(ma: MedialAxis, path: Path) -> None:
+    """Nodes with x, y (as GeoJSON writes them: x = column, y = row for an image), z in 3D and radius."""
     from medialaxis._optional import require
 
     nx = require("networkx", "networkx")
     g = nx.Graph()
-    names = "xyz"
-    for i, (p, r) in enumerate(zip(ma.points.tolist(), ma.radii.tolist())):
-        g.add_node(i, radius=float(r), **{names[k]: float(c) for k, c in enumerate(p)})
+    points = plane_xy(ma, ma.points) if ma.dim == 2 else ma.points
+    if ma.dim == 2:
+        g.graph["coordinates"] = coordinates_note(ma)
+    for i, (p, r) in enumerate(zip(points.tolist(), ma.radii.tolist())):
+        g.add_node(i, radius=float(r), **{"xyz"[k]: float(c) for k, c in enumerate(p)})
     radii = np.asarray(ma.radii, np.float64)
     for a, b in ma._all_edges.tolist():
         length = float(np.linalg.norm(ma.points[a] - ma.points[b]))
@@ -62,20 +72,14 @@ def _write_graphml(ma: MedialAxis, path: Path) -> None:
         nx.write_graphml(g, fh)
 
 
-def _from_image(ma: MedialAxis) -> bool:
-    """A 2D result in image index order (row, column)."""
-    return ma.dim == 2 and "image_shape" in ma.metadata
-
-
 def _write_geojson(ma: MedialAxis, path: Path) -> None:
     """Branches as LineStrings, junctions and endpoints as Points. An image's
     axis is written with x = column and y = row (pixels times spacing, y
     downwards as in the image), as GIS tools place a raster's pixels; the
     document's ``properties["coordinates"]`` says which."""
-    swap = _from_image(ma)
 
     def xy(points: np.ndarray) -> list[Any]:
-        return (points[..., ::-1] if swap else points).tolist()
+        return (plane_xy(ma, points) if ma.dim == 2 else points).tolist()
 
     feats = []
     for br in ma.branches():
@@ -97,58 +101,20 @@ def _write_geojson(ma: MedialAxis, path: Path) -> None:
                 }
             )
     properties = _jsonable(dict(ma.metadata))
-    properties["coordinates"] = ("x = column, y = row (image pixels times spacing, y down)" if swap
-                                 else "the result's own coordinates")
+    properties["coordinates"] = coordinates_note(ma) if ma.dim == 2 else "the result's own coordinates"
     doc = {"type": "FeatureCollection", "features": feats, "properties": properties}
     with atomic_write(path, "w") as fh:
         json.dump(doc, fh)
 
 
-def _display_xy(ma: MedialAxis, xy: np.ndarray) -> np.ndarray:
-    """Map axis coordinates to picture (x right, y down) coordinates."""
-    if "image_shape" in ma.metadata:  # (row, col): col is x, row is y (down)
-        return xy[:, ::-1]
-    return np.c_[xy[:, 0], -xy[:, 1]]
-
-
 def _write_svg(ma: MedialAxis, path: Path) -> None:
+    """The axis over the shape, in the source's frame (:func:`medialaxis.core.frames.svg_frame`)."""
+    from medialaxis.core.frames import svg_document
+
     if ma.dim != 2:
         raise UnsupportedFormatError("SVG export is for planar axes; use .ply, .obj or .png for 3D")
-    parts: list[np.ndarray] = [ma.points]
-    outline: list[np.ndarray] = []
-    if ma.shape is not None:
-        import shapely
-
-        for poly in shapely.get_parts(ma.shape):
-            for ring in [poly.exterior, *poly.interiors]:
-                outline.append(np.asarray(ring.coords))
-        parts.extend(outline)
-    allxy = _display_xy(ma, np.vstack(parts)) if len(np.vstack(parts)) else np.zeros((1, 2))
-    lo, hi = allxy.min(0), allxy.max(0)
-    size = max(float((hi - lo).max()), 1e-12)
-    pad = 0.05 * size
-    scale = 800.0 / (size + 2 * pad)
-    w, h = ((hi - lo) + 2 * pad) * scale
-
-    def tr(xy: np.ndarray) -> np.ndarray:
-        return (_display_xy(ma, xy) - lo + pad) * scale
-
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w:.1f}" height="{h:.1f}" viewBox="0 0 {w:.1f} {h:.1f}">']
-    if outline:
-        d = " ".join("M " + " L ".join(f"{x:.2f},{y:.2f}" for x, y in tr(r)) + " Z" for r in outline)
-        out.append(f'<path d="{d}" fill="#dde6f0" stroke="#445" stroke-width="1" fill-rule="evenodd"/>')
-    for br in ma.branches():
-        pts = " ".join(f"{x:.2f},{y:.2f}" for x, y in tr(br.points))
-        out.append(f'<polyline points="{pts}" fill="none" stroke="#c0392b" stroke-width="1.5"/>')
-    for i in ma.junctions.tolist():
-        x, y = tr(ma.points[i : i + 1])[0]
-        out.append(f'<circle cx="{x:.2f}" cy="{y:.2f}" r="3" fill="#2c3e50"/>')
-    for i in ma.endpoints.tolist():
-        x, y = tr(ma.points[i : i + 1])[0]
-        out.append(f'<circle cx="{x:.2f}" cy="{y:.2f}" r="3" fill="#27ae60"/>')
-    out.append("</svg>")
     with atomic_write(path, "w") as fh:
-        fh.write("\n".join(out))
+        fh.write(svg_document(ma, coordinates_note(ma)))
 
 
 def _write_png(ma: MedialAxis, path: Path) -> None:
@@ -160,6 +126,10 @@ def _write_png(ma: MedialAxis, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     fig = plot_axis(ma)
+    if ma.dim == 2 and y_down(ma):  # an SVG drawing's y points down, as an image's (plot_axis turns those)
+        for ax in fig.axes[:1]:
+            if not ax.yaxis_inverted():
+                ax.invert_yaxis()
     try:
         with atomic_write(path, "wb") as fh:
             fig.savefig(fh, format="png", dpi=120, bbox_inches="tight")
@@ -190,7 +160,7 @@ def _write_obj(ma: MedialAxis, path: Path) -> None:
 
 
 def _write_html(ma: MedialAxis, path: Path) -> None:
-    from medialaxis.core.html import write_html  # plotly view, 3D results
+    from medialaxis.core.html import write_html  # plotly view
 
     write_html(ma, path)
 
@@ -211,12 +181,53 @@ WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
 }
 
 
+#: What each format holds, and the kinds of result (:data:`~medialaxis.core.outputs.KINDS`) that fit.
+HOLDS: dict[str, tuple[str, frozenset[str]]] = {
+    **{ext: ("any result", frozenset(KINDS))
+       for ext in (".json", ".npz", ".graphml", ".png", ".ply", ".obj", ".vtk", ".vtu", ".html")},
+    ".geojson": ("lines and points", frozenset({"planar curves", "space curves", "voxel sets"})),
+    ".svg": ("planar axes", frozenset({"planar curves"})),
+    ".swc": ("curve skeletons", frozenset({"planar curves", "space curves"})),
+}
+
+_NAMES = {".geojson": "GeoJSON", ".graphml": "GraphML", ".html": "HTML"}
+
+
+def kind_refusal(path: str | os.PathLike[str], kind: str | None) -> str | None:
+    """Why a file at ``path`` cannot hold a result of ``kind`` (one of :data:`KINDS`); None when it can.
+
+    >>> kind_refusal("t.swc", "surfaces")
+    'SWC holds curve skeletons, not surfaces: write .json, .npz, .graphml, .png, .ply, .obj, .vtk, .vtu or .html'
+    """
+    ext = Path(path).suffix.lower()
+    if kind is None or ext not in HOLDS or kind in HOLDS[ext][1]:
+        return None
+    fits = [e for e, (_, kinds) in HOLDS.items() if kind in kinds]
+    name = _NAMES.get(ext, ext[1:].upper())
+    return f"{name} holds {HOLDS[ext][0]}, not {kind}: write {', '.join(fits[:-1])} or {fits[-1]}"
+
+
+def check_kind(ma: MedialAxis, path: str | os.PathLike[str]) -> None:
+    """Raise :class:`UnsupportedFormatError` unless ``path``'s format holds ``ma``'s kind of result."""
+    reason = kind_refusal(path, result_kind(ma))
+    if reason is not None:
+        raise UnsupportedFormatError(f"{str(path)!r}: {reason}")
+
+
 def save(ma: MedialAxis, path: str | os.PathLike[str]) -> None:
-    """Write ``ma`` to ``path``; the extension picks the format (see module docstring)."""
+    """Write ``ma`` to ``path``; the extension picks the format (see module docstring).
+
+    Raises
+    ------
+    UnsupportedFormatError
+        An unknown extension, or a format that cannot hold this kind of result (:data:`HOLDS`);
+        nothing is written.
+    """
     if not isinstance(ma, MedialAxis):
         raise InvalidInputError(f"expected a MedialAxis, got {type(ma).__name__}")
     path = Path(path)
     ext = path.suffix.lower()
     if ext not in WRITERS:
         raise UnsupportedFormatError(f"unsupported output format {ext or '(none)'!r}; choose one of {', '.join(WRITERS)}")
+    check_kind(ma, path)
     WRITERS[ext](ma, path)

@@ -1,5 +1,6 @@
 """Output files written atomically (a temporary name in the target folder, then a rename), with the umask's
-permissions; a batch of outputs is kept all-or-none (:func:`output_batch`)."""
+permissions; a batch of outputs is kept all-or-none (:func:`output_batch`). The kind of result each method
+gives (:data:`METHOD_KINDS`), so that an output that cannot hold it is refused before any work."""
 
 from __future__ import annotations
 
@@ -14,7 +15,39 @@ from typing import IO, Any
 
 from medialaxis.errors import InputFileError
 
-__all__ = ["atomic_write", "check_writable", "output_batch", "output_mode"]
+__all__ = ["KINDS", "METHOD_KINDS", "atomic_write", "check_writable", "method_kind", "output_batch", "output_mode",
+           "result_kind"]
+
+#: The kinds of result: curves in the plane, curves in space, surfaces (triangles, possibly with curve
+#: pieces), voxel sets (lone points).
+KINDS = ("planar curves", "space curves", "surfaces", "voxel sets")
+
+#: The kind each method gives, by (domain, method) as in :data:`medialaxis._dispatch.METHODS`.
+METHOD_KINDS: dict[tuple[str, str], str] = {
+    ("planar", "voronoi"): "planar curves",
+    ("mesh", "flow"): "space curves",
+    ("mesh", "voronoi"): "surfaces",
+    ("volume", "midsurface"): "surfaces",
+    ("volume", "voxels"): "voxel sets",
+}
+
+
+def method_kind(domain: str, method: str) -> str | None:
+    """The kind of result ``method`` gives for ``domain`` inputs (one of :data:`KINDS`), None if unknown."""
+    return METHOD_KINDS.get((domain, method))
+
+
+def result_kind(ma: Any) -> str:
+    """The kind of a :class:`~medialaxis.core.result.MedialAxis`: its method's, else what it holds."""
+    meta = ma.metadata
+    kind = method_kind(str(meta.get("domain")), str(meta.get("method")))
+    if kind is not None:
+        return kind
+    if ma.dim == 2:
+        return "planar curves"
+    if len(ma.faces):
+        return "surfaces"
+    return "space curves" if len(ma.edges) else "voxel sets"
 
 #: Renames deferred by :func:`output_batch` (temporary file, target), or None outside a batch.
 _BATCH: contextvars.ContextVar[list[tuple[str, Path]] | None] = contextvars.ContextVar("medialaxis_batch", default=None)
