@@ -3,11 +3,9 @@ the same (x, y) in GraphML, GeoJSON and SVG; 2D HTML pages."""
 
 from __future__ import annotations
 
-import base64
 import json
 import re
 import xml.etree.ElementTree as ET
-import zlib
 from html.parser import HTMLParser
 
 import numpy as np
@@ -174,18 +172,9 @@ def _page_figure(path):
     parser.feed(path.read_text())
     data = [text for attrs, text in parser.scripts if attrs.get("id") == "medialaxis-data"]
     assert len(data) == 1 and "medialaxis-plot" in parser.divs
-    spec = json.loads(data[0].replace("<\\/", "</"))
-    kinds = {"f4": np.float32, "i4d": np.int32, "u1": np.uint8}
-    arrays = [np.frombuffer(zlib.decompress(base64.b64decode(b["data"])), kinds[b["dtype"]]) for b in spec["blobs"]]
+    from tests.test_pages import _decoded  # the page's blobs inflated as its loader does
 
-    def fill(node):
-        if isinstance(node, list):
-            return [fill(x) for x in node]
-        if isinstance(node, dict):
-            return arrays[node["__blob"]] if "__blob" in node else {k: fill(v) for k, v in node.items()}
-        return node
-
-    return fill(spec["figure"]), parser
+    return _decoded(json.loads(data[0].replace("<\\/", "</"))), parser
 
 
 @pytest.mark.parametrize("source", ["image", "polygon"])
