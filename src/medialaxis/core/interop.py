@@ -1,8 +1,10 @@
-"""Results as the objects of 3D viewers: a pyvista mesh and napari layer data.
+"""Results as the objects of other libraries: pyvista, napari, shapely, trimesh.
 
-pyvista is loaded on first use (``pip install pyvista``); napari is never
-imported: :func:`to_napari` returns napari's layer-data tuples, which
-``viewer._add_layer_from_data(*t)`` or a napari reader plugin turns into layers.
+pyvista and trimesh are loaded on first use (``pip install pyvista``,
+``pip install trimesh``); napari is never imported: :func:`to_napari` returns
+napari's layer-data tuples, which ``viewer._add_layer_from_data(*t)`` or a
+napari reader plugin turns into layers. The pixel skeleton of image results
+(skimage's and skan's kind) is :func:`medialaxis.core.skeleton_image.to_image`.
 """
 
 from __future__ import annotations
@@ -13,11 +15,12 @@ import numpy as np
 
 from medialaxis import _optional
 from medialaxis.core.mesh_files import curve_edges, point_fields, points_3d
+from medialaxis.errors import InvalidInputError
 
 if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.core.result import MedialAxis
 
-__all__ = ["to_napari", "to_pyvista"]
+__all__ = ["to_napari", "to_pyvista", "to_shapely", "to_trimesh"]
 
 
 def to_pyvista(ma: MedialAxis) -> Any:
@@ -65,3 +68,61 @@ def to_napari(ma: MedialAxis) -> list[tuple[Any, dict[str, Any], str]]:
     layers.append((points, {"name": "medial balls", "size": 2.0 * radii, "properties": {"radius": radii},
                             "face_color": "transparent"}, "points"))
     return layers
+
+
+def to_shapely(ma: MedialAxis) -> Any:
+    """The branches of a planar curve axis as a :class:`shapely.MultiLineString`.
+
+    One LineString per branch (:meth:`MedialAxis.branches`, in that order),
+    in the result's coordinates: ``(row, col) * spacing`` for image inputs
+    (x is the row), the input's own x, y for vector inputs. A point without
+    edges (the centre of a disc) is in no branch: ``shapely.MultiPoint(
+    ma.points[ma.degree == 0])`` gives those. The radius is not carried.
+
+    Raises
+    ------
+    InvalidInputError
+        The result is 3D or has faces (use :func:`to_trimesh`).
+    """
+    shapely = _optional.require("shapely", "shapely")
+    if ma.dim != 2 or len(ma.faces):
+        kind = "a 3D" if ma.dim != 2 else "a surface"
+        raise InvalidInputError(f"to_shapely() takes planar curve axes; this is {kind} axis: use to_trimesh()")
+    return shapely.MultiLineString([branch.points for branch in ma.branches()])
+
+
+def to_trimesh(ma: MedialAxis) -> Any:
+    """The result as a trimesh object, by its kind.
+
+    * with faces (medial surfaces): a :class:`trimesh.Trimesh` of the
+      triangles; every point is a vertex, in the result's order (so
+      ``ma.edges`` index it too), nothing merged or dropped
+      (``process=False``), and ``vertex_attributes["radius"]``. Curve
+      edges of a mixed result are not in the mesh (``to_pyvista`` has both).
+    * curves only: a :class:`trimesh.path.Path3D` (``Path2D`` for planar
+      axes) with one ``Line`` entity per branch through its points, and
+      ``vertex_attributes["radius"]``.
+    * points only: a :class:`trimesh.PointCloud`, the radii in
+      ``metadata["radius"]`` (point clouds have no vertex attributes).
+
+    Raises
+    ------
+    MissingDependencyError
+        trimesh is not installed.
+    """
+    trimesh = _optional.require("trimesh", "trimesh")
+    points = np.asarray(ma.points, np.float64)
+    radius = {"radius": np.array(ma.radii, np.float64)}
+    if len(ma.faces):
+        return trimesh.Trimesh(vertices=points.copy(), faces=np.array(ma.faces, np.int64), process=False,
+                               validate=False, vertex_attributes=radius)
+    if len(ma.edges):
+        path_module = _optional.require("trimesh.path", "trimesh")
+        from trimesh.path.entities import Line
+
+        entities = [Line(np.array(branch.indices, np.int64)) for branch in ma.branches()]
+        cls = path_module.Path2D if ma.dim == 2 else path_module.Path3D
+        path = cls(entities=entities, vertices=points.copy(), process=False)
+        path.vertex_attributes.update(radius)
+        return path
+    return trimesh.PointCloud(points.copy(), metadata=radius)

@@ -65,6 +65,11 @@ class Branch:
         """True when the chain closes on itself."""
         return len(self.indices) > 1 and self.indices[0] == self.indices[-1]
 
+    def __repr__(self) -> str:
+        ends = "cycle" if self.is_cycle else f"{int(self.indices[0])}->{int(self.indices[-1])}"
+        radius = f"{self.radii.min():.4g}..{self.radii.max():.4g}" if len(self.radii) else "-"
+        return f"Branch({ends}, points={len(self.indices)}, length={self.length:.4g}, radius={radius})"
+
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class MedialAxis:
@@ -224,11 +229,90 @@ class MedialAxis:
         chains = _graph.branches(len(self.points), self.edges)
         return [Branch(c, self.points[c], self.radii[c]) for c in chains]
 
-    def summary(self) -> Any:
-        """One row per branch: ends, kind, length, Euclidean distance, radius
-        min/mean/max (a pandas DataFrame; see
-        :func:`medialaxis.core.summary.branch_table`)."""
-        return branch_table(self)
+    def summary(self, *, style: str = "medialaxis") -> Any:
+        """One row per branch (a pandas DataFrame).
+
+        Parameters
+        ----------
+        style : {"medialaxis", "skan"}
+            ``"medialaxis"``: ends, kind, length, Euclidean distance, radius
+            min/mean/max. ``"skan"``: the columns and branch-type codes of
+            ``skan.summarize(skeleton, separator="_")`` (``skeleton_id``,
+            ``node_id_src``, ``branch_distance``, ``branch_type``,
+            ``mean_pixel_value``, ``coord_src_0``, ``euclidean_distance``
+            ...), the radius as the pixel value. See
+            :func:`medialaxis.core.summary.branch_table`.
+
+        Returns
+        -------
+        pandas.DataFrame
+        """
+        return branch_table(self, style=style)
+
+    # ------------------------------------------------------------- notebook
+    def plot(self, ax: Any = None, *, shape: bool = True, color_by_radius: bool = True, nodes: bool = True,
+             colorbar: bool = True, title: bool = True) -> Any:
+        """Draw the axis with matplotlib and return the axes.
+
+        Planar results are drawn over their shape (images the right way
+        up: row downwards); 3D results on 3D axes inside a translucent
+        input shell, with one scale on all axes.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (3D axes for a 3D result:
+            ``fig.add_subplot(projection="3d")``). Default: new axes on a new
+            pyplot figure.
+        shape : bool
+            Draw the input region (2D) or shell (3D) when the result keeps it.
+        color_by_radius : bool
+            Colour the axis by radius (viridis), else one colour.
+        nodes : bool
+            Mark junctions (black) and endpoints (green).
+        colorbar, title : bool
+            Add a radius colour bar; a title with the method and counts.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+
+        Raises
+        ------
+        InvalidInputError
+            ``ax`` is 2D for a 3D result, or 3D for a planar one.
+        """
+        from medialaxis.core.plot import plot
+
+        return plot(self, ax, shape=shape, color_by_radius=color_by_radius, nodes=nodes, colorbar=colorbar,
+                    title=title)
+
+    def _repr_png_(self) -> bytes:
+        """The picture of :meth:`plot`, for Jupyter (drawn off pyplot, so nothing else is shown)."""
+        from medialaxis.core.plot import png_bytes
+
+        return png_bytes(self)
+
+    # -------------------------------------------------------------- interop
+    def to_shapely(self) -> Any:
+        """The branches of a planar curve axis as a shapely MultiLineString,
+        in the result's coordinates (see :func:`medialaxis.core.interop.to_shapely`)."""
+        return interop.to_shapely(self)
+
+    def to_trimesh(self) -> Any:
+        """A :class:`trimesh.Trimesh` of the faces (surfaces) or a ``Path3D`` /
+        ``Path2D`` of the branches (curves), with ``vertex_attributes["radius"]``;
+        a ``PointCloud`` for points only (see :func:`medialaxis.core.interop.to_trimesh`)."""
+        return interop.to_trimesh(self)
+
+    def to_image(self) -> Any:
+        """``(skeleton, distance)`` images on the input's pixel grid, as
+        skimage's ``medial_axis(return_distance=True)`` (the distance only on
+        the skeleton); image and volume results only (see
+        :func:`medialaxis.core.skeleton_image.to_image`)."""
+        from medialaxis.core.skeleton_image import to_image
+
+        return to_image(self)
 
     def to_pyvista(self) -> Any:
         """The result as a :class:`pyvista.PolyData` (see :func:`medialaxis.core.interop.to_pyvista`)."""
