@@ -58,12 +58,16 @@ EXTENSIONS: dict[str, tuple[str, ...]] = {
 }
 
 
+#: The default colour axis of a 3D array (scikit-image's ``channel_axis``).
+CHANNEL_AXIS = -1
+
+
 def _suffix(path: Path) -> str:
     name = path.name.lower()
     return ".nii.gz" if name.endswith(".nii.gz") else path.suffix.lower()
 
 
-def _classify_path(path: Path, method: str | None) -> str:
+def _classify_path(path: Path, method: str | None, channel_axis: Any = CHANNEL_AXIS) -> str:
     if not path.exists():
         raise InputFileError(f"no such file or folder: {str(path)!r}")
     if path.is_dir():
@@ -89,22 +93,34 @@ def _classify_path(path: Path, method: str | None) -> str:
             arr = np.load(path, mmap_mode="r", allow_pickle=False)
         except Exception as exc:  # noqa: BLE001
             raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
-        return _classify_ndim(arr.ndim, arr.shape, arr.dtype)
+        if method in METHODS["volume"]:
+            return "volume"
+        return _classify_ndim(arr.ndim, arr.shape, arr.dtype, channel_axis)
     raise UnsupportedFormatError(f"unsupported file type {ext or '(none)'!r} for {str(path)!r}")
 
 
-def _classify_ndim(ndim: int, shape: tuple[int, ...], dtype: np.dtype) -> str:
+def _classify_ndim(ndim: int, shape: tuple[int, ...], dtype: np.dtype, channel_axis: Any = CHANNEL_AXIS) -> str:
     if ndim == 2:
         return "planar"
     if ndim == 3:
+        # an (rows, cols, 3 | 4) array is a colour image (skimage.io.imread's), unless channel_axis=None
+        if isinstance(channel_axis, (int, np.integer)) and not isinstance(channel_axis, bool):
+            if -3 <= int(channel_axis) < 3 and shape[int(channel_axis)] in (3, 4):
+                return "planar"
         return "volume"
     raise InvalidInputError(f"expected a 2D image, an (n, 2) boundary loop or a 3D volume, got an array of shape {shape}")
 
 
-def classify(shape: Any, method: str | None = None) -> str:
-    """Return the domain (``"planar"``, ``"mesh"``, ``"volume"``) of an input, or :data:`RESULT`."""
+def classify(shape: Any, method: str | None = None, options: Mapping[str, Any] | None = None) -> str:
+    """Return the domain (``"planar"``, ``"mesh"``, ``"volume"``) of an input, or :data:`RESULT`.
+
+    A 3D array whose ``channel_axis`` (option, default the last axis) has 3
+    or 4 entries is a colour image, planar; ``channel_axis=None`` or a
+    volume method makes it a volume.
+    """
+    channel_axis = (options or {}).get("channel_axis", CHANNEL_AXIS)
     if isinstance(shape, (str, os.PathLike)):
-        return _classify_path(Path(shape), method)
+        return _classify_path(Path(shape), method, channel_axis)
     module = type(shape).__module__ or ""
     if module.startswith("shapely"):
         return "planar"
@@ -113,14 +129,16 @@ def classify(shape: Any, method: str | None = None) -> str:
     if isinstance(shape, (list, tuple)) and shape and all(hasattr(s, "geom_type") for s in shape):
         return "planar"
     if module.startswith(("dask", "zarr")) and hasattr(shape, "ndim") and hasattr(shape, "dtype"):
-        return _classify_ndim(shape.ndim, tuple(shape.shape), shape.dtype)  # lazy arrays: never read whole here
+        return _classify_ndim(shape.ndim, tuple(shape.shape), shape.dtype, None)  # lazy arrays: volumes
     try:
         arr = np.asarray(shape)
     except Exception as exc:  # noqa: BLE001
         raise InvalidInputError(f"cannot interpret input of type {type(shape).__name__}") from exc
     if arr.dtype == object:
         raise InvalidInputError(f"cannot interpret input of type {type(shape).__name__} as a shape")
-    return _classify_ndim(arr.ndim, arr.shape, arr.dtype)
+    if method in METHODS["volume"]:
+        return "volume" if arr.ndim == 3 else _classify_ndim(arr.ndim, arr.shape, arr.dtype, None)
+    return _classify_ndim(arr.ndim, arr.shape, arr.dtype, channel_axis)
 
 
 def _load(entry: str) -> Callable[..., Any]:

@@ -44,6 +44,11 @@ def medial_axis(
         of the image border; ``"bright"``; ``"dark"``).
     spacing : float or sequence of float, optional
         Physical size of a pixel/voxel along each array axis (default 1).
+        A ``(rows, cols, 3 | 4)`` array is a colour image (RGB or RGBA, as
+        ``skimage.io.imread`` gives it); the option ``channel_axis`` names
+        another colour axis, or ``None`` for a volume whose last axis has 3
+        or 4 entries. Integer arrays of 32 or 64 bits are label images (one
+        axis per label; option ``labels``).
     **options
         Method-specific options, documented by the method (for the planar
         method see :func:`medialaxis.planar.voronoi_medial_axis`).
@@ -70,10 +75,12 @@ def medial_axis(
     >>> len(ma.endpoints), len(ma.junctions)
     (4, 2)
     """
-    domain = _dispatch.classify(shape, method)
+    domain = _dispatch.classify(shape, method, options)
     given = {"lam": lam, "threshold": threshold, "spacing": spacing}
     kwargs = {k: v for k, v in given.items() if v is not None}
     kwargs.update(options)
+    if domain != "planar" and "channel_axis" in kwargs and kwargs["channel_axis"] is None:
+        del kwargs["channel_axis"]  # "no colour axis" said of a volume: nothing for its method to do
     if domain == _dispatch.RESULT:
         return _dispatch.load_result(shape, method, kwargs)
     name, fn = _dispatch.resolve(domain, method)

@@ -14,7 +14,7 @@ from medialaxis.core.validate import check_finite, memory_budget
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError, ResourceLimitError
 
 __all__ = ["image_region", "read_image", "contour_region", "shape_side", "check_foreground", "max_pixels",
-           "FOREGROUNDS", "IMAGE_EXTENSIONS"]
+           "colour_to_grey", "check_image", "FOREGROUNDS", "IMAGE_EXTENSIONS"]
 
 
 #: Bytes of working memory per pixel of a raster input (float64 copy, padded
@@ -58,8 +58,10 @@ def read_image(path: Path) -> np.ndarray:
                 )
             if im.mode in ("1", "L", "I", "I;16", "F"):
                 arr = np.asarray(im)
+            elif "A" in im.getbands() or "transparency" in im.info:
+                arr, _ = colour_to_grey(np.asarray(im.convert("RGBA")))
             else:
-                arr = np.asarray(im.convert("L"))
+                arr, _ = colour_to_grey(np.asarray(im.convert("RGB")))
     except (ResourceLimitError, InvalidInputError):
         raise
     except Exception as exc:  # noqa: BLE001 - PIL raises many types for bad files
@@ -72,6 +74,41 @@ def read_image(path: Path) -> np.ndarray:
             ) from exc
         raise InputFileError(f"cannot read image {str(path)!r}: {exc}") from exc
     return arr
+
+
+def colour_to_grey(image: np.ndarray) -> tuple[np.ndarray, str]:
+    """A colour image (channels last: RGB or RGBA) as the grey image whose threshold gives the shape.
+
+    RGB is made grey as :func:`skimage.color.rgb2gray` does (luminance,
+    floats in [0, 1]). An alpha channel that is not constant is the shape
+    itself: what is painted is opaque, so the alpha (in [0, 1]) is the grey
+    image; a constant alpha is ignored.
+
+    Returns
+    -------
+    grey : (rows, cols) float ndarray
+    source : {"rgb", "alpha"}
+        Which channels the grey image comes from.
+
+    Examples
+    --------
+    >>> rgba = np.zeros((2, 2, 4), np.uint8); rgba[0, 0] = (255, 0, 0, 255)
+    >>> grey, source = colour_to_grey(rgba)
+    >>> source, grey.tolist()
+    ('alpha', [[1.0, 0.0], [0.0, 0.0]])
+    """
+    from skimage.color import rgb2gray
+    from skimage.util import img_as_float
+
+    if image.ndim != 3 or image.shape[-1] not in (3, 4):
+        raise InvalidInputError(f"a colour image has 3 or 4 channels on its last axis, got shape {image.shape}")
+    if image.dtype.kind not in "biuf":
+        raise InvalidInputError(f"colour image dtype must be bool, integer or float, got {image.dtype}")
+    if image.shape[-1] == 4:
+        alpha = image[..., 3]
+        if alpha.min() != alpha.max():
+            return img_as_float(alpha), "alpha"
+    return rgb2gray(image[..., :3]), "rgb"
 
 
 def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, float]:
@@ -221,10 +258,8 @@ def contour_region(
     return _rings_to_region(rings)
 
 
-def image_region(
-    arr: np.ndarray, threshold: float | None, spacing: np.ndarray, foreground: str = "auto"
-) -> tuple[Any, np.ndarray, float, str]:
-    """The region of an image, its mask, the threshold used and the side that is the shape."""
+def check_image(arr: np.ndarray) -> None:
+    """Refuse what is not a 2D image of bool, integer or finite float pixels that fits in memory."""
     if arr.ndim != 2:
         raise InvalidInputError(
             f"the planar method needs a 2D image, got an array of shape {arr.shape}"
@@ -237,6 +272,13 @@ def image_region(
         raise InvalidInputError(f"image dtype must be bool, integer or float, got {arr.dtype}")
     if arr.dtype.kind == "f" and not np.all(np.isfinite(arr)):
         raise InvalidInputError("the image contains NaN or infinite values")
+
+
+def image_region(
+    arr: np.ndarray, threshold: float | None, spacing: np.ndarray, foreground: str = "auto"
+) -> tuple[Any, np.ndarray, float, str]:
+    """The region of an image, its mask, the threshold used and the side that is the shape."""
+    check_image(arr)
     bright, level = _threshold(arr, threshold)
     n_bright = int(np.count_nonzero(bright))
     if foreground == "auto" and n_bright in (0, bright.size):  # one side only: nothing to choose

@@ -24,12 +24,15 @@ from medialaxis.planar.images import (
     FOREGROUNDS,
     IMAGE_EXTENSIONS,
     check_foreground,
+    check_image,
+    colour_to_grey,
     contour_region,
     image_region,
     max_pixels,
     read_image,
     shape_side,
 )
+from medialaxis.planar.labels import is_label_image, label_regions
 from medialaxis.planar.vectors import loop_polygon, read_vector, validate_polygonal
 
 __all__ = ["PlanarInput", "load_planar", "max_pixels", "shape_side", "contour_region", "FOREGROUNDS", "DRAWINGS"]
@@ -64,6 +67,11 @@ class PlanarInput:
     drawing : dict or None
         What the reader of a drawing (SVG, DXF) found: its format, units or
         viewport, and the elements it skipped (see :func:`read_drawing`).
+    labels : tuple of (int, region) or None
+        For label images: each label and its region (``region`` is their
+        union); every label is a shape of its own.
+    channels : {"rgb", "alpha"} or None
+        For colour images: which channels the grey image comes from.
     """
 
     region: Any
@@ -74,6 +82,8 @@ class PlanarInput:
     side: str | None = None
     repaired: str | None = None
     drawing: dict[str, Any] | None = None
+    labels: tuple[tuple[int, Any], ...] | None = None
+    channels: str | None = None
 
     @property
     def is_raster(self) -> bool:
@@ -123,6 +133,8 @@ def load_planar(
     tolerance: float | None = None,
     strokes: bool | None = None,
     layers: Sequence[str] | None = None,
+    labels: bool | None = None,
+    channel_axis: int | None = -1,
 ) -> PlanarInput:
     """Read and validate any planar input.
 
@@ -131,7 +143,12 @@ def load_planar(
     inputs accept only "auto". ``tolerance`` is the chord error of the
     curves of drawings; ``strokes`` (SVG: read strokes as regions, default
     True) and ``layers`` (DXF: the layers to read, default all visible)
-    apply to drawings only.
+    apply to drawings only. ``labels`` says whether an integer image is a
+    label image (default: 32 and 64-bit integer arrays are, see
+    :func:`~medialaxis.planar.labels.is_label_image`; image files only with
+    ``labels=True``); ``channel_axis`` is
+    the colour axis of a 3D array (RGB or RGBA, made grey by
+    :func:`~medialaxis.planar.images.colour_to_grey`).
 
     Raises
     ------
@@ -149,7 +166,8 @@ def load_planar(
             raise InputFileError(f"no such file: {str(path)!r}")
         ext = path.suffix.lower()
         if ext in IMAGE_EXTENSIONS:
-            return _image_input(read_image(path), threshold, check_spacing(spacing, 2), foreground)
+            # an image file is a picture unless labels=True says it holds labels (a 16-bit scan opens as int32)
+            return _image_input(read_image(path), threshold, check_spacing(spacing, 2), foreground, bool(labels))
         if ext in DRAWINGS:
             _vector_only_auto(foreground, str(path))
             region, info = read_drawing(path, tolerance=tolerance, strokes=strokes, layers=layers)
@@ -164,7 +182,10 @@ def load_planar(
                 arr = np.load(path, allow_pickle=False)
             except Exception as exc:  # noqa: BLE001
                 raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
-            return load_planar(arr, threshold=threshold, spacing=spacing, foreground=foreground)
+            return load_planar(
+                arr, threshold=threshold, spacing=spacing, foreground=foreground, labels=labels,
+                channel_axis=channel_axis,
+            )
         raise UnsupportedFormatError(f"unsupported planar file type {ext!r} for {str(path)!r}")
     if hasattr(shape, "geom_type"):
         if spacing is not None:
@@ -179,12 +200,42 @@ def load_planar(
         _vector_only_auto(foreground, "a boundary loop")
         geom, repaired = validate_polygonal(loop_polygon(arr.astype(np.float64)), "boundary loop")
         return PlanarInput(geom, np.ones(2), repaired=repaired)
-    return _image_input(arr, threshold, check_spacing(spacing, 2), foreground)
+    channels = None
+    # the default colour axis (the last) applies where it has 3 or 4 entries; any other 3D array is refused below
+    if arr.ndim == 3 and channel_axis is not None and (channel_axis != -1 or arr.shape[-1] in (3, 4)):
+        axis = _channel_axis(channel_axis, arr.shape)
+        arr, channels = colour_to_grey(np.moveaxis(arr, axis, -1))
+    return _image_input(arr, threshold, check_spacing(spacing, 2), foreground, labels, channels)
 
 
-def _image_input(arr: np.ndarray, threshold: float | None, spacing: np.ndarray, foreground: str) -> PlanarInput:
+def _channel_axis(channel_axis: Any, shape: tuple[int, ...]) -> int:
+    if isinstance(channel_axis, bool) or not isinstance(channel_axis, (int, np.integer)):
+        raise InvalidInputError(f"channel_axis must be an integer axis or None, got {channel_axis!r}")
+    if not -len(shape) <= int(channel_axis) < len(shape) or shape[int(channel_axis)] not in (3, 4):
+        raise InvalidInputError(
+            f"channel_axis={channel_axis} must name an axis of 3 (RGB) or 4 (RGBA) channels; the array has shape "
+            f"{shape} (channel_axis=None: no colour axis)"
+        )
+    return int(channel_axis)
+
+
+def _image_input(
+    arr: np.ndarray,
+    threshold: float | None,
+    spacing: np.ndarray,
+    foreground: str,
+    labels: bool | None = None,
+    channels: str | None = None,
+) -> PlanarInput:
+    if is_label_image(arr, labels):
+        if threshold is not None or foreground != "auto":
+            raise InvalidInputError("threshold= and foreground= apply to grey images; a label image is not thresholded")
+        check_image(arr)
+        pieces = tuple(label_regions(arr, spacing))
+        region = shapely.union_all([r for _, r in pieces])
+        return PlanarInput(region, spacing, image=arr, foreground=arr > 0, labels=pieces)
     region, mask, level, side = image_region(arr, threshold, spacing, foreground)
-    return PlanarInput(region, spacing, image=arr, foreground=mask, threshold=level, side=side)
+    return PlanarInput(region, spacing, image=arr, foreground=mask, threshold=level, side=side, channels=channels)
 
 
 def _what(shape: Any) -> str:

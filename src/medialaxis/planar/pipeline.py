@@ -16,15 +16,16 @@ from typing import Any, Literal
 import numpy as np
 import shapely
 
-from medialaxis._progress import progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError
-from medialaxis.planar.axis import RawAxis, boundary_distance, inner_triangles, raw_axis
-from medialaxis.planar.delaunay import Triangulation, edge_keys, triangulate
+from medialaxis.planar.adaptive import sample_and_triangulate
+from medialaxis.planar.axis import RawAxis, boundary_distance, raw_axis
+from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.inputs import PlanarInput, load_planar
+from medialaxis.planar.labels import merged_label_axes
 from medialaxis.planar.pruning import merge_close_nodes, prune_graph
-from medialaxis.planar.sampling import BoundarySample, Rings, initial_arcs, refine_arcs, sample, simplify_rings
+from medialaxis.planar.sampling import BoundarySample, Rings, simplify_rings
 
 __all__ = ["voronoi_medial_axis", "planar_stages", "reprune", "Stages", "DEFAULT_DETOUR"]
 
@@ -38,7 +39,6 @@ DEFAULT_DETOUR = 0.25
 DEFAULT_VECTOR_DETOUR = 0.028
 #: Default lambda in units of the tolerance.
 LAM_PER_TOLERANCE = 8.0
-MAX_REFINEMENTS = 12
 #: Polygons with more vertices than this are simplified to the tolerance first.
 SIMPLIFY_ABOVE = 10_000
 
@@ -94,50 +94,6 @@ class Stages:
     result: MedialAxis
 
 
-def _piece_state(tri: Triangulation, inside: np.ndarray, smp: BoundarySample) -> tuple[np.ndarray, np.ndarray]:
-    """For each boundary piece (i, next[i]): is it a Delaunay edge, and its inner circumradius."""
-    n = len(smp.points)
-    s = tri.simplices
-    keys = np.concatenate([edge_keys(s[:, 1], s[:, 2], n), edge_keys(s[:, 2], s[:, 0], n), edge_keys(s[:, 0], s[:, 1], n)])
-    owner = np.tile(np.arange(len(s)), 3)
-    order = np.argsort(keys, kind="stable")
-    keys, owner = keys[order], owner[order]
-    piece = edge_keys(np.arange(n), smp.next, n)
-    lo = np.searchsorted(keys, piece, "left")
-    hi = np.searchsorted(keys, piece, "right")
-    conforming = hi > lo
-    radius = np.full(n, np.inf)
-    for off in (0, 1):  # an edge has at most two triangles
-        j = lo + off
-        has = j < hi
-        t = owner[np.minimum(j, len(owner) - 1)]
-        use = has & inside[t]
-        radius[use] = np.minimum(radius[use], tri.radii[t[use]])
-    return conforming, radius
-
-
-def _sample_and_triangulate(
-    rings: Rings, region: Any, tolerance: float, min_length: float
-) -> tuple[BoundarySample, Triangulation, np.ndarray]:
-    area = max(region.area, 1e-300)
-    start = max(min_length, np.sqrt(area) / 8.0)
-    arcs: list[np.ndarray] | None = initial_arcs(rings, start)
-    settled = False
-    for _ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
-        smp = sample(rings, arcs)
-        tri = triangulate(smp.points)
-        inside = inner_triangles(tri, region)
-        if settled:
-            break
-        conforming, radius = _piece_state(tri, inside, smp)
-        arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length)
-        if arcs is None:
-            break
-        # Only a handful of pieces near tips were split: triangulate once more and stop.
-        settled = conforming.all() and sum(map(len, arcs)) - len(smp.points) < 0.05 * len(smp.points)
-    return smp, tri, inside
-
-
 def _pruned(raw: MedialAxis, lam: float, detour: float) -> MedialAxis:
     """Prune ``raw`` (which carries contact data as extras) with ``lam`` and ``detour``."""
     old, edges = prune_graph(
@@ -150,7 +106,36 @@ def _pruned(raw: MedialAxis, lam: float, detour: float) -> MedialAxis:
         detour,
     )
     metadata = dict(raw.metadata, lam=lam, detour=detour, pruned=True)
-    return MedialAxis(raw.points[old], raw.radii[old], edges, metadata=metadata, shape=raw.shape, raw=raw)
+    # per-point extras (the label of each point of a label image) follow their points
+    extras = {k: v[old] for k, v in raw.extras.items() if k.startswith("point_")}
+    return MedialAxis(
+        raw.points[old], raw.radii[old], edges, extras=extras, metadata=metadata, shape=raw.shape, raw=raw
+    )
+
+
+def _load(
+    shape: Any,
+    *,
+    threshold: float | None,
+    spacing: Any,
+    tolerance: float | None,
+    boundary: str,
+    foreground: str,
+    strokes: bool | None,
+    layers: Sequence[str] | None,
+    labels: bool | None,
+    channel_axis: int | None,
+) -> PlanarInput:
+    if boundary not in ("contour", "canny"):
+        raise InvalidInputError(f"boundary must be 'contour' or 'canny', got {boundary!r}")
+    if tolerance is not None:
+        tolerance = check_number(tolerance, "tolerance")
+    if isinstance(layers, str):
+        layers = [layers]
+    return load_planar(
+        shape, threshold=threshold, spacing=spacing, foreground=foreground, tolerance=tolerance, strokes=strokes,
+        layers=layers, labels=labels, channel_axis=channel_axis,
+    )
 
 
 def planar_stages(
@@ -165,18 +150,25 @@ def planar_stages(
     foreground: Literal["auto", "bright", "dark"] = "auto",
     strokes: bool | None = None,
     layers: Sequence[str] | None = None,
+    labels: bool | None = None,
+    channel_axis: int | None = -1,
 ) -> Stages:
     """Run the planar pipeline and keep every stage (see :func:`voronoi_medial_axis`)."""
-    if boundary not in ("contour", "canny"):
-        raise InvalidInputError(f"boundary must be 'contour' or 'canny', got {boundary!r}")
-    if tolerance is not None:
-        tolerance = check_number(tolerance, "tolerance")
-    if isinstance(layers, str):
-        layers = [layers]
-    src = load_planar(
-        shape, threshold=threshold, spacing=spacing, foreground=foreground, tolerance=tolerance, strokes=strokes,
-        layers=layers,
+    src = _load(
+        shape, threshold=threshold, spacing=spacing, tolerance=tolerance, boundary=boundary, foreground=foreground,
+        strokes=strokes, layers=layers, labels=labels, channel_axis=channel_axis,
     )
+    if src.labels is not None:
+        raise InvalidInputError(
+            "the stages of a label image are not kept; draw one object's stages from its mask (image == label)"
+        )
+    return _stages(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary)
+
+
+def _stages(
+    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str
+) -> Stages:
+    """Every stage of the pipeline on a loaded input."""
     region = src.region
     size = shape_size(region)
     if tolerance is None:
@@ -203,7 +195,7 @@ def planar_stages(
         rings = simplify_rings(region, tolerance if simplify else 0.0)
         _check_resolution(rings, size)
         min_length = max(tolerance, lam / 8.0)
-        smp, tri, inside = _sample_and_triangulate(rings, rings.region, tolerance, min_length)
+        smp, tri, inside = sample_and_triangulate(rings, rings.region, tolerance, min_length)
     if not inside.any():
         raise ComputationError("no Delaunay triangle lies inside the shape; is it degenerate?")
     ax: RawAxis = raw_axis(tri, inside, smp, rings.region)
@@ -229,6 +221,8 @@ def planar_stages(
         metadata["image_shape"] = tuple(int(s) for s in src.image.shape)
         metadata["threshold"] = src.threshold
         metadata["foreground"] = src.side
+    if src.channels is not None:
+        metadata["channels"] = src.channels
     if src.repaired:
         metadata["repaired"] = src.repaired
     if src.drawing is not None:
@@ -261,6 +255,8 @@ def voronoi_medial_axis(
     foreground: Literal["auto", "bright", "dark"] = "auto",
     strokes: bool | None = None,
     layers: Sequence[str] | None = None,
+    labels: bool | None = None,
+    channel_axis: int | None = -1,
 ) -> MedialAxis:
     """Medial axis of a planar shape from the Voronoi diagram of boundary samples.
 
@@ -312,6 +308,21 @@ def voronoi_medial_axis(
     layers : sequence of str, optional
         DXF: the layers to read (default every layer that is on and not
         frozen).
+    labels : bool, optional
+        Whether an integer image is a label image (0 background, every
+        other value one object, objects may touch), never thresholded: each
+        label gets its own axis, and the result's points carry their label
+        (``ma.point_label``; ``metadata["labels"]`` lists them). Default:
+        integer arrays of 32 or 64 bits are labels (as
+        :func:`skimage.measure.label` gives), 8 and 16-bit ones grey images;
+        image files are labels only with ``labels=True``.
+    channel_axis : int or None
+        The colour axis of a 3D array (3 channels RGB or 4 RGBA; default the
+        last), as scikit-image names it. RGB becomes grey as
+        :func:`skimage.color.rgb2gray` does; an alpha channel that is not
+        constant is the shape (what is opaque is painted).
+        ``metadata["channels"]`` says which. ``None``: the array has no
+        colour axis (a volume, for :func:`medialaxis.medial_axis`).
 
     Returns
     -------
@@ -352,18 +363,24 @@ def voronoi_medial_axis(
     >>> ma.metadata["foreground"], ma.n_components, ma.n_cycles
     ('dark', 1, 1)
     """
-    return planar_stages(
-        shape,
-        lam=lam,
-        threshold=threshold,
-        spacing=spacing,
-        tolerance=tolerance,
-        detour=detour,
-        boundary=boundary,
-        foreground=foreground,
-        strokes=strokes,
-        layers=layers,
-    ).result
+    src = _load(
+        shape, threshold=threshold, spacing=spacing, tolerance=tolerance, boundary=boundary, foreground=foreground,
+        strokes=strokes, layers=layers, labels=labels, channel_axis=channel_axis,
+    )
+    if src.labels is not None:
+        return _label_axes(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary)
+    return _stages(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary).result
+
+
+def _label_axes(
+    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str
+) -> MedialAxis:
+    """One axis per label of a label image, in one result whose points carry their label."""
+    if boundary != "contour":
+        raise InvalidInputError(f"boundary={boundary!r} does not apply to label images (each label is a mask)")
+    raw = merged_label_axes(src, lambda one: _stages(one, lam=lam, tolerance=tolerance, detour=detour,
+                                                     boundary=boundary).raw)
+    return _pruned(raw, float(raw.metadata["lam"]), float(raw.metadata["detour"]))
 
 
 def reprune(ma: MedialAxis, *, lam: float | None = None, detour: float | None = None) -> MedialAxis:

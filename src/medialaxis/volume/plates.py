@@ -193,7 +193,14 @@ def plate_summary(gap: np.ndarray, lower: float, upper: float, unit: float) -> P
     """
     inside = (gap >= lower) & (gap <= upper)
     if not inside.any():
-        found = f"; the plates found are {np.min(gap):.3g} to {np.max(gap):.3g} thick" if len(gap) else ""
+        if len(gap):
+            found = f"; the plates found are {np.min(gap):.3g} to {np.max(gap):.3g} thick (thickness= chooses them)"
+        else:
+            found = (
+                "; the part has no plates (rods, tubes and blobs have no two parallel faces): for the curve "
+                "skeleton of rods and tubes, take its surface (skimage.measure.marching_cubes) and use "
+                "method='flow' on that mesh"
+            )
         raise EmptyShapeError(f"no plate of the part is between {lower:g} and {upper:g} thick{found}")
     return PlateThickness(float(np.median(gap[inside])), lower, float(upper), None, ranged=True)
 
