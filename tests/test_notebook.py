@@ -121,3 +121,13 @@ def test_cycle_branch_repr(torus_axis):
     assert repr(loop).startswith("Branch(cycle, ")
     assert repr(torus_axis) == (f"MedialAxis(method='flow', dim=3, points={len(torus_axis.points)}, "
                                 f"edges={len(torus_axis.edges)}, faces=0)")
+
+
+def test_an_svg_drawing_is_drawn_y_down_as_its_png(tmp_path):
+    svg = tmp_path / "bar.svg"
+    svg.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="100" height="40" viewBox="0 0 100 40">'
+                   '<rect x="10" y="5" width="80" height="20" fill="black"/></svg>')
+    ma = mx.medial_axis(svg)
+    ax = ma.plot()
+    assert ax.yaxis_inverted()  # SVG's y points down, as the saved .png shows it
+    np.testing.assert_allclose(_segments(ax), ma.points[ma.edges])  # x, y as drawn

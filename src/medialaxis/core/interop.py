@@ -83,6 +83,13 @@ def to_shapely(ma: MedialAxis) -> Any:
     ------
     InvalidInputError
         The result is 3D or has faces (use :func:`to_trimesh`).
+
+    Examples
+    --------
+    >>> import shapely, medialaxis as mx
+    >>> lines = mx.medial_axis(shapely.box(0, 0, 100, 10)).to_shapely()
+    >>> lines.geom_type, len(lines.geoms)
+    ('MultiLineString', 5)
     """
     shapely = _optional.require("shapely", "shapely")
     if ma.dim != 2 or len(ma.faces):
@@ -109,6 +116,13 @@ def to_trimesh(ma: MedialAxis) -> Any:
     ------
     MissingDependencyError
         trimesh is not installed.
+
+    Examples
+    --------
+    >>> import trimesh, medialaxis as mx
+    >>> path = mx.medial_axis(trimesh.creation.torus(2.0, 0.5), method="flow").to_trimesh()
+    >>> type(path).__name__, len(path.entities), round(path.length / (2 * 3.14159), 1)
+    ('Path3D', 1, 2.0)
     """
     trimesh = _optional.require("trimesh", "trimesh")
     points = np.asarray(ma.points, np.float64)

@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.frames import y_down
 from medialaxis.errors import InvalidInputError
 
 __all__ = ["plot", "plot_axis", "png_bytes", "draw_region", "draw_axis"]
@@ -102,7 +103,7 @@ def _draw_2d(ax: Any, ma: Any, *, shape: bool, color_by_radius: bool, nodes: boo
         ax.scatter(*xy[ma.endpoints].T, s=14, c="#27ae60", zorder=3, label="endpoints")
     ax.set_aspect("equal")
     ax.autoscale_view()
-    if "image_shape" in ma.metadata and not ax.yaxis_inverted():
+    if y_down(ma) and not ax.yaxis_inverted():  # images and SVG drawings: y grows downwards
         ax.invert_yaxis()
     if title:
         ax.set_title(f"{ma.metadata.get('method', '')}: {len(ma.points)} points, {len(ma.branches())} branches")

@@ -281,6 +281,16 @@ class MedialAxis:
         ------
         InvalidInputError
             ``ax`` is 2D for a 3D result, or 3D for a planar one.
+
+        Examples
+        --------
+        >>> import matplotlib; matplotlib.use("Agg")
+        >>> import numpy as np, medialaxis as mx
+        >>> image = np.zeros((60, 90), bool); image[15:45, 10:80] = True
+        >>> ax = mx.medial_axis(image).plot()
+        >>> ax.get_title().endswith("5 branches"), bool(ax.yaxis_inverted())  # an image: row downwards
+        (True, True)
+        >>> import matplotlib.pyplot as plt; plt.close(ax.figure)
         """
         from medialaxis.core.plot import plot
 
