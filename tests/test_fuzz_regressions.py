@@ -107,8 +107,9 @@ def test_pillow_limit_is_left_as_found():
 
 def test_a_ring_far_below_the_resolution_of_the_shape_is_named(tmp_path):
     (tmp_path / "wide.svg").write_text(
-        '<svg xmlns="http://www.w3.org/2000/svg"><path d="M 8 8 L 56 8 L 56 30 Q 40 -4e11 32 56 C 24 50 12 44 -8e10 30 Z"/>'
-        '<rect x="20" y="14" width="10" height="8"/></svg>'
+        # the rectangle is a hole of the path (even-odd): separate elements would be painted over each other
+        '<svg xmlns="http://www.w3.org/2000/svg"><path fill-rule="evenodd" d="M 8 8 L 56 8 L 56 30 Q 40 -4e11 32 56 '
+        'C 24 50 12 44 -8e10 30 Z M 20 14 h 10 v 8 h -10 Z"/></svg>'
     )
     with pytest.raises(mx.InvalidInputError, match=r"a ring \(a piece or a hole\) only 10 across"):
         mx.medial_axis(tmp_path / "wide.svg")

@@ -26,7 +26,6 @@ https://www.w3.org/TR/SVG11/
 
 from __future__ import annotations
 
-import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Any
@@ -176,8 +175,11 @@ class _Reader:
         return Polygon()
 
 
-def _drawing_size(svg: Any) -> float:
-    """The largest side of the painted elements' bounding box, in root user units."""
+def _drawing_size(svg: Any, where: str) -> float:
+    """The largest side of the painted elements' bounding box, in root user units.
+
+    Raises InvalidInputError for an element with a NaN or infinite coordinate.
+    """
     from svgelements import Shape
 
     boxes = []
@@ -187,14 +189,13 @@ def _drawing_size(svg: Any) -> float:
                 box = element.bbox(transformed=True)
             except Exception:  # noqa: BLE001 - degenerate shapes have no box
                 box = None
-            if box is not None and all(math.isfinite(v) for v in box):
+            if box is not None:
+                check_coordinates(np.array(box, dtype=np.float64), f"SVG {where} <{element.values.get('tag')}>")
                 boxes.append(box)
     if not boxes:
         return 0.0
     b = np.array(boxes, dtype=np.float64)
-    lo, hi = b[:, :2].min(0), b[:, 2:].max(0)
-    corners = np.array([[lo[0], lo[1], 1], [hi[0], hi[1], 1]]).T
-    return float(np.ptp(corners[:2], axis=1).max())
+    return float((b[:, 2:].max(0) - b[:, :2].min(0)).max())
 
 
 def read_svg(path: Path, *, tolerance: float | None = None, strokes: bool = True) -> tuple[Any, dict[str, Any]]:
@@ -252,7 +253,7 @@ def read_svg(path: Path, *, tolerance: float | None = None, strokes: bool = True
     if not isinstance(svg, SVG):
         raise InputFileError(f"{where} is not an SVG document")
     viewport = _Reader.viewport(svg)
-    size = _drawing_size(svg) / max(largest_scale(viewport), 1e-300)
+    size = _drawing_size(svg, where) / max(largest_scale(viewport), 1e-300)
     tol = float(tolerance) if tolerance is not None else 1e-4 * size
     if not tol > 0:
         raise EmptyShapeError(f"SVG {where} paints nothing")
