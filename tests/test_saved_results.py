@@ -120,7 +120,7 @@ def test_corrupt_saved_results_fail_cleanly(tmp_path):
 @pytest.mark.parametrize("mask", [0o022, 0o002, 0o077])
 def test_every_format_is_written_with_the_umask_permissions(axis, tmp_path, ext, mask):
     path = tmp_path / f"a{ext}"
-    if ext == ".html":  # the page is a 3D view
+    if ext == ".html":  # a 3D page here (2D results have their page too: tests/test_output_frames.py)
         axis = mx.MedialAxis(np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 1]]), np.ones(3), np.array([[0, 1], [1, 2]]))
     with umask(mask):
         axis.save(path)
