@@ -172,6 +172,17 @@ def test_to_image_of_a_volume_midsurface(surface):
     assert np.median(np.abs(edt[inside] - distance[inside])) <= 0.75
 
 
+def test_to_image_of_medial_voxels_is_those_voxels(surface):
+    phantom, _ = surface
+    ma = mx.medial_axis(phantom.volume, method="voxels", iso=0.5)
+    skeleton, distance = ma.to_image()
+    voxels = tuple(np.rint(ma.points / np.asarray(ma.metadata["spacing"])).astype(int).T)
+    assert skeleton.sum() == len(ma.points) and skeleton[voxels].all()
+    np.testing.assert_array_equal(distance[voxels], ma.radii)
+    cloud = ma.to_trimesh()
+    assert isinstance(cloud, trimesh.PointCloud) and len(cloud.vertices) == len(ma.points)
+
+
 # ------------------------------------------------------------------ skan
 def _match(ours, theirs):
     """Pairs (our row, skan row): each of our branches to the skan branch whose ends are nearest."""

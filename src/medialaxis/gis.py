@@ -46,7 +46,7 @@ def _widths(ma: Any) -> tuple[float, float, float]:
     return float(2 * r.min()), mean, float(2 * r.max())
 
 
-def _feature_axis(shapely: Any, index: Any, geom: Any, options: dict[str, Any]) -> tuple[Any, tuple[float, ...]]:
+def _feature_axis(index: Any, geom: Any, options: dict[str, Any]) -> tuple[Any, tuple[float, ...]]:
     """The axis of one feature as a MultiLineString (None when empty) and its widths."""
     if geom is None or geom.is_empty:
         return None, (np.nan,) * 3
@@ -126,7 +126,7 @@ def centerlines(layer: Any, *, show_progress: bool | None = None, **options: Any
     plain = _plain_geometries(shapely, layer)
     if plain is not None:
         pd = _optional.require("pandas", "pandas")
-        rows = [_feature_axis(shapely, k, geom, options)
+        rows = [_feature_axis(k, geom, options)
                 for k, geom in progress(list(enumerate(plain)), desc="features", show=show_progress)]
         table = pd.DataFrame({"geometry": pd.Series([row[0] for row in rows], dtype=object)})
         for k, name in enumerate(WIDTH_COLUMNS):
@@ -151,7 +151,7 @@ def centerlines(layer: Any, *, show_progress: bool | None = None, **options: Any
         )
     geometries, widths = [], []
     for index, geom in progress(list(zip(frame.index, frame.geometry)), desc="features", show=show_progress):
-        lines, width = _feature_axis(shapely, index, geom, options)
+        lines, width = _feature_axis(index, geom, options)
         geometries.append(lines)
         widths.append(width)
     out = frame.drop(columns=frame.geometry.name).copy()
