@@ -1,0 +1,271 @@
+"""Compiled 2D Delaunay triangulation of boundary samples (Bowyer-Watson), a fast path before Qhull.
+
+:func:`delaunay_2d` inserts the points one after the other, in the order
+given (boundary samples follow their rings, so each point lies next to the
+last one and the walk that locates it is a step or two), into a
+triangulation of four far corners. Each insertion removes the triangles
+whose circumcircle holds the point (the cavity, grown from the triangle
+that holds it) and joins the point to the cavity's boundary.
+
+The predicates are evaluated in floating point. The caller jitters the
+points (:func:`medialaxis.planar.delaunay.triangulate`), so exact
+degeneracies do not occur; where rounding still makes the decisions
+inconsistent (a new triangle that is not counter-clockwise, a cavity
+boundary that is not one loop, a walk that does not end) the kernel gives
+up and returns ``None`` from Python's side, and the caller takes SciPy's Qhull.
+The reference is Qhull itself: the tests compare the triangles of both.
+
+Bowyer, "Computing Dirichlet tessellations", The Computer Journal 24(2), 1981;
+Watson, "Computing the n-dimensional Delaunay tessellation with application to
+Voronoi polytopes", The Computer Journal 24(2), 1981.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis._jit import njit
+
+__all__ = ["delaunay_2d", "insertion_order"]
+
+#: Steps of the visibility walk before the kernel gives up.
+MAX_WALK = 1 << 20
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _orient(x, y, a, b, c):  # type: ignore[no-untyped-def]
+    """Twice the signed area of ``abc`` (> 0 counter-clockwise)."""
+    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a])
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _in_circle(x, y, a, b, c, p):  # type: ignore[no-untyped-def]
+    """> 0 when ``p`` lies inside the circumcircle of the counter-clockwise ``abc``."""
+    adx, ady = x[a] - x[p], y[a] - y[p]
+    bdx, bdy = x[b] - x[p], y[b] - y[p]
+    cdx, cdy = x[c] - x[p], y[c] - y[p]
+    return ((adx * adx + ady * ady) * (bdx * cdy - cdx * bdy)
+            + (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy)
+            + (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady))
+
+
+@njit(cache=True, nogil=True)
+def _hilbert_key(x, y, bits):  # type: ignore[no-untyped-def]
+    """Position of the point ``(x, y)`` of ``[0, 1]^2`` along a Hilbert curve on a ``2**bits`` grid."""
+    side = (1 << bits) - 1
+    px = min(max(int(x * side), 0), side)
+    py = min(max(int(y * side), 0), side)
+    d = 0
+    s = 1 << (bits - 1)
+    while s > 0:
+        rx = 1 if px & s else 0
+        ry = 1 if py & s else 0
+        d += s * s * ((3 * rx) ^ ry)
+        if ry == 0:  # the quadrant turned
+            if rx == 1:
+                px = side - px
+                py = side - py
+            px, py = py, px
+        s >>= 1
+    return d
+
+
+@njit(cache=True, nogil=True)
+def insertion_order(x, y, seed=12345):  # type: ignore[no-untyped-def]
+    """A biased randomised insertion order of the points of ``[0, 1]^2`` (BRIO).
+
+    The points are shuffled (a fixed seed: the order is deterministic) and
+    cut into rounds that double in size; each round follows a Hilbert curve.
+    Inserting samples along their ring instead makes long thin triangles
+    whose cavities grow with the sample. Amenta, Choi, Rote, "Incremental
+    constructions con BRIO", Proc. SoCG 2003.
+    """
+    n = len(x)
+    order = np.arange(n)
+    state = np.uint64(seed)
+    for i in range(n - 1, 0, -1):  # Fisher-Yates with a 64-bit LCG
+        state = state * np.uint64(6364136223846793005) + np.uint64(1442695040888963407)
+        j = int((state >> np.uint64(33)) % np.uint64(i + 1))
+        order[i], order[j] = order[j], order[i]
+    key = np.empty(n, np.int64)
+    for i in range(n):
+        key[i] = _hilbert_key(x[order[i]], y[order[i]], 16)
+    lo = 0
+    size = 16
+    while lo < n:
+        hi = min(n, lo + size) if n - lo - size > size // 2 else n
+        chunk = order[lo:hi].copy()
+        order[lo:hi] = chunk[np.argsort(key[lo:hi], kind="mergesort")]
+        lo = hi
+        size *= 2
+    return order
+
+
+@njit(cache=True, nogil=True)
+def _triangulate(x, y):  # type: ignore[no-untyped-def]
+    """Triangles and neighbours of ``n`` points followed by four counter-clockwise corners around them.
+
+    Returns ``(vertices, neighbours, count, ok)``: the first ``count`` rows
+    hold the triangulation (every slot alive), ``neighbours[t, k]`` is the
+    triangle across the edge opposite vertex ``k`` (-1 on the outer square).
+    """
+    n = len(x) - 4
+    cap = 2 * n + 2
+    tv = np.empty((cap, 3), np.int64)
+    tn = np.full((cap, 3), -1, np.int64)
+    c0, c1, c2, c3 = n, n + 1, n + 2, n + 3
+    tv[0, 0], tv[0, 1], tv[0, 2] = c0, c1, c2
+    tv[1, 0], tv[1, 1], tv[1, 2] = c0, c2, c3
+    tn[0, 1] = 1  # edge c2-c0
+    tn[1, 2] = 0
+    count = 2
+    stamp = np.zeros(cap, np.int64)  # i + 1: in the cavity of point i; -(i + 1): tested, outside it
+    cavity = np.empty(cap, np.int64)
+    free = np.empty(cap, np.int64)
+    n_free = 0
+    bnd_a = np.empty(cap + 3, np.int64)
+    bnd_b = np.empty(cap + 3, np.int64)
+    bnd_out = np.empty(cap + 3, np.int64)
+    new_tri = np.empty(cap + 3, np.int64)
+    by_start = np.empty(n + 4, np.int64)
+    by_end = np.empty(n + 4, np.int64)
+    seen = np.zeros(n + 4, np.int64)
+    last = 0
+    order = insertion_order(x[:n], y[:n])
+    for p in order:
+        # locate: a visibility walk from the last new triangle
+        t = last
+        steps = 0
+        while True:
+            moved = False
+            for k in range(3):
+                a = tv[t, (k + 1) % 3]
+                b = tv[t, (k + 2) % 3]
+                if _orient(x, y, a, b, p) < 0.0:
+                    u = tn[t, k]
+                    if u < 0:
+                        return tv, tn, 0, False
+                    t = u
+                    moved = True
+                    break
+            if not moved:
+                break
+            steps += 1
+            if steps > MAX_WALK:
+                return tv, tn, 0, False
+        # the cavity, grown across edges from the triangle that holds p
+        mark = p + 1
+        stamp[t] = mark
+        cavity[0] = t
+        n_cav = 1
+        n_bnd = 0
+        head = 0
+        while head < n_cav:
+            t = cavity[head]
+            head += 1
+            for k in range(3):
+                u = tn[t, k]
+                if u >= 0 and stamp[u] == mark:
+                    continue
+                inside = False
+                if u >= 0 and stamp[u] != -mark:
+                    if _in_circle(x, y, tv[u, 0], tv[u, 1], tv[u, 2], p) > 0.0:
+                        inside = True
+                    else:
+                        stamp[u] = -mark
+                if inside:
+                    stamp[u] = mark
+                    cavity[n_cav] = u
+                    n_cav += 1
+                else:
+                    bnd_a[n_bnd] = tv[t, (k + 1) % 3]
+                    bnd_b[n_bnd] = tv[t, (k + 2) % 3]
+                    bnd_out[n_bnd] = u
+                    n_bnd += 1
+        if n_bnd != n_cav + 2:  # the boundary of a disc of c triangles has c + 2 edges
+            return tv, tn, 0, False
+        # the new triangles (a, b, p), in the cavity's slots first
+        for j in range(n_cav):
+            free[n_free] = cavity[j]
+            n_free += 1
+        for j in range(n_bnd):
+            a, b = bnd_a[j], bnd_b[j]
+            if _orient(x, y, a, b, p) <= 0.0 or seen[a] == mark:
+                return tv, tn, 0, False
+            seen[a] = mark
+            if n_free > 0:
+                n_free -= 1
+                s = free[n_free]
+            else:
+                s = count
+                count += 1
+            tv[s, 0], tv[s, 1], tv[s, 2] = a, b, p
+            tn[s, 2] = bnd_out[j]
+            stamp[s] = 0
+            u = bnd_out[j]
+            if u >= 0:
+                for k in range(3):
+                    if tv[u, (k + 1) % 3] == b and tv[u, (k + 2) % 3] == a:
+                        tn[u, k] = s
+            by_start[a] = s
+            by_end[b] = s
+            new_tri[j] = s
+        for j in range(n_bnd):
+            s = new_tri[j]
+            a, b = tv[s, 0], tv[s, 1]
+            if seen[b] != mark:  # the boundary is not one closed loop
+                return tv, tn, 0, False
+            tn[s, 0] = by_start[b]
+            tn[s, 1] = by_end[a]
+        last = new_tri[0]
+    return tv, tn, count, n_free == 0
+
+
+@njit(cache=True, nogil=True)
+def _drop_corners(tv, tn, count, n):  # type: ignore[no-untyped-def]
+    """The triangles of the ``n`` real points (no corner), renumbered, with their neighbours."""
+    new_index = np.full(count, -1, np.int64)
+    m = 0
+    for t in range(count):
+        if tv[t, 0] < n and tv[t, 1] < n and tv[t, 2] < n:
+            new_index[t] = m
+            m += 1
+    simplices = np.empty((m, 3), np.int64)
+    neighbors = np.empty((m, 3), np.int64)
+    for t in range(count):
+        j = new_index[t]
+        if j < 0:
+            continue
+        for k in range(3):
+            simplices[j, k] = tv[t, k]
+            u = tn[t, k]
+            neighbors[j, k] = new_index[u] if u >= 0 else -1
+    return simplices, neighbors
+
+
+def delaunay_2d(work: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """Delaunay triangles of ``work`` (N, 2) and four far corners, without the triangles at the corners.
+
+    Parameters
+    ----------
+    work : (N, 2) float ndarray
+        Points inside the unit square (jittered), followed by four
+        counter-clockwise corners far outside it.
+
+    Returns
+    -------
+    simplices : (T, 3) int64 ndarray
+        Counter-clockwise triangles of the first ``N - 4`` points.
+    neighbors : (T, 3) int64 ndarray
+        ``neighbors[t, k]`` shares the edge opposite vertex ``k``; -1 where
+        that triangle touched a corner.
+
+    ``None`` when rounding made the insertion inconsistent (the caller then
+    takes Qhull).
+    """
+    x = np.ascontiguousarray(work[:, 0], dtype=np.float64)
+    y = np.ascontiguousarray(work[:, 1], dtype=np.float64)
+    tv, tn, count, ok = _triangulate(x, y)
+    if not ok:
+        return None
+    return _drop_corners(tv, tn, count, len(work) - 4)
