@@ -21,7 +21,7 @@ def data_path(name: str) -> Path:
     return Path(str(resources.files("medialaxis") / "data" / name))
 
 
-def _planar_case(name: str) -> Callable[[Path], str]:
+def _planar_case(name: str, **options: Any) -> Callable[[Path], str]:
     def run(outdir: Path) -> str:
         import medialaxis as mx
         from medialaxis.planar.pipeline import planar_stages
@@ -30,7 +30,10 @@ def _planar_case(name: str) -> Callable[[Path], str]:
         src = data_path(name)
         stem = src.stem
         t0 = time.perf_counter()
-        stages = planar_stages(str(src))
+        try:
+            stages = planar_stages(str(src), **options)
+        except mx.MissingDependencyError as exc:  # a drawing format of an extra that is not installed
+            return f"{stem}: skipped ({exc})"
         elapsed = time.perf_counter() - t0
         ma = stages.result
         for ext in (".json", ".svg", ".png"):
@@ -47,14 +50,18 @@ def _planar_case(name: str) -> Callable[[Path], str]:
 
 #: Demo cases: (title, runner). Other domains append their own.
 DEMO_CASES: list[tuple[str, Callable[[Path], Any]]] = [
-    (name, _planar_case(name))
-    for name in (
-        "kimia_class1_01.png",
-        "kimia_class3_05.png",
-        "kimia_class5_03.png",
-        "kimia_class8_05.png",
-        "bracket_two_holes.wkt",
-    )
+    *(
+        (name, _planar_case(name))
+        for name in (
+            "kimia_class1_01.png",
+            "kimia_class3_05.png",
+            "kimia_class5_03.png",
+            "kimia_class8_05.png",
+            "bracket_two_holes.wkt",
+            "gasket.svg",
+        )
+    ),
+    ("plate_slot.dxf", _planar_case("plate_slot.dxf", layers=["CUT"])),
 ]
 
 

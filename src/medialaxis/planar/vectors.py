@@ -13,7 +13,10 @@ from shapely.geometry import Polygon
 from medialaxis.core.validate import check_coordinates
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError
 
-__all__ = ["validate_polygonal", "loop_polygon", "read_vector"]
+__all__ = ["validate_polygonal", "loop_polygon", "read_vector", "NEAR_DUPLICATE"]
+
+#: Consecutive vertices closer than this fraction of the shape's extent are one vertex.
+NEAR_DUPLICATE = 1e-9
 
 
 def validate_polygonal(geom: Any, where: str) -> tuple[Any, str | None]:
@@ -36,6 +39,12 @@ def validate_polygonal(geom: Any, where: str) -> tuple[Any, str | None]:
         geom = shapely.union_all(parts) if parts else Polygon()
     if geom.is_empty or geom.area <= 0:
         raise EmptyShapeError(f"{where}: the polygon has zero area")
+    # Vertices a hair apart (a ring closed with a rounding error, 1e-15 off its start) make a
+    # degenerate Delaunay triangle whose circle is not a medial disc: merge them.
+    extent = float(np.ptp(shapely.get_coordinates(geom), axis=0).max())
+    merged = shapely.remove_repeated_points(geom, NEAR_DUPLICATE * extent)
+    if merged.is_valid and not merged.is_empty and merged.area > 0:
+        geom = merged
     return shapely.normalize(geom), repaired
 
 
