@@ -84,3 +84,38 @@ def test_gives_up_on_coincident_points_and_qhull_takes_over(monkeypatch: pytest.
     tri = triangulate(np.random.default_rng(2).uniform(0, 1, (50, 2)))
     assert calls == [54]
     assert len(tri.simplices) > 0 and (tri.neighbors < len(tri.simplices)).all()
+
+
+def test_boundary_distance_kernel_matches_its_reference() -> None:
+    from medialaxis.planar._kernels import nearest_piece_distance, nearest_piece_distance_reference
+
+    rng = np.random.default_rng(3)
+    points = _ring(300, rng)
+    nxt = (np.arange(300) + 1) % 300
+    prv = (np.arange(300) - 1) % 300
+    query = rng.uniform(-1, 1, (500, 2))
+    near = rng.integers(0, 300, (500, 8))
+    expected = nearest_piece_distance_reference(query, points, nxt, prv, near)
+    assert np.allclose(nearest_piece_distance(query, points, nxt, prv, near), expected, rtol=1e-12, atol=1e-15)
+
+
+def test_round_kernels_match_their_references() -> None:
+    from shapely.geometry import Polygon
+
+    from medialaxis.planar._kernels import piece_state, piece_state_reference, triangle_centroids
+    from medialaxis.planar.axis import inner_triangles, proper_triangles
+
+    rng = np.random.default_rng(4)
+    points = _ring(200, rng)
+    points = np.vstack([points, points[:20] * 0.5 + points[20:40] * 0.5])  # collinear triples: slivers
+    tri = triangulate(points)
+    extent = float(np.ptp(points, axis=0).max())
+    proper, centroids = triangle_centroids(tri.points, tri.simplices, 1e-7 * extent)
+    assert (proper == proper_triangles(tri)).all()
+    assert np.allclose(centroids, tri.points[tri.simplices[proper]].mean(axis=1), rtol=0, atol=1e-15)
+    inside = inner_triangles(tri, Polygon(points[:200]))
+    nxt = (np.arange(len(points)) + 1) % len(points)
+    got = piece_state(tri.simplices, inside, tri.radii, nxt)
+    expected = piece_state_reference(tri.simplices, inside, tri.radii, nxt)
+    assert (got[0] == expected[0]).all() and (got[1] == expected[1]).all()
+    assert got[0].any() and np.isfinite(got[1]).any() and not got[0].all()

@@ -13,36 +13,15 @@ from typing import Any
 import numpy as np
 
 from medialaxis._progress import progress
+from medialaxis.planar._kernels import piece_state
 from medialaxis.planar.axis import inner_triangles
-from medialaxis.planar.delaunay import Triangulation, edge_keys, triangulate
+from medialaxis.planar.delaunay import Triangulation, triangulate
 from medialaxis.planar.sampling import BoundarySample, Rings, initial_arcs, refine_arcs, sample
 
 __all__ = ["sample_and_triangulate", "MAX_REFINEMENTS"]
 
 #: Most rounds of refinement.
 MAX_REFINEMENTS = 12
-
-
-def _piece_state(tri: Triangulation, inside: np.ndarray, smp: BoundarySample) -> tuple[np.ndarray, np.ndarray]:
-    """For each boundary piece (i, next[i]): is it a Delaunay edge, and its inner circumradius."""
-    n = len(smp.points)
-    s = tri.simplices
-    keys = np.concatenate([edge_keys(s[:, 1], s[:, 2], n), edge_keys(s[:, 2], s[:, 0], n), edge_keys(s[:, 0], s[:, 1], n)])
-    owner = np.tile(np.arange(len(s)), 3)
-    order = np.argsort(keys, kind="stable")
-    keys, owner = keys[order], owner[order]
-    piece = edge_keys(np.arange(n), smp.next, n)
-    lo = np.searchsorted(keys, piece, "left")
-    hi = np.searchsorted(keys, piece, "right")
-    conforming = hi > lo
-    radius = np.full(n, np.inf)
-    for off in (0, 1):  # an edge has at most two triangles
-        j = lo + off
-        has = j < hi
-        t = owner[np.minimum(j, len(owner) - 1)]
-        use = has & inside[t]
-        radius[use] = np.minimum(radius[use], tri.radii[t[use]])
-    return conforming, radius
 
 
 def sample_and_triangulate(
@@ -64,7 +43,7 @@ def sample_and_triangulate(
         inside = inner_triangles(tri, region)
         if settled:
             break
-        conforming, radius = _piece_state(tri, inside, smp)
+        conforming, radius = piece_state(tri.simplices, inside, tri.radii, smp.next)
         arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length)
         if arcs is None:
             break

@@ -20,6 +20,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from medialaxis.planar._kernels import nearest_piece_distance, triangle_centroids
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
 
@@ -77,8 +78,8 @@ def proper_triangles(tri: Triangulation) -> np.ndarray:
 
 def inner_triangles(tri: Triangulation, region: Any) -> np.ndarray:
     """(T,) bool: proper triangles whose centroid lies inside ``region``."""
-    proper = proper_triangles(tri)
-    centroid = tri.points[tri.simplices[proper]].mean(axis=1)
+    extent = float(np.ptp(tri.points, axis=0).max())
+    proper, centroid = triangle_centroids(tri.points, tri.simplices, 1e-7 * extent)
     shapely.prepare(region)
     inside = np.zeros(len(proper), bool)
     inside[proper] = shapely.contains_xy(region, centroid[:, 0], centroid[:, 1])
@@ -95,22 +96,11 @@ def boundary_distance(query: np.ndarray, smp: BoundarySample, tree: cKDTree | No
     """
     if len(query) == 0:
         return np.empty(0)
-    tree = cKDTree(smp.points) if tree is None else tree
+    tree = smp.tree if tree is None else tree
     k = min(k, len(smp.points))
     _, idx = tree.query(query, k=k)
-    idx = idx.reshape(len(query), k)
-    prev = smp.prev
-    best = np.full(len(query), np.inf)
-    for start in (idx, prev[idx]):
-        a = smp.points[start]
-        b = smp.points[smp.next[start]]
-        ab = b - a
-        q = query[:, None, :]
-        denom = np.maximum((ab**2).sum(-1), 1e-300)
-        t = np.clip(((q - a) * ab).sum(-1) / denom, 0.0, 1.0)
-        d = np.linalg.norm(q - (a + t[..., None] * ab), axis=-1)
-        best = np.minimum(best, d.min(axis=1))
-    return best
+    near = np.ascontiguousarray(idx.reshape(len(query), k), dtype=np.int64)
+    return nearest_piece_distance(np.ascontiguousarray(query, dtype=np.float64), smp.points, smp.next, smp.prev, near)
 
 
 def _enclosing_centre(tri_pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -166,9 +166,10 @@ def planar_stages(
 
 
 def _stages(
-    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str
+    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str,
+    prune: bool = True,
 ) -> Stages:
-    """Every stage of the pipeline on a loaded input."""
+    """Every stage of the pipeline on a loaded input (``prune=False``: the result is the raw axis)."""
     region = src.region
     size = shape_size(region)
     if tolerance is None:
@@ -204,7 +205,9 @@ def _stages(
     cluster, edges, kept = merge_close_nodes(ax.points, ax.edges, tolerance)
     count = np.bincount(cluster)
     points = np.stack([np.bincount(cluster, ax.points[:, k]) / count for k in range(2)], axis=1)
-    radii = np.where(count > 1, boundary_distance(points, smp), np.bincount(cluster, ax.radii) / count)
+    radii = np.bincount(cluster, ax.radii) / count
+    merged = count > 1
+    radii[merged] = boundary_distance(points[merged], smp)
     metadata = {
         "domain": "planar",
         "method": "voronoi",
@@ -239,8 +242,7 @@ def _stages(
         metadata=dict(metadata, pruned=False),
         shape=region,
     )
-    result = _pruned(raw, lam, detour)
-    return Stages(src, rings, smp, tri, inside, raw, result)
+    return Stages(src, rings, smp, tri, inside, raw, _pruned(raw, lam, detour) if prune else raw)
 
 
 def voronoi_medial_axis(
@@ -378,8 +380,9 @@ def _label_axes(
     """One axis per label of a label image, in one result whose points carry their label."""
     if boundary != "contour":
         raise InvalidInputError(f"boundary={boundary!r} does not apply to label images (each label is a mask)")
+    # each label's raw axis; all are pruned at once below
     raw = merged_label_axes(src, lambda one: _stages(one, lam=lam, tolerance=tolerance, detour=detour,
-                                                     boundary=boundary).raw)
+                                                     boundary=boundary, prune=False).raw)
     return _pruned(raw, float(raw.metadata["lam"]), float(raw.metadata["detour"]))
 
 

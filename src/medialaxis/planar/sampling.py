@@ -12,10 +12,12 @@ paper 001: every boundary point is within ``tolerance`` of the sampled polygon.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from typing import Any
 
 import numpy as np
 import shapely
+from scipy.spatial import cKDTree
 
 __all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs"]
 
@@ -59,11 +61,17 @@ class BoundarySample:
     ring_length: np.ndarray
     next: np.ndarray
 
-    @property
+    @functools.cached_property
     def prev(self) -> np.ndarray:
+        """(N,) int ndarray: index of the preceding sample on the same ring."""
         out = np.empty_like(self.next)
         out[self.next] = np.arange(len(self.next))
         return out
+
+    @functools.cached_property
+    def tree(self) -> cKDTree:
+        """k-d tree of the samples (built once, for the distance queries)."""
+        return cKDTree(self.points)
 
     def arc_between(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """Shorter boundary arc length between samples ``a`` and ``b`` (inf across rings)."""

@@ -1,0 +1,146 @@
+"""Compiled kernels of the planar pipeline: the per-round triangle tests and the distance to the boundary.
+
+:func:`triangle_centroids` finds the triangles that are not jitter slivers
+and their centroids (for the inside test); :func:`piece_state` tells, for
+each boundary piece, whether it is a Delaunay edge and the smallest
+circumradius of its inner triangles (the adaptive sampling's test).
+:func:`piece_state_reference` is the NumPy version of the latter, used by
+the tests; :func:`medialaxis.planar.axis.proper_triangles` is the NumPy
+version of the former.
+
+:func:`nearest_piece_distance` takes, for each query point, the boundary
+pieces (segments from a sample to the next one on its ring) that start or
+end at its nearest samples, and returns the distance to the closest of
+them; :func:`nearest_piece_distance_reference` is the NumPy version, used
+by the tests.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis._jit import njit
+
+__all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
+           "piece_state_reference"]
+
+
+@njit(cache=True, nogil=True)
+def triangle_centroids(points, simplices, sliver):  # type: ignore[no-untyped-def]
+    """(T,) bool: triangles whose doubled area exceeds ``sliver`` times their longest side; their centroids.
+
+    Returns ``(proper, centroids)``, ``centroids`` (P, 2) of the proper
+    triangles in order.
+    """
+    n = len(simplices)
+    proper = np.zeros(n, np.bool_)
+    cx = np.empty(n)
+    cy = np.empty(n)
+    m = 0
+    for t in range(n):
+        a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
+        ux, uy = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1]
+        vx, vy = points[c, 0] - points[a, 0], points[c, 1] - points[a, 1]
+        twice_area = abs(ux * vy - uy * vx)
+        wx, wy = ux - vx, uy - vy
+        longest = np.sqrt(max(ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy))
+        if twice_area > sliver * longest:
+            proper[t] = True
+            cx[m] = (points[a, 0] + points[b, 0] + points[c, 0]) / 3.0
+            cy[m] = (points[a, 1] + points[b, 1] + points[c, 1]) / 3.0
+            m += 1
+    out = np.empty((m, 2))
+    out[:, 0] = cx[:m]
+    out[:, 1] = cy[:m]
+    return proper, out
+
+
+@njit(cache=True, nogil=True)
+def piece_state(simplices, inside, radii, nxt):  # type: ignore[no-untyped-def]
+    """For each boundary piece ``(i, nxt[i])``: is it a Delaunay edge, and the least radius of its inner triangles.
+
+    Returns ``(conforming, radius)``; ``radius`` is inf where no inner
+    triangle has the piece.
+    """
+    n = len(nxt)
+    conforming = np.zeros(n, np.bool_)
+    radius = np.full(n, np.inf)
+    for t in range(len(simplices)):
+        for k in range(3):
+            a = simplices[t, (k + 1) % 3]
+            b = simplices[t, (k + 2) % 3]
+            if nxt[a] == b:
+                i = a
+            elif nxt[b] == a:
+                i = b
+            else:
+                continue
+            conforming[i] = True
+            if inside[t]:
+                radius[i] = min(radius[i], radii[t])
+    return conforming, radius
+
+
+def piece_state_reference(
+    simplices: np.ndarray, inside: np.ndarray, radii: np.ndarray, nxt: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """NumPy version of :func:`piece_state` (for the tests): edges and pieces matched by sorted keys."""
+    n = len(nxt)
+    s = simplices
+    keys = np.concatenate([np.minimum(s[:, i], s[:, j]) * n + np.maximum(s[:, i], s[:, j])
+                           for i, j in ((1, 2), (2, 0), (0, 1))])
+    owner = np.tile(np.arange(len(s)), 3)
+    order = np.argsort(keys, kind="stable")
+    keys, owner = keys[order], owner[order]
+    piece = np.minimum(np.arange(n), nxt) * n + np.maximum(np.arange(n), nxt)
+    lo = np.searchsorted(keys, piece, "left")
+    hi = np.searchsorted(keys, piece, "right")
+    radius = np.full(n, np.inf)
+    for off in (0, 1):  # an edge has at most two triangles
+        j = lo + off
+        has = j < hi
+        t = owner[np.minimum(j, len(owner) - 1)]
+        use = has & inside[t]
+        radius[use] = np.minimum(radius[use], radii[t[use]])
+    return hi > lo, radius
+
+
+@njit(cache=True, nogil=True)
+def nearest_piece_distance(query, points, nxt, prv, near):  # type: ignore[no-untyped-def]
+    """Distance from each ``query`` (q, 2) to the pieces at its samples ``near`` (q, k).
+
+    The pieces are ``(j, nxt[j])`` and ``(prv[j], j)`` for each ``j`` in
+    ``near[i]``: the segments that meet at the sample ``j``.
+    """
+    out = np.empty(len(query))
+    for i in range(len(query)):
+        qx, qy = query[i, 0], query[i, 1]
+        best = np.inf
+        for m in range(near.shape[1]):
+            j = near[i, m]
+            for start in (j, prv[j]):
+                ax, ay = points[start, 0], points[start, 1]
+                bx, by = points[nxt[start], 0] - ax, points[nxt[start], 1] - ay
+                px, py = qx - ax, qy - ay
+                t = (px * bx + py * by) / max(bx * bx + by * by, 1e-300)
+                t = min(max(t, 0.0), 1.0)
+                dx, dy = px - t * bx, py - t * by
+                best = min(best, np.sqrt(dx * dx + dy * dy))
+        out[i] = best
+    return out
+
+
+def nearest_piece_distance_reference(
+    query: np.ndarray, points: np.ndarray, nxt: np.ndarray, prv: np.ndarray, near: np.ndarray
+) -> np.ndarray:
+    """NumPy version of :func:`nearest_piece_distance` (for the tests)."""
+    best = np.full(len(query), np.inf)
+    for start in (near, prv[near]):
+        a = points[start]
+        ab = points[nxt[start]] - a
+        q = query[:, None, :]
+        denom = np.maximum((ab**2).sum(-1), 1e-300)
+        t = np.clip(((q - a) * ab).sum(-1) / denom, 0.0, 1.0)
+        d = np.linalg.norm(q - (a + t[..., None] * ab), axis=-1)
+        best = np.minimum(best, d.min(axis=1))
+    return best
