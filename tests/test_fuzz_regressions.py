@@ -6,6 +6,7 @@ import json
 
 import numpy as np
 import pytest
+import shapely
 
 import medialaxis as mx
 from medialaxis.core import graph
@@ -159,3 +160,11 @@ def test_flow_on_a_box_with_a_spike_5e9_long(tmp_path):
     except mx.MedialAxisError:
         return  # a named refusal is as good as an answer here
     assert sk.n_components >= 1
+
+
+def test_a_ring_of_near_duplicate_vertices_is_kept_not_a_crash():
+    # merging vertices a rounding error apart would leave this hole a 2-point ring (GEOS refuses it)
+    hole = [(10, 10), (10, 10 + 1e-12), (10 + 1e-12, 10)]
+    shape = shapely.Polygon([(0, 0), (100, 0), (100, 60), (0, 60)], [hole])
+    with pytest.raises(mx.InvalidInputError, match="a ring"):  # the hole is below the resolution: named
+        mx.medial_axis(shape)

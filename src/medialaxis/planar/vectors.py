@@ -42,7 +42,10 @@ def validate_polygonal(geom: Any, where: str) -> tuple[Any, str | None]:
     # Vertices a hair apart (a ring closed with a rounding error, 1e-15 off its start) make a
     # degenerate Delaunay triangle whose circle is not a medial disc: merge them.
     extent = float(np.ptp(shapely.get_coordinates(geom), axis=0).max())
-    merged = shapely.remove_repeated_points(geom, NEAR_DUPLICATE * extent)
+    try:
+        merged = shapely.remove_repeated_points(geom, NEAR_DUPLICATE * extent)
+    except shapely.errors.GEOSException:  # a ring that would collapse: kept as it is
+        merged = geom
     if merged.is_valid and not merged.is_empty and merged.area > 0:
         geom = merged
     return shapely.normalize(geom), repaired
