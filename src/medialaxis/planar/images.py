@@ -234,6 +234,8 @@ def contour_region(
     """
     from skimage.measure import find_contours
 
+    from medialaxis.planar._contour_kernels import contour_rings
+
     if image.dtype == bool:
         foreground = ~image if dark else image
     else:
@@ -243,14 +245,14 @@ def contour_region(
     r0, c0 = max(int(rows[0]) - 1, 0), max(int(cols[0]) - 1, 0)
     box = (slice(r0, int(rows[-1]) + 2), slice(c0, int(cols[-1]) + 2))
     if image.dtype == bool:
-        padded = np.pad(foreground[box].view(np.uint8), 1)  # 0 is below the 0.5 level
-        level = 0.5
+        # compiled: the rings find_contours gives at 0.5, point for point
+        rings = contour_rings(np.pad(foreground[box].view(np.uint8), 1))
     else:
         # The same iso-line either way; the sign makes the shape the high side.
         crop = -image[box].astype(np.float64) if dark else image[box].astype(np.float64)
         level = -level if dark else level
         padded = np.pad(crop, 1, constant_values=min(float(crop.min()), level) - 1.0)
-    rings = find_contours(padded, level, positive_orientation="high")
+        rings = find_contours(padded, level, positive_orientation="high")
     if smoothing > 0:
         rings = [_smooth_ring(r, smoothing) for r in rings]
     origin = np.array([r0 - 1.0, c0 - 1.0])
