@@ -6,10 +6,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import shapely
 from PIL import Image
+from shapely.geometry import MultiPolygon, Point, box
 
 from medialaxis.planar._contour_kernels import contour_rings, mask_contours_reference
-
+from medialaxis.planar._inside_kernels import UNSURE, RegionLocator, locate_points, locate_points_reference
+from medialaxis.planar._kernels import circumcircles_kernel
+from medialaxis.planar.delaunay import circumcircles
 
 KIMIA = Path(__file__).resolve().parents[1] / "data" / "kimia99"
 
@@ -31,3 +35,32 @@ def test_mask_contours_are_scikit_images_point_for_point(view: str) -> None:
         assert len(ours) == len(theirs)
         for a, b in zip(ours, theirs):
             np.testing.assert_array_equal(a, b)
+
+
+def test_region_locator_gives_shapelys_answers() -> None:
+    ring = Point(0, 0).buffer(1.0, 64).difference(Point(0.3, 0).buffer(0.3, 32))
+    region = MultiPolygon([ring, box(2, -0.5, 3, 0.5)])
+    locator = RegionLocator(region)
+    rng = np.random.default_rng(0)
+    xy = rng.uniform(-1.2, 3.2, (4000, 2))
+    # on the boundary and at vertices: unsure, answered by GEOS
+    xy = np.vstack([xy, shapely.get_coordinates(region), [[2.0, 0.0], [2.5, 0.5], [3.0, 0.1]]])
+    expected = shapely.contains_xy(region, xy[:, 0], xy[:, 1])
+    np.testing.assert_array_equal(locator.contains(xy[:, 0], xy[:, 1]), expected)
+    reference = locate_points_reference(xy[:, 0], xy[:, 1], locator.segments)
+    ours = locate_points(xy[:, 0], xy[:, 1], locator.segments, locator.start, locator.members, locator.y0,
+                         locator.height)
+    np.testing.assert_array_equal(ours, reference)
+    assert (ours[reference != UNSURE] == expected[reference != UNSURE]).all()
+    assert (reference[-3:] == UNSURE).all()
+
+
+def test_circumcircles_kernel_is_the_numpy_version_bit_for_bit() -> None:
+    rng = np.random.default_rng(1)
+    points = rng.random((500, 2))
+    points[5] = 0.5 * (points[6] + points[7])  # a collinear triangle
+    simplices = rng.integers(0, 500, (3000, 3))
+    simplices[0] = [5, 6, 7]
+    simplices[1, 2] = simplices[1, 1]  # a repeated vertex
+    for ours, ref in zip(circumcircles_kernel(points, simplices), circumcircles(points, simplices)):
+        np.testing.assert_array_equal(ours, ref)

@@ -13,16 +13,21 @@ pieces (segments from a sample to the next one on its ring) that start or
 end at its nearest samples, and returns the distance to the closest of
 them; :func:`nearest_piece_distance_reference` is the NumPy version, used
 by the tests.
+
+:func:`circumcircles_kernel` is :func:`medialaxis.planar.delaunay.circumcircles`
+(the reference) compiled, with the same operations in the same order.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
 from medialaxis._jit import njit
 
 __all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
-           "piece_state_reference"]
+           "piece_state_reference", "circumcircles_kernel"]
 
 
 @njit(cache=True, nogil=True)
@@ -144,3 +149,41 @@ def nearest_piece_distance_reference(
         d = np.linalg.norm(q - (a + t[..., None] * ab), axis=-1)
         best = np.minimum(best, d.min(axis=1))
     return best
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def circumcircles_kernel(p, simplices):  # type: ignore[no-untyped-def]
+    """Circumcentres (T, 2) and radii (T,), operation for operation as :func:`medialaxis.planar.delaunay.circumcircles`.
+
+    Collinear triangles (no finite circle) get the midpoint of their longest side and half its length.
+    """
+    n = len(simplices)
+    centre = np.empty((n, 2))
+    radius = np.empty(n)
+    for t in range(n):
+        i, j, k = simplices[t, 0], simplices[t, 1], simplices[t, 2]
+        ax, ay = p[i, 0], p[i, 1]
+        bx, by = p[j, 0] - ax, p[j, 1] - ay
+        cx, cy = p[k, 0] - ax, p[k, 1] - ay
+        d = 2.0 * (bx * cy - by * cx)
+        b2 = bx * bx + by * by
+        c2 = cx * cx + cy * cy
+        ux = (cy * b2 - by * c2) / d
+        uy = (bx * c2 - cx * b2) / d
+        r = math.hypot(ux, uy)
+        if not np.isfinite(r):
+            corners = (i, j, k)
+            best, longest = 0, -1.0
+            for s in range(3):  # side s is opposite corner s
+                e, f = corners[(s + 1) % 3], corners[(s + 2) % 3]
+                sx, sy = p[e, 0] - p[f, 0], p[e, 1] - p[f, 1]
+                if sx * sx + sy * sy > longest:
+                    best, longest = s, sx * sx + sy * sy
+            e, f = corners[(best + 1) % 3], corners[(best + 2) % 3]
+            ux = 0.5 * (p[e, 0] + p[f, 0]) - ax
+            uy = 0.5 * (p[e, 1] + p[f, 1]) - ay
+            r = 0.5 * np.sqrt(longest)
+        centre[t, 0] = ux + ax
+        centre[t, 1] = uy + ay
+        radius[t] = r
+    return centre, radius

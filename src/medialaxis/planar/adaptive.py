@@ -37,10 +37,11 @@ def sample_and_triangulate(
     start = max(min_length, np.sqrt(area) / 8.0)
     arcs: list[np.ndarray] | None = initial_arcs(rings, start)
     settled = False
+    locator = rings.locator if region is rings.region else None
     for _ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
         smp = sample(rings, arcs)
         tri = triangulate(smp.points)
-        inside = inner_triangles(tri, region)
+        inside = inner_triangles(tri, region, locator)
         if settled:
             break
         conforming, radius = piece_state(tri.simplices, inside, tri.radii, smp.next)

@@ -20,6 +20,7 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar._kernels import nearest_piece_distance, triangle_centroids
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
@@ -76,14 +77,21 @@ def proper_triangles(tri: Triangulation) -> np.ndarray:
     return twice_area > 1e-7 * extent * longest
 
 
-def inner_triangles(tri: Triangulation, region: Any) -> np.ndarray:
-    """(T,) bool: proper triangles whose centroid lies inside ``region``."""
+def inner_triangles(tri: Triangulation, region: Any, locator: RegionLocator | None = None) -> np.ndarray:
+    """(T,) bool: proper triangles whose centroid lies inside ``region`` (``locator``: its compiled test)."""
     extent = float(np.ptp(tri.points, axis=0).max())
     proper, centroid = triangle_centroids(tri.points, tri.simplices, 1e-7 * extent)
-    shapely.prepare(region)
     inside = np.zeros(len(proper), bool)
-    inside[proper] = shapely.contains_xy(region, centroid[:, 0], centroid[:, 1])
+    inside[proper] = _contains(region, locator, centroid)
     return inside
+
+
+def _contains(region: Any, locator: RegionLocator | None, xy: np.ndarray) -> np.ndarray:
+    """``shapely.contains_xy(region, *xy.T)``, by ``locator`` when there is one."""
+    if locator is not None:
+        return locator.contains(xy[:, 0], xy[:, 1])
+    shapely.prepare(region)
+    return shapely.contains_xy(region, xy[:, 0], xy[:, 1])
 
 
 def boundary_distance(query: np.ndarray, smp: BoundarySample, tree: cKDTree | None = None, k: int = 8) -> np.ndarray:
@@ -116,8 +124,10 @@ def _enclosing_centre(tri_pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return mid, np.sqrt(longest), obtuse
 
 
-def raw_axis(tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region: Any) -> RawAxis:
-    """Build the inner Voronoi graph (see module docstring)."""
+def raw_axis(
+    tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region: Any, locator: RegionLocator | None = None
+) -> RawAxis:
+    """Build the inner Voronoi graph (see module docstring); ``locator``: the compiled inside test of ``region``."""
     t_in = np.flatnonzero(inside)
     node_of = np.full(len(tri.simplices), -1, np.int64)
     node_of[t_in] = np.arange(len(t_in))
@@ -126,12 +136,11 @@ def raw_axis(tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region
     # Voronoi vertices outside the region (obtuse triangles at sparse spots) are
     # moved to the centre of the triangle's smallest enclosing circle, or its
     # centroid, so every axis point lies in the shape.
-    shapely.prepare(region)
-    outside = ~shapely.contains_xy(region, pos[:, 0], pos[:, 1])
+    outside = ~_contains(region, locator, pos)
     if outside.any():
         tri_pts = tri.points[tri.simplices[t_in[outside]]]
         mid, _, _ = _enclosing_centre(tri_pts)
-        ok = shapely.contains_xy(region, mid[:, 0], mid[:, 1])
+        ok = _contains(region, locator, mid)
         pos[outside] = np.where(ok[:, None], mid, tri_pts.mean(1))
 
     # Dual edges between inner triangles.

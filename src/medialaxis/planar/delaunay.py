@@ -21,6 +21,7 @@ from scipy.spatial import Delaunay, QhullError
 
 from medialaxis.errors import ComputationError
 from medialaxis.planar._delaunay_kernels import delaunay_2d
+from medialaxis.planar._kernels import circumcircles_kernel
 
 __all__ = ["Triangulation", "triangulate", "edge_keys"]
 
@@ -62,7 +63,10 @@ def edge_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
 
 
 def circumcircles(p: np.ndarray, simplices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Circumcentres and radii of triangles (computed relative to the first vertex)."""
+    """Circumcentres and radii of triangles (computed relative to the first vertex).
+
+    The pipeline runs its compiled twin, :func:`medialaxis.planar._kernels.circumcircles_kernel`.
+    """
     a = p[simplices[:, 0]]
     b = p[simplices[:, 1]] - a
     c = p[simplices[:, 2]] - a
@@ -117,5 +121,5 @@ def triangulate(points: np.ndarray, *, seed: int = 0) -> Triangulation:
     work = (points - lo) / extent + rng.uniform(-1e-9, 1e-9, points.shape)
     found = delaunay_2d(np.vstack([work, FAR_CORNERS]))
     simplices, neighbors = found if found is not None else _qhull(work)
-    centers, radii = circumcircles(points, simplices)
+    centers, radii = circumcircles_kernel(np.ascontiguousarray(points, dtype=np.float64), simplices)
     return Triangulation(points, simplices, neighbors, centers, radii)

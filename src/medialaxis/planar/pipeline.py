@@ -199,7 +199,7 @@ def _stages(
         smp, tri, inside = sample_and_triangulate(rings, rings.region, tolerance, min_length)
     if not inside.any():
         raise ComputationError("no Delaunay triangle lies inside the shape; is it degenerate?")
-    ax: RawAxis = raw_axis(tri, inside, smp, rings.region)
+    ax: RawAxis = raw_axis(tri, inside, smp, rings.region, rings.locator)
     # Co-circular samples give clusters of coincident Voronoi vertices (the
     # centre of a disc, the mid-line of a rectangle): one node each.
     cluster, edges, kept = merge_close_nodes(ax.points, ax.edges, tolerance)

@@ -19,6 +19,8 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from medialaxis.planar._inside_kernels import RegionLocator
+
 __all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs"]
 
 
@@ -36,6 +38,11 @@ class Rings:
 
     vertices: list[np.ndarray]
     region: Any
+
+    @functools.cached_property
+    def locator(self) -> RegionLocator:
+        """The compiled inside test of ``region`` (built once, used every round)."""
+        return RegionLocator(self.region)
 
 
 @dataclasses.dataclass(frozen=True)
