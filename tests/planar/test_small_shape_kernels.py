@@ -64,3 +64,59 @@ def test_circumcircles_kernel_is_the_numpy_version_bit_for_bit() -> None:
     simplices[1, 2] = simplices[1, 1]  # a repeated vertex
     for ours, ref in zip(circumcircles_kernel(points, simplices), circumcircles(points, simplices)):
         np.testing.assert_array_equal(ours, ref)
+
+
+def _raw_axes() -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """Unpruned axes of a few shapes, with their merge tolerance."""
+    from medialaxis.planar.axis import raw_axis
+    from medialaxis.planar.pipeline import planar_stages
+
+    rows, cols = np.mgrid[:80, :90]
+    shapes = [box(0, 0, 4, 2), Point(0, 0).buffer(1.0, 64), (rows - 40) ** 2 + (cols - 45) ** 2 < 30**2,
+              Point(0, 0).buffer(1.0).difference(Point(0.2, 0).buffer(0.3))]
+    shapes += [np.asarray(Image.open(f)).astype(bool) for f in sorted(KIMIA.glob("*.png"))[::11]]
+    out = []
+    for shape in shapes:
+        st = planar_stages(shape)
+        ax = raw_axis(st.triangulation, st.inside, st.samples, st.rings.region)
+        out.append((ax.points, ax.edges, float(st.raw.metadata["tolerance"])))
+    return out
+
+
+def test_merge_and_regrow_kernels_match_their_references() -> None:
+    from medialaxis.planar.pruning import (
+        merge_close_nodes,
+        merge_close_nodes_reference,
+        regrow_tips,
+        regrow_tips_reference,
+    )
+
+    rng = np.random.default_rng(2)
+    for points, edges, tolerance in _raw_axes():
+        for scale in (1.0, 5.0, 50.0):  # more and larger clusters, some with cycles
+            ours = merge_close_nodes(points, edges, scale * tolerance)
+            ref = merge_close_nodes_reference(points, edges, scale * tolerance)
+            for a, b in zip(ours, ref):
+                np.testing.assert_array_equal(a, b)
+        for _ in range(5):
+            keep = rng.random(len(edges)) < 0.3
+            growable = rng.random(len(edges)) < 0.7
+            np.testing.assert_array_equal(regrow_tips(len(points), edges, keep, growable),
+                                          regrow_tips_reference(len(points), edges, keep, growable))
+
+
+def test_component_labels_group_as_scipy_does() -> None:
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    from medialaxis.planar._graph_kernels import component_labels
+
+    rng = np.random.default_rng(4)
+    n = 300
+    edges = rng.integers(0, n, (200, 2))
+    ours = component_labels(n, edges, np.ones(len(edges), np.bool_))
+    _, theirs = connected_components(coo_matrix((np.ones(200), (edges[:, 0], edges[:, 1])), shape=(n, n)),
+                                     directed=False)
+    # the same partition: each label of one maps to one label of the other
+    pairs = set(zip(ours.tolist(), theirs.tolist()))
+    assert len(pairs) == len(set(ours.tolist())) == len(set(theirs.tolist()))

@@ -37,9 +37,12 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from medialaxis.core.graph import compact, peel_leaves
+from medialaxis.core._kernels import peel_leaves_kernel
+from medialaxis.core.graph import compact
+from medialaxis.planar._graph_kernels import adjacency_lists, component_labels, merge_clusters, regrow_tips_kernel
 
-__all__ = ["significant_edges", "regrow_tips", "prune_graph", "merge_close_nodes"]
+__all__ = ["significant_edges", "regrow_tips", "prune_graph", "merge_close_nodes", "merge_close_nodes_reference",
+           "regrow_tips_reference"]
 
 #: Regrowing needs a boundary detour of at least this fraction of ``detour``.
 REGROW_DETOUR = 0.1
@@ -69,6 +72,16 @@ def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) 
     kept_edges : (m',) int ndarray
         Old index of each remaining edge (for its attributes).
     """
+    edges = np.ascontiguousarray(edges, dtype=np.int64).reshape(-1, 2)
+    length = np.linalg.norm(points[edges[:, 0]] - points[edges[:, 1]], axis=1)
+    cluster, kept_edges = merge_clusters(len(points), edges, length < min_length)
+    return cluster, cluster[edges[kept_edges]].reshape(-1, 2), kept_edges
+
+
+def merge_close_nodes_reference(
+    points: np.ndarray, edges: np.ndarray, min_length: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """SciPy/NumPy version of :func:`merge_close_nodes` (for the tests)."""
     n = len(points)
     rep = np.arange(n)
     if len(edges):
@@ -93,6 +106,15 @@ def merge_close_nodes(points: np.ndarray, edges: np.ndarray, min_length: float) 
 
 
 def regrow_tips(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarray) -> np.ndarray:
+    """Extend every endpoint of the kept graph along ``growable`` removed edges (see :func:`regrow_tips_reference`)."""
+    if not keep.any():
+        return keep.copy()
+    edges = np.ascontiguousarray(edges, dtype=np.int64).reshape(-1, 2)
+    indptr, nbrs, eids = adjacency_lists(n, edges)
+    return regrow_tips_kernel(indptr, nbrs, eids, edges, keep, np.asarray(growable, bool))
+
+
+def regrow_tips_reference(n: int, edges: np.ndarray, keep: np.ndarray, growable: np.ndarray) -> np.ndarray:
     """Extend every endpoint of the kept graph along ``growable`` removed edges.
 
     A tip grows while exactly one growable edge leads on to a node not yet in
@@ -137,8 +159,12 @@ def prune_graph(
     or a regular polygon keeps its centre).
     """
     n = len(radii)
+    edges = np.ascontiguousarray(edges, dtype=np.int64).reshape(-1, 2)
     removable = ~significant_edges(contact_diameter, contact_arc, lam, detour)
-    keep = peel_leaves(n, edges, removable)
+    keep = np.ones(len(edges), bool)
+    if len(edges):  # medialaxis.core.graph.peel_leaves, on lists built here
+        indptr, nbrs, eids = adjacency_lists(n, edges)
+        peel_leaves_kernel(indptr, nbrs, eids, np.diff(indptr), edges, removable, keep)
     excess = contact_arc - contact_diameter
     growable = (contact_diameter >= lam) & ~adjacent_contacts & (excess >= REGROW_DETOUR * detour * contact_diameter)
     keep = regrow_tips(n, edges, keep, growable)
@@ -146,8 +172,8 @@ def prune_graph(
     keep_nodes = np.zeros(n, bool)
     if n:
         # Components with no edge left keep one node so no shape loses its axis.
-        adj = coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n))
-        n_comp, label = connected_components(adj, directed=False)
+        label = component_labels(n, edges, np.ones(len(edges), np.bool_))
+        n_comp = int(label.max()) + 1
         has_edge = np.zeros(n_comp, bool)
         has_edge[label[kept.ravel()]] = True
         best = np.full(n_comp, -1, np.int64)
