@@ -120,3 +120,46 @@ def test_component_labels_group_as_scipy_does() -> None:
     # the same partition: each label of one maps to one label of the other
     pairs = set(zip(ours.tolist(), theirs.tolist()))
     assert len(pairs) == len(set(ours.tolist())) == len(set(theirs.tolist()))
+
+
+def test_sample_and_refine_kernels_match_their_references() -> None:
+    from medialaxis.planar.sampling import (
+        initial_arcs,
+        refine_arcs,
+        refine_arcs_reference,
+        sample,
+        sample_reference,
+        simplify_rings,
+    )
+
+    rng = np.random.default_rng(5)
+    region = MultiPolygon([Point(0, 0).buffer(1.0, 16).difference(Point(0.2, 0).buffer(0.3, 8)),
+                           box(2, 0, 3, 0.001)])
+    rings = simplify_rings(region, 0.0)
+    arcs = initial_arcs(rings, 0.05)
+    arcs[0] = np.sort(np.r_[arcs[0], rng.uniform(0, arcs[0][-1], 50)])  # positions inside and at vertices
+    for _ in range(3):
+        ours, ref = sample(rings, arcs), sample_reference(rings, arcs)
+        for field in ("points", "ring", "arc", "ring_length", "next"):
+            np.testing.assert_array_equal(getattr(ours, field), getattr(ref, field))
+        radius = rng.uniform(0.01, 2.0, len(ours.points))
+        radius[::7] = np.inf
+        conforming = rng.random(len(ours.points)) < 0.9
+        new, new_ref = (f(arcs, ours, radius, conforming, 1e-3, 1e-3) for f in (refine_arcs, refine_arcs_reference))
+        assert len(new) == len(new_ref)
+        for a, b in zip(new, new_ref):
+            np.testing.assert_array_equal(a, b)
+        arcs = new
+    assert refine_arcs(arcs, sample(rings, arcs), np.full(sum(map(len, arcs)), np.inf),
+                       np.ones(sum(map(len, arcs)), bool), 1e-3, 1e-3) is None
+
+
+def test_inner_triangles_by_the_locator_are_shapelys() -> None:
+    from medialaxis.planar.axis import inner_triangles
+    from medialaxis.planar.delaunay import triangulate
+
+    region = Point(0, 0).buffer(1.0, 32).difference(Point(0.3, 0).buffer(0.3, 16))
+    rng = np.random.default_rng(6)
+    points = np.vstack([shapely.get_coordinates(region), rng.uniform(-1, 1, (300, 2))])
+    tri = triangulate(points)
+    np.testing.assert_array_equal(inner_triangles(tri, region, RegionLocator(region)), inner_triangles(tri, region))

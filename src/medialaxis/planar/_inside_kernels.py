@@ -22,7 +22,7 @@ import shapely
 
 from medialaxis._jit import njit
 
-__all__ = ["RegionLocator", "band_segments", "locate_points", "locate_points_reference"]
+__all__ = ["RegionLocator", "band_segments", "locate_points", "locate_centroids", "locate_points_reference"]
 
 #: Trust a determinant's sign above this fraction of its terms' magnitudes.
 SIGN_MARGIN = 1e-12
@@ -53,35 +53,69 @@ def band_segments(segments, y0, height, n_bands):  # type: ignore[no-untyped-def
 
 
 @njit(cache=True, nogil=True)
+def _locate(px, py, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
+    """1 inside, 0 outside, ``UNSURE`` within rounding of a segment's line."""
+    n_bands = len(start) - 1
+    if not (py >= y0 and py <= y0 + height):
+        return 0
+    band = min(max(int((py - y0) / height * n_bands), 0), n_bands - 1)
+    crossings = 0
+    for m in range(start[band], start[band + 1]):
+        s = members[m]
+        x1, y1, x2, y2 = segments[s, 0], segments[s, 1], segments[s, 2], segments[s, 3]
+        if py < min(y1, y2) or py > max(y1, y2) or max(x1, x2) < px:
+            continue
+        u = (x2 - x1) * (py - y1)
+        v = (y2 - y1) * (px - x1)
+        det = u - v
+        if abs(det) <= SIGN_MARGIN * (abs(u) + abs(v)):
+            return UNSURE
+        if (y1 > py) != (y2 > py):
+            left = det > 0.0
+            if y2 < y1:
+                left = not left
+            if left:
+                crossings += 1
+    return crossings % 2
+
+
+@njit(cache=True, nogil=True)
 def locate_points(x, y, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
     """(q,) int8: 1 inside, 0 outside, ``UNSURE`` (2) within rounding of a segment's line."""
-    n_bands = len(start) - 1
     out = np.zeros(len(x), np.int8)
     for i in range(len(x)):
-        px, py = x[i], y[i]
-        if not (py >= y0 and py <= y0 + height):
-            continue
-        band = min(max(int((py - y0) / height * n_bands), 0), n_bands - 1)
-        crossings = 0
-        for m in range(start[band], start[band + 1]):
-            s = members[m]
-            x1, y1, x2, y2 = segments[s, 0], segments[s, 1], segments[s, 2], segments[s, 3]
-            if py < min(y1, y2) or py > max(y1, y2) or max(x1, x2) < px:
-                continue
-            u = (x2 - x1) * (py - y1)
-            v = (y2 - y1) * (px - x1)
-            det = u - v
-            if abs(det) <= SIGN_MARGIN * (abs(u) + abs(v)):
-                crossings = -1
-                break
-            if (y1 > py) != (y2 > py):
-                left = det > 0.0
-                if y2 < y1:
-                    left = not left
-                if left:
-                    crossings += 1
-        out[i] = UNSURE if crossings < 0 else crossings % 2
+        out[i] = _locate(x[i], y[i], segments, start, members, y0, height)
     return out
+
+
+@njit(cache=True, nogil=True)
+def locate_centroids(points, simplices, sliver_fraction, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
+    """Where the centroid of each proper triangle lies (as :func:`locate_points`; 0 for slivers), and the centroids.
+
+    A sliver's doubled area is at most ``sliver_fraction`` of the points'
+    extent times its longest side (as :func:`medialaxis.planar._kernels.triangle_centroids`).
+    """
+    extent = 0.0
+    for k in range(2):
+        lo, hi = np.inf, -np.inf
+        for i in range(len(points)):
+            lo = min(lo, points[i, k])
+            hi = max(hi, points[i, k])
+        extent = max(extent, hi - lo)
+    sliver = sliver_fraction * extent
+    where = np.zeros(len(simplices), np.int8)
+    centroid = np.empty((len(simplices), 2))
+    for t in range(len(simplices)):
+        a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
+        ux, uy = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1]
+        vx, vy = points[c, 0] - points[a, 0], points[c, 1] - points[a, 1]
+        wx, wy = ux - vx, uy - vy
+        longest = np.sqrt(max(ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy))
+        if abs(ux * vy - uy * vx) > sliver * longest:
+            centroid[t, 0] = (points[a, 0] + points[b, 0] + points[c, 0]) / 3.0
+            centroid[t, 1] = (points[a, 1] + points[b, 1] + points[c, 1]) / 3.0
+            where[t] = _locate(centroid[t, 0], centroid[t, 1], segments, start, members, y0, height)
+    return where, centroid
 
 
 def locate_points_reference(x: np.ndarray, y: np.ndarray, segments: np.ndarray) -> np.ndarray:
@@ -113,6 +147,17 @@ class RegionLocator:
         self.height = max(float(ys.max()) - self.y0, 1e-300) if len(ys) else 1.0
         n_bands = max(1, len(self.segments) // 2)
         self.start, self.members = band_segments(self.segments, self.y0, self.height, n_bands)
+
+    def inner_triangles(self, points: np.ndarray, simplices: np.ndarray, sliver_fraction: float) -> np.ndarray:
+        """(T,) bool: proper triangles whose centroid the region contains (see :func:`locate_centroids`)."""
+        where, centroid = locate_centroids(points, simplices, sliver_fraction, self.segments, self.start,
+                                           self.members, self.y0, self.height)
+        inside = where == 1
+        unsure = np.flatnonzero(where == UNSURE)
+        if len(unsure):
+            shapely.prepare(self.region)
+            inside[unsure] = shapely.contains_xy(self.region, centroid[unsure, 0], centroid[unsure, 1])
+        return inside
 
     def contains(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """(q,) bool: ``shapely.contains_xy(region, x, y)``."""

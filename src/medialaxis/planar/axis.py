@@ -79,7 +79,9 @@ def proper_triangles(tri: Triangulation) -> np.ndarray:
 
 def inner_triangles(tri: Triangulation, region: Any, locator: RegionLocator | None = None) -> np.ndarray:
     """(T,) bool: proper triangles whose centroid lies inside ``region`` (``locator``: its compiled test)."""
-    extent = float(np.ptp(tri.points, axis=0).max())
+    if locator is not None:
+        return locator.inner_triangles(tri.points, tri.simplices, 1e-7)
+    extent = float((tri.points.max(0) - tri.points.min(0)).max())
     proper, centroid = triangle_centroids(tri.points, tri.simplices, 1e-7 * extent)
     inside = np.zeros(len(proper), bool)
     inside[proper] = _contains(region, locator, centroid)

@@ -23,7 +23,7 @@ from medialaxis.errors import ComputationError
 from medialaxis.planar._delaunay_kernels import delaunay_2d
 from medialaxis.planar._kernels import circumcircles_kernel
 
-__all__ = ["Triangulation", "triangulate", "edge_keys"]
+__all__ = ["Triangulation", "triangulate", "edge_keys", "jitter"]
 
 #: Far corners (counter-clockwise) around the unit square of the scaled
 #: samples: the hull is a big square, so collinear boundary samples are never
@@ -106,6 +106,19 @@ def _qhull(work: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return simplices, np.where(neighbors >= 0, new_index[neighbors], -1)
 
 
+#: The jitter of seed 0, first rows (a generator's first draws do not depend on how many follow).
+_JITTER: list[np.ndarray] = [np.empty((0, 2))]
+
+
+def jitter(n: int, seed: int = 0) -> np.ndarray:
+    """``np.random.default_rng(seed).uniform(-1e-9, 1e-9, (n, 2))``, kept for seed 0."""
+    if seed != 0:
+        return np.random.default_rng(seed).uniform(-1e-9, 1e-9, (n, 2))
+    if len(_JITTER[0]) < n:
+        _JITTER[0] = np.random.default_rng(0).uniform(-1e-9, 1e-9, (max(n, 2 * len(_JITTER[0]), 4096), 2))
+    return _JITTER[0][:n]
+
+
 def triangulate(points: np.ndarray, *, seed: int = 0) -> Triangulation:
     """Delaunay triangulation of ``points`` (jittered by 1e-9 of their extent).
 
@@ -114,11 +127,10 @@ def triangulate(points: np.ndarray, *, seed: int = 0) -> Triangulation:
     if len(points) < 3:
         raise ComputationError(f"need at least 3 boundary samples, got {len(points)}")
     lo = points.min(0)
-    extent = float(np.ptp(points, axis=0).max())
+    extent = float((points.max(0) - lo).max())
     if extent <= 0:
         raise ComputationError("all boundary samples coincide")
-    rng = np.random.default_rng(seed)
-    work = (points - lo) / extent + rng.uniform(-1e-9, 1e-9, points.shape)
+    work = (points - lo) / extent + jitter(len(points), seed)
     found = delaunay_2d(np.vstack([work, FAR_CORNERS]))
     simplices, neighbors = found if found is not None else _qhull(work)
     centers, radii = circumcircles_kernel(np.ascontiguousarray(points, dtype=np.float64), simplices)

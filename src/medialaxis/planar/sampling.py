@@ -20,8 +20,10 @@ import shapely
 from scipy.spatial import cKDTree
 
 from medialaxis.planar._inside_kernels import RegionLocator
+from medialaxis.planar._kernels import ring_positions, split_pieces
 
-__all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs"]
+__all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs", "sample_reference",
+           "refine_arcs_reference"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -38,6 +40,16 @@ class Rings:
 
     vertices: list[np.ndarray]
     region: Any
+
+    @functools.cached_property
+    def flat_vertices(self) -> np.ndarray:
+        """(V, 2) float ndarray: the vertices of all rings, one after another."""
+        return np.ascontiguousarray(np.concatenate(self.vertices) if self.vertices else np.empty((0, 2)), np.float64)
+
+    @functools.cached_property
+    def offsets(self) -> np.ndarray:
+        """(R + 1,) int ndarray: ring ``r`` is ``flat_vertices[offsets[r]:offsets[r + 1]]``."""
+        return _offsets(self.vertices)
 
     @functools.cached_property
     def locator(self) -> RegionLocator:
@@ -125,23 +137,21 @@ def initial_arcs(rings: Rings, max_length: float) -> list[np.ndarray]:
     return arcs
 
 
+def _offsets(parts: list[np.ndarray]) -> np.ndarray:
+    return np.concatenate([[0], np.cumsum([len(p) for p in parts])]).astype(np.int64)
+
+
 def sample(rings: Rings, arcs: list[np.ndarray]) -> BoundarySample:
     """Points at the given arc positions (sorted, in ``[0, perimeter)``) of each ring."""
-    pts, ring_id, arc, nxt, lengths = [], [], [], [], []
-    n0 = 0
-    for r, (v, a) in enumerate(zip(rings.vertices, arcs)):
-        s = _cumulative(v)
-        closed = np.vstack([v, v[:1]])
-        p = np.c_[np.interp(a, s, closed[:, 0]), np.interp(a, s, closed[:, 1])]
-        pts.append(p)
-        arc.append(a)
-        lengths.append(s[-1])
-        ring_id.append(np.full(len(p), r))
-        nxt.append(n0 + (np.arange(len(p)) + 1) % len(p))
-        n0 += len(p)
-    return BoundarySample(
-        np.concatenate(pts), np.concatenate(ring_id), np.concatenate(arc), np.asarray(lengths), np.concatenate(nxt)
-    )
+    a_offsets = _offsets(arcs)
+    flat = np.concatenate(arcs).astype(np.float64)
+    points, cumulative = ring_positions(rings.flat_vertices, rings.offsets, flat, a_offsets)
+    count = np.diff(a_offsets)
+    ring_id = np.repeat(np.arange(len(arcs)), count)
+    position = np.arange(len(flat)) - a_offsets[ring_id]
+    nxt = a_offsets[ring_id] + (position + 1) % count[ring_id]
+    lengths = cumulative[rings.offsets[1:] + np.arange(len(arcs))]
+    return BoundarySample(points, ring_id, flat, lengths, nxt)
 
 
 def refine_arcs(
@@ -161,15 +171,54 @@ def refine_arcs(
     sample dense relative to the local feature size (topology), the second
     bounds the offset of a Voronoi vertex from the medial axis, about
     ``h**2 / (16 R)``, by ``tolerance``. Pieces that are not Delaunay edges are
-    split too (conformity). Nothing is split below ``min_length``.
+    split too (conformity). Nothing is split below ``min_length``. Over-split
+    by 2 so the radii, which shrink as the sample gets denser near corners
+    and tips, rarely need another round. Compiled
+    (:func:`medialaxis.planar._kernels.split_pieces`);
+    :func:`refine_arcs_reference` is the NumPy version.
     """
+    out, offsets = split_pieces(smp.arc, _offsets(arcs), smp.points, smp.next, smp.ring_length,
+                                np.asarray(piece_radius, np.float64), np.asarray(conforming, bool),
+                                float(tolerance), float(min_length), float(ratio))
+    if offsets[0] < 0:
+        return None
+    return [out[offsets[r] : offsets[r + 1]] for r in range(len(arcs))]
+
+
+def sample_reference(rings: Rings, arcs: list[np.ndarray]) -> BoundarySample:
+    """NumPy version of :func:`sample` (for the tests)."""
+    pts, ring_id, arc, nxt, lengths = [], [], [], [], []
+    n0 = 0
+    for r, (v, a) in enumerate(zip(rings.vertices, arcs)):
+        s = _cumulative(v)
+        closed = np.vstack([v, v[:1]])
+        p = np.c_[np.interp(a, s, closed[:, 0]), np.interp(a, s, closed[:, 1])]
+        pts.append(p)
+        arc.append(a)
+        lengths.append(s[-1])
+        ring_id.append(np.full(len(p), r))
+        nxt.append(n0 + (np.arange(len(p)) + 1) % len(p))
+        n0 += len(p)
+    return BoundarySample(
+        np.concatenate(pts), np.concatenate(ring_id), np.concatenate(arc), np.asarray(lengths), np.concatenate(nxt)
+    )
+
+
+def refine_arcs_reference(
+    arcs: list[np.ndarray],
+    smp: BoundarySample,
+    piece_radius: np.ndarray,
+    conforming: np.ndarray,
+    tolerance: float,
+    min_length: float,
+    ratio: float = 0.5,
+) -> list[np.ndarray] | None:
+    """NumPy version of :func:`refine_arcs` (for the tests)."""
     h = np.linalg.norm(smp.points[smp.next] - smp.points, axis=1)
     target = np.maximum(np.minimum(ratio * piece_radius, np.sqrt(16.0 * piece_radius * tolerance)), min_length)
     split = ((h > target) | ~conforming) & (h > 2.0 * min_length)
     if not split.any():
         return None
-    # Over-split by 2 so the radii, which shrink as the sample gets denser
-    # near corners and tips, rarely need another round.
     pieces = np.clip(np.ceil(2.0 * h / target), 2, 64).astype(np.int64)
     out = []
     for r, a in enumerate(arcs):
