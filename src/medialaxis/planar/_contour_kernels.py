@@ -51,12 +51,16 @@ def mask_contours(mask, cases):  # type: ignore[no-untyped-def]
     # a point is keyed by its pixel edge: 2 (r w + c) the top edge of pixel (r, c), + 1 its left edge
     starts = np.full(2 * h * w, -1, np.int32)
     ends = np.full(2 * h * w, -1, np.int32)
-    cap = 16
-    key = np.empty(cap, np.int64)
-    nxt = np.empty(cap, np.int64)
-    first = np.empty(cap, np.int64)
-    last = np.empty(cap, np.int64)
-    alive = np.zeros(cap, np.bool_)
+    n_segments = 0  # a first pass sizes the stores: each segment adds at most two points and one contour
+    for r in range(h - 1):
+        for c in range(w - 1):
+            case = (mask[r, c] > 0) + 2 * (mask[r, c + 1] > 0) + 4 * (mask[r + 1, c] > 0) + 8 * (mask[r + 1, c + 1] > 0)
+            n_segments += (case != 0 and case != 15) + (case == 6 or case == 9)
+    key = np.empty(2 * n_segments + 2, np.int64)
+    nxt = np.empty(2 * n_segments + 2, np.int64)
+    first = np.empty(n_segments + 1, np.int64)
+    last = np.empty(n_segments + 1, np.int64)
+    alive = np.zeros(n_segments + 1, np.bool_)
     n_nodes = 0
     n_contours = 0
     side = np.empty(4, np.int64)
@@ -74,13 +78,6 @@ def mask_contours(mask, cases):  # type: ignore[no-untyped-def]
                     break
                 a = side[cases[case, s]]
                 b = side[cases[case, s + 1]]
-                if n_nodes + 2 > len(key):  # grow the node and contour stores
-                    key = np.concatenate((key, np.empty(len(key), np.int64)))
-                    nxt = np.concatenate((nxt, np.empty(len(nxt), np.int64)))
-                if n_contours + 1 > len(first):
-                    first = np.concatenate((first, np.empty(len(first), np.int64)))
-                    last = np.concatenate((last, np.empty(len(last), np.int64)))
-                    alive = np.concatenate((alive, np.zeros(len(alive), np.bool_)))
                 tail = np.int64(starts[b])
                 head = np.int64(ends[a])
                 starts[b] = -1

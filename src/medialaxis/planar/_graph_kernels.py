@@ -52,6 +52,36 @@ def component_labels(n, edges, use):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
+def _first_pairs(n, lo, hi, use):  # type: ignore[no-untyped-def]
+    """(m,) bool: ``use`` entries whose pair ``(lo, hi)`` (nodes below ``n``) no earlier used entry has.
+
+    Entries are filed by ``lo`` (a counting sort, which keeps their order)
+    and a pair seen is marked on ``hi``: O(n + m), no sorting.
+    """
+    start = np.zeros(n + 1, np.int64)
+    for e in range(len(lo)):
+        if use[e]:
+            start[lo[e] + 1] += 1
+    for i in range(n):
+        start[i + 1] += start[i]
+    fill = start[:-1].copy()
+    order = np.empty(start[n], np.int64)
+    for e in range(len(lo)):
+        if use[e]:
+            order[fill[lo[e]]] = e
+            fill[lo[e]] += 1
+    seen = np.full(n, -1, np.int64)
+    first = np.zeros(len(lo), np.bool_)
+    for a in range(n):
+        for m in range(start[a], start[a + 1]):
+            e = order[m]
+            if seen[hi[e]] != a:
+                seen[hi[e]] = a
+                first[e] = True
+    return first
+
+
+@njit(cache=True, nogil=True)
 def merge_clusters(n, edges, short):  # type: ignore[no-untyped-def]
     """Contract the tree-shaped clusters of the ``short`` edges.
 
@@ -60,23 +90,23 @@ def merge_clusters(n, edges, short):  # type: ignore[no-untyped-def]
     order, of the edges kept: those between two clusters, the first of
     each set of parallel ones.
     """
+    m = len(edges)
     label = component_labels(n, edges, short)
     n_nodes = np.zeros(n, np.int64)
     first = np.full(n, n, np.int64)
     for i in range(n):
         n_nodes[label[i]] += 1
         first[label[i]] = min(first[label[i]], i)
-    # distinct short edges per cluster
-    idx = np.flatnonzero(short)
-    keys = np.empty(len(idx), np.int64)
-    for m in range(len(idx)):
-        a, b = edges[idx[m], 0], edges[idx[m], 1]
-        keys[m] = min(a, b) * n + max(a, b)
-    keys.sort()
+    lo = np.empty(m, np.int64)
+    hi = np.empty(m, np.int64)
+    for e in range(m):
+        lo[e] = min(edges[e, 0], edges[e, 1])
+        hi[e] = max(edges[e, 0], edges[e, 1])
+    distinct = _first_pairs(n, lo, hi, short)
     n_edges = np.zeros(n, np.int64)
-    for m in range(len(keys)):
-        if m == 0 or keys[m] != keys[m - 1]:
-            n_edges[label[keys[m] // n]] += 1
+    for e in range(m):
+        if distinct[e]:
+            n_edges[label[lo[e]]] += 1
     rep = np.arange(n)
     for i in range(n):
         if n_edges[label[i]] == n_nodes[label[i]] - 1:
@@ -89,17 +119,22 @@ def merge_clusters(n, edges, short):  # type: ignore[no-untyped-def]
             count += 1
     for i in range(n):
         cluster[i] = cluster[rep[i]]
-    pair = np.empty(len(edges), np.int64)
-    for e in range(len(edges)):
+    between = np.zeros(m, np.bool_)
+    for e in range(m):
         a, b = rep[edges[e, 0]], rep[edges[e, 1]]
-        pair[e] = -1 if a == b else min(a, b) * n + max(a, b)
-    order = np.argsort(pair, kind="mergesort")
-    keep = np.zeros(len(edges), np.bool_)
-    for m in range(len(order)):
-        e = order[m]
-        if pair[e] >= 0 and (m == 0 or pair[order[m - 1]] != pair[e]):
-            keep[e] = True
-    return cluster, np.flatnonzero(keep)
+        lo[e], hi[e] = min(a, b), max(a, b)
+        between[e] = a != b
+    keep = _first_pairs(n, lo, hi, between)
+    n_kept = 0
+    for e in range(m):
+        n_kept += keep[e]
+    kept = np.empty(n_kept, np.int64)
+    j = 0
+    for e in range(m):
+        if keep[e]:
+            kept[j] = e
+            j += 1
+    return cluster, kept
 
 
 @njit(cache=True, nogil=True)
@@ -109,7 +144,8 @@ def adjacency_lists(n, edges):  # type: ignore[no-untyped-def]
     for e in range(len(edges)):
         indptr[edges[e, 0] + 1] += 1
         indptr[edges[e, 1] + 1] += 1
-    indptr = np.cumsum(indptr)
+    for i in range(n):
+        indptr[i + 1] += indptr[i]
     fill = indptr[:-1].copy()
     nbrs = np.empty(2 * len(edges), np.int64)
     eids = np.empty(2 * len(edges), np.int64)

@@ -42,7 +42,9 @@ def band_segments(segments, y0, height, n_bands):  # type: ignore[no-untyped-def
         hi[s] = min(max(int((max(a, b) - y0) / height * n_bands), 0), n_bands - 1)
         for k in range(lo[s], hi[s] + 1):
             count[k + 1] += 1
-    start = np.cumsum(count)
+    for k in range(n_bands):
+        count[k + 1] += count[k]
+    start = count
     members = np.empty(start[-1], np.int64)
     fill = start[:-1].copy()
     for s in range(len(segments)):

@@ -255,6 +255,18 @@ def ring_positions(vertices, v_offsets, arcs, a_offsets):  # type: ignore[no-unt
 
 
 @njit(cache=True, nogil=True)
+def _insertion_sort(values, lo, hi):  # type: ignore[no-untyped-def]
+    """Sort ``values[lo:hi]`` in place: linear on the nearly sorted arcs (only a wrapped piece moves)."""
+    for i in range(lo + 1, hi):
+        v = values[i]
+        j = i - 1
+        while j >= lo and values[j] > v:
+            values[j + 1] = values[j]
+            j -= 1
+        values[j + 1] = v
+
+
+@njit(cache=True, nogil=True)
 def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, conforming, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
     """The refinement of :func:`medialaxis.planar.sampling.refine_arcs` on concatenated arcs.
 
@@ -296,6 +308,6 @@ def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, confor
             for j in range(1, k):
                 out[m] = (start + (stop - start) * j / k) % length  # fmod: both are positive
                 m += 1
-        out[start_m:m].sort()
+        _insertion_sort(out, start_m, m)
         new_offsets[r + 1] = m
     return out, new_offsets
