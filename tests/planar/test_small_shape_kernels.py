@@ -122,13 +122,12 @@ def test_component_labels_group_as_scipy_does() -> None:
     assert len(pairs) == len(set(ours.tolist())) == len(set(theirs.tolist()))
 
 
-def test_sample_and_refine_kernels_match_their_references() -> None:
+def test_refine_kernel_matches_its_reference() -> None:
     from medialaxis.planar.sampling import (
         initial_arcs,
         refine_arcs,
         refine_arcs_reference,
         sample,
-        sample_reference,
         simplify_rings,
     )
 
@@ -139,9 +138,7 @@ def test_sample_and_refine_kernels_match_their_references() -> None:
     arcs = initial_arcs(rings, 0.05)
     arcs[0] = np.sort(np.r_[arcs[0], rng.uniform(0, arcs[0][-1], 50)])  # positions inside and at vertices
     for _ in range(3):
-        ours, ref = sample(rings, arcs), sample_reference(rings, arcs)
-        for field in ("points", "ring", "arc", "ring_length", "next"):
-            np.testing.assert_array_equal(getattr(ours, field), getattr(ref, field))
+        ours = sample(rings, arcs)
         radius = rng.uniform(0.01, 2.0, len(ours.points))
         radius[::7] = np.inf
         conforming = rng.random(len(ours.points)) < 0.9

@@ -49,12 +49,15 @@ def mask_contours(mask, cases):  # type: ignore[no-untyped-def]
     """
     h, w = mask.shape
     # a point is keyed by its pixel edge: 2 (r w + c) the top edge of pixel (r, c), + 1 its left edge
-    starts = np.full(2 * h * w, -1, np.int32)
-    ends = np.full(2 * h * w, -1, np.int32)
+    starts = np.empty(2 * h * w, np.int32)
+    ends = np.empty(2 * h * w, np.int32)
+    for i in range(2 * h * w):
+        starts[i] = -1
+        ends[i] = -1
     n_segments = 0  # a first pass sizes the stores: each segment adds at most two points and one contour
     for r in range(h - 1):
         for c in range(w - 1):
-            case = (mask[r, c] > 0) + 2 * (mask[r, c + 1] > 0) + 4 * (mask[r + 1, c] > 0) + 8 * (mask[r + 1, c + 1] > 0)
+            case = min(mask[r, c], 1) + 2 * min(mask[r, c + 1], 1) + 4 * min(mask[r + 1, c], 1) + 8 * min(mask[r + 1, c + 1], 1)
             n_segments += (case != 0 and case != 15) + (case == 6 or case == 9)
     key = np.empty(2 * n_segments + 2, np.int64)
     nxt = np.empty(2 * n_segments + 2, np.int64)
@@ -66,7 +69,7 @@ def mask_contours(mask, cases):  # type: ignore[no-untyped-def]
     side = np.empty(4, np.int64)
     for r in range(h - 1):
         for c in range(w - 1):
-            case = (mask[r, c] > 0) + 2 * (mask[r, c + 1] > 0) + 4 * (mask[r + 1, c] > 0) + 8 * (mask[r + 1, c + 1] > 0)
+            case = min(mask[r, c], 1) + 2 * min(mask[r, c + 1], 1) + 4 * min(mask[r + 1, c], 1) + 8 * min(mask[r + 1, c + 1], 1)
             if case == 0 or case == 15:
                 continue
             side[0] = 2 * (r * w + c)  # top: (r, c + 0.5)

@@ -16,10 +16,9 @@ by the tests.
 
 :func:`circumcircles_kernel` is :func:`medialaxis.planar.delaunay.circumcircles`
 (the reference) compiled, with the same operations in the same order;
-likewise :func:`ring_positions` and :func:`split_pieces` are the loops of
-:func:`medialaxis.planar.sampling.sample_reference` and
+likewise :func:`split_pieces` is the loop of
 :func:`medialaxis.planar.sampling.refine_arcs_reference` over all rings at
-once (``np.interp``, ``np.cumsum`` and ``np.mod`` as NumPy evaluates them).
+once (``np.mod`` as NumPy evaluates it).
 """
 
 from __future__ import annotations
@@ -31,7 +30,7 @@ import numpy as np
 from medialaxis._jit import njit
 
 __all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
-           "piece_state_reference", "circumcircles_kernel", "ring_positions", "split_pieces"]
+           "piece_state_reference", "circumcircles_kernel", "split_pieces"]
 
 
 @njit(cache=True, nogil=True)
@@ -191,67 +190,6 @@ def circumcircles_kernel(p, simplices):  # type: ignore[no-untyped-def]
         centre[t, 1] = uy + ay
         radius[t] = r
     return centre, radius
-
-
-@njit(cache=True, nogil=True)
-def _interp(x, xp, fp, j):  # type: ignore[no-untyped-def]
-    """``(np.interp(x, xp, fp), j)`` as NumPy computes it; ``j`` the segment found (and the guess given)."""
-    if x >= xp[-1]:
-        return fp[-1], j
-    if x < xp[0]:
-        return fp[0], j
-    if not (xp[j] <= x and x < xp[j + 1]):  # the last j with xp[j] <= x, by bisection
-        lo, hi = 0, len(xp)
-        while lo < hi:
-            mid = (lo + hi) // 2
-            if x >= xp[mid]:
-                lo = mid + 1
-            else:
-                hi = mid
-        j = lo - 1
-    if xp[j] == x:
-        return fp[j], j
-    slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j])
-    out = slope * (x - xp[j]) + fp[j]
-    if np.isnan(out):
-        out = slope * (x - xp[j + 1]) + fp[j + 1]
-        if np.isnan(out) and fp[j] == fp[j + 1]:
-            out = fp[j]
-    return out, j
-
-
-@njit(cache=True, nogil=True)
-def ring_positions(vertices, v_offsets, arcs, a_offsets):  # type: ignore[no-untyped-def]
-    """Points at arc positions along closed rings, and each ring's cumulative arc length at its vertices.
-
-    Ring ``r`` is ``vertices[v_offsets[r]:v_offsets[r + 1]]`` (not closed),
-    its positions ``arcs[a_offsets[r]:a_offsets[r + 1]]``. Returns
-    ``(points, cumulative)``, ``cumulative`` (V + R,) with ring ``r`` at
-    ``v_offsets[r] + r``: the arc length at each vertex and, last, the perimeter.
-    """
-    points = np.empty((len(arcs), 2))
-    cumulative = np.empty(len(vertices) + len(v_offsets) - 1)
-    for r in range(len(v_offsets) - 1):
-        v0, v1 = v_offsets[r], v_offsets[r + 1]
-        k = v1 - v0
-        s = cumulative[v0 + r : v1 + r + 1]
-        closed_x = np.empty(k + 1)
-        closed_y = np.empty(k + 1)
-        for i in range(k + 1):
-            closed_x[i] = vertices[v0 + i % k, 0]
-            closed_y[i] = vertices[v0 + i % k, 1]
-        s[0] = 0.0
-        total = 0.0
-        for i in range(k):
-            dx = closed_x[i + 1] - closed_x[i]
-            dy = closed_y[i + 1] - closed_y[i]
-            total += np.sqrt(dx * dx + dy * dy)
-            s[i + 1] = total
-        j = 0
-        for m in range(a_offsets[r], a_offsets[r + 1]):  # sorted: the segment moves forward
-            points[m, 0], j = _interp(arcs[m], s, closed_x, j)
-            points[m, 1], j = _interp(arcs[m], s, closed_y, j)
-    return points, cumulative
 
 
 @njit(cache=True, nogil=True)

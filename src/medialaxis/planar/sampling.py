@@ -20,10 +20,9 @@ import shapely
 from scipy.spatial import cKDTree
 
 from medialaxis.planar._inside_kernels import RegionLocator
-from medialaxis.planar._kernels import ring_positions, split_pieces
+from medialaxis.planar._kernels import split_pieces
 
-__all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs", "sample_reference",
-           "refine_arcs_reference"]
+__all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs", "refine_arcs_reference"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -40,16 +39,6 @@ class Rings:
 
     vertices: list[np.ndarray]
     region: Any
-
-    @functools.cached_property
-    def flat_vertices(self) -> np.ndarray:
-        """(V, 2) float ndarray: the vertices of all rings, one after another."""
-        return np.ascontiguousarray(np.concatenate(self.vertices) if self.vertices else np.empty((0, 2)), np.float64)
-
-    @functools.cached_property
-    def offsets(self) -> np.ndarray:
-        """(R + 1,) int ndarray: ring ``r`` is ``flat_vertices[offsets[r]:offsets[r + 1]]``."""
-        return _offsets(self.vertices)
 
     @functools.cached_property
     def locator(self) -> RegionLocator:
@@ -141,19 +130,6 @@ def _offsets(parts: list[np.ndarray]) -> np.ndarray:
     return np.concatenate([[0], np.cumsum([len(p) for p in parts])]).astype(np.int64)
 
 
-def sample(rings: Rings, arcs: list[np.ndarray]) -> BoundarySample:
-    """Points at the given arc positions (sorted, in ``[0, perimeter)``) of each ring."""
-    a_offsets = _offsets(arcs)
-    flat = np.concatenate(arcs).astype(np.float64)
-    points, cumulative = ring_positions(rings.flat_vertices, rings.offsets, flat, a_offsets)
-    count = np.diff(a_offsets)
-    ring_id = np.repeat(np.arange(len(arcs)), count)
-    position = np.arange(len(flat)) - a_offsets[ring_id]
-    nxt = a_offsets[ring_id] + (position + 1) % count[ring_id]
-    lengths = cumulative[rings.offsets[1:] + np.arange(len(arcs))]
-    return BoundarySample(points, ring_id, flat, lengths, nxt)
-
-
 def refine_arcs(
     arcs: list[np.ndarray],
     smp: BoundarySample,
@@ -185,8 +161,8 @@ def refine_arcs(
     return [out[offsets[r] : offsets[r + 1]] for r in range(len(arcs))]
 
 
-def sample_reference(rings: Rings, arcs: list[np.ndarray]) -> BoundarySample:
-    """NumPy version of :func:`sample` (for the tests)."""
+def sample(rings: Rings, arcs: list[np.ndarray]) -> BoundarySample:
+    """Points at the given arc positions (sorted, in ``[0, perimeter)``) of each ring."""
     pts, ring_id, arc, nxt, lengths = [], [], [], [], []
     n0 = 0
     for r, (v, a) in enumerate(zip(rings.vertices, arcs)):
