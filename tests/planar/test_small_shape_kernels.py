@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -160,3 +161,65 @@ def test_inner_triangles_by_the_locator_are_shapelys() -> None:
     points = np.vstack([shapely.get_coordinates(region), rng.uniform(-1, 1, (300, 2))])
     tri = triangulate(points)
     np.testing.assert_array_equal(inner_triangles(tri, region, RegionLocator(region)), inner_triangles(tri, region))
+
+
+def _bumpy_square() -> Any:
+    """A square of dense edges with a bump lower than the tolerance, and a small octagonal hole in the bump."""
+    from shapely.geometry import Polygon
+
+    side = np.linspace(0, 10, 201)[:-1]
+    bottom = np.c_[side, np.where(np.abs(side - 5) < 1, -0.008 * (1 - np.abs(side - 5)), 0.0)]
+    outer = np.vstack([bottom, np.c_[np.full(200, 10.0), side], np.c_[10 - side, np.full(200, 10.0)],
+                       np.c_[np.zeros(200), 10 - side]])
+    t = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    hole = np.c_[5.0 + 0.1 * np.cos(t), -0.0035 + 0.0015 * np.sin(t)][::-1]
+    return Polygon(outer, [hole])
+
+
+def _wavy_annulus() -> Any:
+    """A wavy ring of 900 vertices around a wavy hole of 300, far from it."""
+    from shapely.geometry import Polygon
+
+    t = np.linspace(0, 2 * np.pi, 900, endpoint=False)
+    r = 1 + 0.02 * np.sin(7 * t) + 0.004 * np.sin(53 * t)
+    s = t[::3] + 0.3
+    return Polygon(np.c_[r * np.cos(t), r * np.sin(t)], [np.c_[0.5 * np.cos(s), 0.5 * np.sin(s)][::-1]])
+
+
+@pytest.mark.parametrize("shape", ["wavy annulus", "hole in a flat bump"])
+def test_plain_simplify_is_taken_only_where_it_is_the_topology_preserving_one(shape: str) -> None:
+    from medialaxis.planar._simplify_kernels import flattening_is_safe, flattening_is_safe_reference
+    from medialaxis.planar.sampling import _ring_arrays, topology_preserving_simplify
+
+    region = _wavy_annulus() if shape == "wavy annulus" else _bumpy_square()
+    assert region.is_valid
+    tolerance = 0.01
+    plain = shapely.simplify(region, tolerance, preserve_topology=False)
+    before, after = _ring_arrays(region), _ring_arrays(plain)
+    safe = flattening_is_safe(*before, *after, tolerance)
+    assert safe == flattening_is_safe_reference(*before, *after, tolerance)
+    expected = shapely.normalize(shapely.simplify(region, tolerance, preserve_topology=True))
+    assert shapely.normalize(topology_preserving_simplify(region, tolerance)).equals_exact(expected, 0)
+    # plain Douglas-Peucker flattens the bump across the hole: refused
+    bump = shape != "wavy annulus"
+    assert safe != bump
+    assert shapely.normalize(plain).equals_exact(expected, 0) != bump
+
+
+def test_a_flattening_across_another_ring_is_refused() -> None:
+    from medialaxis.planar._simplify_kernels import flattening_is_safe, flattening_is_safe_reference
+    from medialaxis.planar.sampling import _ring_arrays
+
+    region = _bumpy_square()
+    xy, start = _ring_arrays(region)
+    outer, hole = xy[: start[1]], xy[start[1] :]
+    # the outer ring with its bump flattened (and every 10th other vertex kept), the hole kept whole
+    keep = np.flatnonzero((outer[:, 1] == 0) | (outer[:, 1] > 0))
+    keep = keep[::10]
+    flattened = np.vstack([outer[keep], hole])
+    flat_start = np.array([0, len(keep), len(keep) + len(hole)])
+    assert not flattening_is_safe(xy, start, flattened, flat_start, 0.01)
+    assert not flattening_is_safe_reference(xy, start, flattened, flat_start, 0.01)
+    # far from the hole, the same flattening passes
+    moved = np.vstack([outer, hole + [0.0, 5.0]])
+    assert flattening_is_safe(moved, start, np.vstack([outer[keep], hole + [0.0, 5.0]]), flat_start, 0.01)

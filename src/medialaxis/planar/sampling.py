@@ -21,6 +21,7 @@ from scipy.spatial import cKDTree
 
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar._kernels import split_pieces
+from medialaxis.planar._simplify_kernels import flattening_is_safe
 
 __all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs", "refine_arcs_reference"]
 
@@ -99,9 +100,33 @@ def _rings_of(geom: Any) -> list[np.ndarray]:
     return rings
 
 
+def _ring_arrays(geom: Any) -> tuple[np.ndarray, np.ndarray] | None:
+    """All rings' vertices (not closed) one after another, and where each starts; None for no polygon."""
+    rings = [shapely.get_coordinates(r)[:-1] for r in shapely.get_rings(shapely.get_parts(geom))]
+    if not rings or shapely.get_type_id(geom) not in (3, 6):
+        return None
+    start = np.concatenate([[0], np.cumsum([len(r) for r in rings])]).astype(np.int64)
+    return np.ascontiguousarray(np.concatenate(rings), np.float64), start
+
+
+def topology_preserving_simplify(region: Any, tolerance: float) -> Any:
+    """``shapely.simplify(region, tolerance, preserve_topology=True)``, by plain Douglas-Peucker where that is the same.
+
+    Plain Douglas-Peucker is ten times faster; :func:`medialaxis.planar._simplify_kernels.flattening_is_safe`
+    tells when the topology-preserving simplifier would have refused none of its flattenings.
+    """
+    plain = shapely.simplify(region, tolerance, preserve_topology=False)
+    before, after = _ring_arrays(region), _ring_arrays(plain)
+    if (before is not None and after is not None and len(before[1]) == len(after[1])
+            and shapely.get_num_geometries(region) == shapely.get_num_geometries(plain)
+            and flattening_is_safe(before[0], before[1], after[0], after[1], float(tolerance))):
+        return plain
+    return shapely.simplify(region, tolerance, preserve_topology=True)
+
+
 def simplify_rings(region: Any, tolerance: float) -> Rings:
     """Douglas-Peucker simplification of every ring to ``tolerance`` (topology kept)."""
-    simple = shapely.simplify(region, tolerance, preserve_topology=True) if tolerance > 0 else region
+    simple = topology_preserving_simplify(region, tolerance) if tolerance > 0 else region
     if simple.is_empty or not simple.is_valid:
         simple = region
     simple = shapely.normalize(simple)
