@@ -64,7 +64,9 @@ def _first_pairs(n, lo, hi, use):  # type: ignore[no-untyped-def]
             start[lo[e] + 1] += 1
     for i in range(n):
         start[i + 1] += start[i]
-    fill = start[:-1].copy()
+    fill = np.empty(len(start) - 1, np.int64)
+    for i in range(len(fill)):
+        fill[i] = start[i]
     order = np.empty(start[n], np.int64)
     for e in range(len(lo)):
         if use[e]:
@@ -146,7 +148,9 @@ def adjacency_lists(n, edges):  # type: ignore[no-untyped-def]
         indptr[edges[e, 1] + 1] += 1
     for i in range(n):
         indptr[i + 1] += indptr[i]
-    fill = indptr[:-1].copy()
+    fill = np.empty(len(indptr) - 1, np.int64)
+    for i in range(len(fill)):
+        fill[i] = indptr[i]
     nbrs = np.empty(2 * len(edges), np.int64)
     eids = np.empty(2 * len(edges), np.int64)
     for e in range(len(edges)):

@@ -46,7 +46,9 @@ def band_segments(segments, y0, height, n_bands):  # type: ignore[no-untyped-def
         count[k + 1] += count[k]
     start = count
     members = np.empty(start[-1], np.int64)
-    fill = start[:-1].copy()
+    fill = np.empty(len(start) - 1, np.int64)
+    for i in range(len(fill)):
+        fill[i] = start[i]
     for s in range(len(segments)):
         for k in range(lo[s], hi[s] + 1):
             members[fill[k]] = s

@@ -91,9 +91,13 @@ def flattening_is_safe(xy, ring_start, out, kept_start, tolerance):  # type: ign
     n_all = len(xy)
     owner = np.empty(n_all, np.int64)  # ring of each input segment (segment e runs from vertex e to the next)
     for r in range(len(ring_start) - 1):
-        owner[ring_start[r] : ring_start[r + 1]] = r
-    x0, y0 = xy[:, 0].min(), xy[:, 1].min()
-    size = max(xy[:, 0].max() - x0, xy[:, 1].max() - y0, 1e-300)
+        for e in range(ring_start[r], ring_start[r + 1]):
+            owner[e] = r
+    x0, y0, x1, y1 = np.inf, np.inf, -np.inf, -np.inf
+    for e in range(n_all):
+        x0, x1 = min(x0, xy[e, 0]), max(x1, xy[e, 0])
+        y0, y1 = min(y0, xy[e, 1]), max(y1, xy[e, 1])
+    size = max(x1 - x0, y1 - y0, 1e-300)
     g = max(1, int(np.sqrt(n_all / 2.0)))
     cell = size / g * (1.0 + 1e-9)
     count = np.zeros(g * g + 1, np.int64)
@@ -110,7 +114,9 @@ def flattening_is_safe(xy, ring_start, out, kept_start, tolerance):  # type: ign
                 count[cx * g + cy + 1] += 1
     for c in range(g * g):
         count[c + 1] += count[c]
-    fill = count[:-1].copy()
+    fill = np.empty(g * g, np.int64)
+    for c in range(g * g):
+        fill[c] = count[c]
     members = np.empty(count[g * g], np.int64)
     for e in range(n_all):
         for cx in range(box[e, 0], box[e, 1] + 1):
