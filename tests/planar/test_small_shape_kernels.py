@@ -223,3 +223,18 @@ def test_a_flattening_across_another_ring_is_refused() -> None:
     # far from the hole, the same flattening passes
     moved = np.vstack([outer, hole + [0.0, 5.0]])
     assert flattening_is_safe(moved, start, np.vstack([outer[keep], hole + [0.0, 5.0]]), flat_start, 0.01)
+
+
+def test_brio_rounds_sort_as_numpys_stable_argsort() -> None:
+    from medialaxis.planar._delaunay_kernels import _stable_sort_by_key
+
+    rng = np.random.default_rng(7)
+    for n, lo, hi in ((1, 0, 1), (2, 0, 2), (37, 5, 30), (1000, 0, 1000), (1000, 100, 900)):
+        key = rng.integers(0, 50, n)  # many ties
+        values = rng.permutation(n)
+        expected_values, expected_key = values.copy(), key.copy()
+        order = np.argsort(key[lo:hi], kind="stable")
+        expected_values[lo:hi], expected_key[lo:hi] = values[lo:hi][order], key[lo:hi][order]
+        _stable_sort_by_key(values, key, lo, hi)
+        np.testing.assert_array_equal(values, expected_values)
+        np.testing.assert_array_equal(key, expected_key)
