@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -16,7 +17,13 @@ import numpy as np
 from medialaxis._optional import require
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.validate import check_coordinates
-from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError, UnsupportedFormatError
+from medialaxis.errors import (
+    EmptyShapeError,
+    InputFileError,
+    InvalidInputError,
+    MedialAxisWarning,
+    UnsupportedFormatError,
+)
 
 __all__ = ["MeshInput", "load_mesh", "signed_volume", "MESH_EXTENSIONS"]
 
@@ -257,26 +264,51 @@ def _closed(mesh: Any) -> bool:
     return bool(mesh.is_watertight)
 
 
-def _drop_bad_faces(vertices: np.ndarray, faces: np.ndarray, repairs: list[str]) -> np.ndarray:
-    """Faces without a repeated vertex, of non-zero area, each once; what was dropped goes to ``repairs``."""
-    tri = vertices[faces]
-    area2 = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
-    scale = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+def _drop_bad_faces(vertices: np.ndarray, faces: np.ndarray, repairs: list[str], *, flat: bool = True) -> np.ndarray:
+    """Faces without a repeated vertex, each once, and (``flat``) of non-zero area; what was dropped goes to ``repairs``.
+
+    Zero-area faces are kept with ``flat=False``: on a closed surface their
+    edges are shared like any other's, and dropping them would open it
+    (:mod:`medialaxis.mesh.degenerate` takes them out without opening it).
+    """
     repeated = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
-    keep = ~repeated & (area2 > (1e-14 * scale) ** 2)
+    keep = ~repeated
+    if flat:
+        tri = vertices[faces]
+        area2 = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+        scale = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+        keep &= area2 > (1e-14 * scale) ** 2
     _, first = np.unique(np.sort(faces, axis=1), axis=0, return_index=True)
     unique = np.zeros(len(faces), bool)
     unique[first] = True
     degenerate = int((~keep).sum())
     duplicate = int((keep & ~unique).sum())
     if degenerate:
-        repairs.append(f"dropped {degenerate} degenerate faces")
+        repairs.append(f"dropped {degenerate} degenerate faces" + ("" if flat else " (a vertex repeated)"))
     if duplicate:
         repairs.append(f"dropped {duplicate} duplicate faces")
     faces = faces[keep & unique]
     if len(faces) == 0:
         raise EmptyShapeError("every face of the mesh is degenerate")
     return faces
+
+
+def _take_out_degenerate(work: Any, repairs: list[str]) -> Any:
+    """The closed ``work`` without its zero-area faces (flips, collapses; :mod:`medialaxis.mesh.degenerate`)."""
+    from medialaxis.mesh.degenerate import coordinate_accuracy, remove_degenerate_faces
+
+    vertices = np.asarray(work.vertices)
+    faces, flipped, collapsed, kept = remove_degenerate_faces(vertices, np.asarray(work.faces), coordinate_accuracy(vertices))
+    if not flipped + collapsed + kept:
+        return work
+    done = [f"{flipped} flipped away" if flipped else "", f"{collapsed} collapsed" if collapsed else "",
+            f"{kept} kept (no flip or collapse keeps the surface closed)" if kept else ""]
+    repairs.append(f"zero-area faces: {', '.join(x for x in done if x)}")
+    warnings.warn(f"the mesh has {flipped + collapsed + kept} zero-area faces (at the accuracy of its coordinates): "
+                  f"{', '.join(x for x in done if x)}; the surface stays closed", MedialAxisWarning, stacklevel=4)
+    work = type(work)(vertices, faces, process=False)
+    work.remove_unreferenced_vertices()
+    return work
 
 
 def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, crossing: bool = True) -> MeshInput:
@@ -322,7 +354,7 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise InvalidInputError("mesh faces index vertices that do not exist")
     repairs: list[str] = []
-    faces = _drop_bad_faces(vertices, faces, repairs)
+    faces = _drop_bad_faces(vertices, faces, repairs, flat=not watertight)
     work = trimesh.Trimesh(vertices, faces, process=False)
     if not _closed(work):
         # Triangle soups (STL) and some exporters do not share the vertices
@@ -331,6 +363,8 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
         # union keeps the two sides of a touching edge apart on purpose).
         welded = work.copy()
         welded.merge_vertices(merge_tex=True, merge_norm=True)
+        welded = trimesh.Trimesh(welded.vertices, _drop_bad_faces(welded.vertices, welded.faces, [], flat=not watertight),
+                                 process=False)  # faces whose corners were welded together
         if _closed(welded) or not watertight:
             if len(welded.vertices) < len(work.vertices):
                 repairs.append(f"welded {len(work.vertices) - len(welded.vertices)} coincident vertices")
@@ -354,6 +388,7 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
         if not work.is_winding_consistent:
             trimesh.repair.fix_winding(work)
             repairs.append("made face winding consistent")
+        work = _take_out_degenerate(work, repairs)
         volume = signed_volume(work.triangles)
         if volume < 0:
             work.invert()
