@@ -238,3 +238,21 @@ def test_brio_rounds_sort_as_numpys_stable_argsort() -> None:
         _stable_sort_by_key(values, key, lo, hi)
         np.testing.assert_array_equal(values, expected_values)
         np.testing.assert_array_equal(key, expected_key)
+
+
+def test_nearest_samples_are_the_kd_trees() -> None:
+    from scipy.spatial import cKDTree
+
+    from medialaxis.planar._kernels import nearest_samples
+
+    rng = np.random.default_rng(8)
+    for n in (9, 10, 50, 300, 2000):
+        points = rng.random((n, 2)) * [1.0, 0.1]
+        query = rng.uniform(-0.2, 1.2, (400, 2))  # some outside the samples' box
+        near, sure = nearest_samples(query, points, 8)
+        _, expected = cKDTree(points).query(query, k=8)
+        assert sure.all()
+        assert all(set(a) == set(b) for a, b in zip(near.tolist(), expected.tolist()))
+    grid = np.stack(np.meshgrid(np.arange(10.0), np.arange(10.0)), -1).reshape(-1, 2)
+    _, sure = nearest_samples(grid + 0.5, grid, 8)  # ties at the 8th: unsure, left to the tree
+    assert not sure.all()

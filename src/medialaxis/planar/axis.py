@@ -21,7 +21,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from medialaxis.planar._inside_kernels import RegionLocator
-from medialaxis.planar._kernels import nearest_piece_distance, triangle_centroids
+from medialaxis.planar._kernels import nearest_piece_distance, nearest_samples, triangle_centroids
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
 
@@ -106,11 +106,17 @@ def boundary_distance(query: np.ndarray, smp: BoundarySample, tree: cKDTree | No
     """
     if len(query) == 0:
         return np.empty(0)
-    tree = smp.tree if tree is None else tree
+    query = np.ascontiguousarray(query, dtype=np.float64)
     k = min(k, len(smp.points))
-    _, idx = tree.query(query, k=k)
-    near = np.ascontiguousarray(idx.reshape(len(query), k), dtype=np.int64)
-    return nearest_piece_distance(np.ascontiguousarray(query, dtype=np.float64), smp.points, smp.next, smp.prev, near)
+    if tree is None and k < len(smp.points):  # the compiled grid; the k-d tree where ties make it unsure
+        near, sure = nearest_samples(query, np.ascontiguousarray(smp.points, dtype=np.float64), k)
+        if not sure.all():
+            _, idx = smp.tree.query(query[~sure], k=k)
+            near[~sure] = idx.reshape(-1, k)
+    else:
+        _, idx = (smp.tree if tree is None else tree).query(query, k=k)
+        near = np.ascontiguousarray(idx.reshape(len(query), k), dtype=np.int64)
+    return nearest_piece_distance(query, smp.points, smp.next, smp.prev, near)
 
 
 def _enclosing_centre(tri_pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
