@@ -141,3 +141,16 @@ def test_a_volume_of_tubes_names_the_route_that_works():
     rod = ((z - 15) ** 2 + (y - 15) ** 2 <= 25) & (x > 5) & (x < 55)
     with pytest.raises(mx.EmptyShapeError, match="marching_cubes.*method='flow'"):
         mx.medial_axis(rod)
+
+
+def test_a_grey_image_in_int64_is_flagged_when_read_as_labels():
+    rng = np.random.default_rng(0)
+    grey = (rng.integers(0, 4, (40, 60)) * 60).astype(np.int64)  # a noisy grey picture after an upcast
+    with pytest.warns(mx.MedialAxisWarning, match="labels=False"):
+        mx.medial_axis(grey)
+    labels = measure.label(_two_objects())
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", mx.MedialAxisWarning)
+        mx.medial_axis(labels)  # real labels: no warning

@@ -232,6 +232,15 @@ def _image_input(
             raise InvalidInputError("threshold= and foreground= apply to grey images; a label image is not thresholded")
         check_image(arr)
         pieces = tuple(label_regions(arr, spacing))
+        n_parts = sum(len(shapely.get_parts(r)) for _, r in pieces)
+        if labels is None and len(pieces) > 2 and n_parts > 2 * len(pieces):
+            # labels are objects; the values of a grey image fall apart into many pieces each
+            warnings.warn(
+                f"the {arr.dtype} image was read as {len(pieces)} labels (one shape per value), but they fall "
+                f"apart into {n_parts} pieces: if it is a grey image, pass labels=False",
+                MedialAxisWarning,
+                stacklevel=4,
+            )
         region = shapely.union_all([r for _, r in pieces])
         return PlanarInput(region, spacing, image=arr, foreground=arr > 0, labels=pieces)
     region, mask, level, side = image_region(arr, threshold, spacing, foreground)
