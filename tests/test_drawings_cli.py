@@ -70,3 +70,21 @@ def test_compare_and_search_drawings(tmp_path, capsys):
     assert main(["search", str(b), str(tmp_path), "--top", "2", "--jobs", "1"]) == 0
     listed = capsys.readouterr().out
     assert "a.svg" in listed and "b.dxf" in listed
+
+
+def test_warnings_are_one_line_after_a_result_and_none_after_an_error(tmp_path, capsys):
+    # a skipped text (a warning) then a result: one warning line
+    ok = tmp_path / "ok.svg"
+    ok.write_text(SVG_HEAD + '<rect width="100" height="20"/><text x="0" y="50">label</text></svg>')
+    assert main(["compute", str(ok), "-o", str(tmp_path / "ok.json")]) == 0
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert len(err) == 1 and err[0].startswith("medialaxis: warning:") and "1 text" in err[0]
+    # a skipped text, then an error (a hole far below the resolution of the shape): the error line alone
+    bad = tmp_path / "bad.svg"
+    bad.write_text(
+        SVG_HEAD + '<path fill-rule="evenodd" d="M 8 8 L 56 8 L 56 30 Q 40 -4e11 32 56 C 24 50 12 44 -8e10 30 Z '
+        'M 20 14 h 10 v 8 h -10 Z"/><text x="0" y="50">label</text></svg>'
+    )
+    assert main(["compute", str(bad), "-o", str(tmp_path / "bad.json")]) == 1
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert len(err) == 1 and err[0].startswith("medialaxis: error:") and "ring" in err[0], err

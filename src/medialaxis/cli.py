@@ -142,16 +142,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     # The libraries' warnings and log records about a bad file are not ours to
     # print: the error line says what went wrong (--debug shows them). Our
     # own warnings (something left out of a result) are one line each.
+    # They are held until the run ends: after a result they are printed as one line, after an
+    # error not at all (the error is the one line).
     previous = logging.root.manager.disable
     logging.disable(logging.CRITICAL)
+    held: list[str] = []
+    code = 1
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             warnings.simplefilter("default", MedialAxisWarning)
-            warnings.showwarning = _warning_line
-            return _main(argv, debug)
+            warnings.showwarning = lambda message, *args, **kwargs: held.append(str(message))
+            code = _main(argv, debug)
+            return code
     finally:
         logging.disable(previous)
+        if code == 0 and held:
+            _warning_line("; ".join(dict.fromkeys(held)))
 
 
 def _was_interrupted() -> bool:
