@@ -7,7 +7,7 @@ the environment variable MEDIALAXIS_EZDXF_GIT, else
 /work/.mirror/mozman+ezdxf/repo. Every ``*.dxf`` file of its HEAD
 (examples_dxf/, integration_tests/data/, exploration/, docs/, ...) is
 extracted once into a cache folder (``$XDG_CACHE_HOME/medialaxis/ezdxf-dxf/<commit>``)
-and read with :func:`medialaxis.planar.dxf.read_dxf` (every layer shown);
+and read with :func:`medialaxis.planar.drawings.dxf.read_dxf` (every layer shown);
 when the read succeeds, :func:`medialaxis.planar.pipeline.voronoi_medial_axis`
 runs on the region.
 
@@ -36,7 +36,7 @@ import traceback
 from pathlib import Path
 
 from medialaxis.errors import MedialAxisError
-from medialaxis.planar.dxf import read_dxf
+from medialaxis.planar.drawings.dxf import read_dxf
 from medialaxis.planar.pipeline import voronoi_medial_axis
 
 DEFAULT_GIT = "/work/.mirror/mozman+ezdxf/repo"

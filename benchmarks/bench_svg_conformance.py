@@ -2,7 +2,7 @@
 
 For every SVG of ``rsvg/tests/fixtures/reftests/svg1.1/`` in a snapshot of
 GNOME/librsvg (W3C test suite files under the W3C licence; librsvg LGPL-2.1+),
-this script reads the outline with :func:`medialaxis.planar.svg.read_svg`,
+this script reads the outline with :func:`medialaxis.planar.drawings.svg.read_svg`,
 rasterizes it at pixel centres on the reference's grid, and compares it with
 the pixels librsvg paints (alpha > 0):
 
@@ -49,7 +49,7 @@ from scipy import ndimage
 from skimage import io
 
 from medialaxis.errors import MedialAxisError
-from medialaxis.planar.svg import read_svg
+from medialaxis.planar.drawings.svg import read_svg
 
 FIXTURES = "rsvg/tests/fixtures/reftests/svg1.1"
 #: The categories issue 32 names (those of them librsvg ships).

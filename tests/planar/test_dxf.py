@@ -25,7 +25,7 @@ from medialaxis.errors import (
     MissingDependencyError,
     UnsupportedFeatureError,
 )
-from medialaxis.planar.dxf import read_dxf
+from medialaxis.planar.drawings.dxf import read_dxf
 from medialaxis.planar.pipeline import voronoi_medial_axis
 
 ezdxf = pytest.importorskip("ezdxf")

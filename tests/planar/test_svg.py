@@ -12,7 +12,7 @@ from scipy import ndimage
 
 import medialaxis as mx
 from medialaxis.errors import UnsupportedFeatureError
-from medialaxis.planar.svg import read_svg
+from medialaxis.planar.drawings.svg import read_svg
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "svg"
 HEAD = '<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink"'

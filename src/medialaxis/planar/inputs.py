@@ -103,13 +103,13 @@ def read_drawing(
     if ext == ".svg":
         if layers is not None:
             raise InvalidInputError(f"layers= applies to DXF drawings; {str(path)!r} is an SVG")
-        from medialaxis.planar.svg import read_svg
+        from medialaxis.planar.drawings.svg import read_svg
 
         region, info = read_svg(path, tolerance=tolerance, strokes=True if strokes is None else bool(strokes))
     else:
         if strokes is not None:
             raise InvalidInputError(f"strokes= applies to SVG drawings; {str(path)!r} is a DXF")
-        from medialaxis.planar.dxf import read_dxf
+        from medialaxis.planar.drawings.dxf import read_dxf
 
         region, info = read_dxf(path, layers=layers, tolerance=tolerance)
     skipped = {k: v for k, v in info.get("skipped", {}).items() if v}

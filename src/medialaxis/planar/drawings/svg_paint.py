@@ -18,8 +18,8 @@ import shapely.ops
 from shapely.geometry import Polygon
 
 from medialaxis.errors import UnsupportedFeatureError
-from medialaxis.planar.fill import stroke_region
-from medialaxis.planar.svg_document import href_of, local_name
+from medialaxis.planar.drawings.fill import stroke_region
+from medialaxis.planar.drawings.svg_document import href_of, local_name
 
 __all__ = ["matrix_of", "apply_matrix", "subpaths", "number", "painted", "stroke", "largest_scale"]
 

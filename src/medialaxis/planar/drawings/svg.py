@@ -36,9 +36,17 @@ from shapely.geometry import Polygon
 
 from medialaxis.core.validate import check_coordinates
 from medialaxis.errors import EmptyShapeError, InputFileError, UnsupportedFeatureError
-from medialaxis.planar.fill import fill_rings
-from medialaxis.planar.svg_document import prepared_source
-from medialaxis.planar.svg_paint import apply_matrix, largest_scale, matrix_of, number, painted, stroke, subpaths
+from medialaxis.planar.drawings.fill import fill_rings
+from medialaxis.planar.drawings.svg_document import prepared_source
+from medialaxis.planar.drawings.svg_paint import (
+    apply_matrix,
+    largest_scale,
+    matrix_of,
+    number,
+    painted,
+    stroke,
+    subpaths,
+)
 
 __all__ = ["read_svg"]
 

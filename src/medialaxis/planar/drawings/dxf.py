@@ -27,7 +27,7 @@ own coordinates (WCS x and y; nothing is rescaled):
    ends would otherwise be loose (the stray copy CAD drawings often hold),
    and a closed loop drawn twice counts once.
 4. The region is the even-odd fill of all loops (holes by nesting, see
-   :func:`medialaxis.planar.fill.fill_rings`), united with the filled
+   :func:`medialaxis.planar.drawings.fill.fill_rings`), united with the filled
    entities (HATCH and MPOLYGON by their boundary paths and hatch style,
    SOLID, TRACE, flat 3DFACE), so that an outline and the hatch of the same
    area give the area once.
@@ -58,8 +58,8 @@ from shapely.geometry import Polygon
 from medialaxis._optional import require
 from medialaxis.core.validate import check_coordinates, check_number
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError
-from medialaxis.planar.dxf_entities import Gatherer, attr, describe, flatten
-from medialaxis.planar.dxf_loops import (
+from medialaxis.planar.drawings.dxf_entities import Gatherer, attr, describe, flatten
+from medialaxis.planar.drawings.dxf_loops import (
     MAX_GAPS_LISTED,
     along_loops,
     chain,
@@ -67,7 +67,7 @@ from medialaxis.planar.dxf_loops import (
     polygonal,
     without_slivers,
 )
-from medialaxis.planar.fill import fill_rings
+from medialaxis.planar.drawings.fill import fill_rings
 
 __all__ = ["read_dxf", "DEFAULT_TOLERANCE", "JOIN_FRACTION"]
 

@@ -1,6 +1,6 @@
 """Which entities of a DXF drawing bound its region, and their curves flattened by ezdxf.
 
-Part of the DXF reader (:mod:`medialaxis.planar.dxf`): the model space and
+Part of the DXF reader (:mod:`medialaxis.planar.drawings.dxf`): the model space and
 its blocks are walked (layers, visibility, block transforms), each entity is
 classified (a curve, a fill, a compound to decompose, skipped, unreadable)
 and its curves are flattened to the chord tolerance by ezdxf's own curve
@@ -18,7 +18,7 @@ import numpy as np
 
 from medialaxis.core.validate import check_coordinates
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFeatureError
-from medialaxis.planar.fill import fill_rings
+from medialaxis.planar.drawings.fill import fill_rings
 
 __all__ = ["Gatherer", "flatten", "attr", "describe"]
 

@@ -1,6 +1,6 @@
 """Loops of a DXF drawing: open curves joined end to end, repeated curves dropped, gaps named.
 
-Part of the DXF reader (:mod:`medialaxis.planar.dxf`).
+Part of the DXF reader (:mod:`medialaxis.planar.drawings.dxf`).
 """
 
 from __future__ import annotations
