@@ -6,7 +6,16 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["peel_leaves_kernel", "peel_leaves_reference"]
+__all__ = ["peel_leaves_kernel", "peel_leaves_reference", "find_root"]
+
+
+@njit(cache=True, nogil=True)
+def find_root(parent, i):  # type: ignore[no-untyped-def]
+    """Root of ``i`` in a union-find forest ``parent``, halving the path on the way."""
+    while parent[i] != i:
+        parent[i] = parent[parent[i]]
+        i = parent[i]
+    return i
 
 
 def peel_leaves_reference(indptr, nbrs, eids, deg, edges, removable, keep) -> None:

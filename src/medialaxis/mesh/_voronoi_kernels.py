@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit, prange
+from medialaxis.core._kernels import find_root
 
 __all__ = ["all_edge_rings", "minor_star_groups", "tet_centroids", "tet_geometry"]
 
@@ -167,14 +168,6 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
 
 
 @njit(cache=True, nogil=True)
-def _root(parent, a):  # type: ignore[no-untyped-def]
-    while parent[a] != a:
-        parent[a] = parent[parent[a]]
-        a = parent[a]
-    return a
-
-
-@njit(cache=True, nogil=True)
 def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, written):  # type: ignore[no-untyped-def]
     """Flagged tetrahedra in a group that is not the largest of some point's star.
 
@@ -218,28 +211,28 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, writte
             for c in range(4):
                 if c == k or not active[simplices[t, c]]:
                     continue
-                a = _root(parent, 4 * rank[t] + c)
+                a = find_root(parent, 4 * rank[t] + c)
                 if nb < 0:
                     if not hull:
                         continue
-                    b = _root(parent, 4 * m + simplices[t, c])
+                    b = find_root(parent, 4 * m + simplices[t, c])
                 else:
                     point = simplices[t, c]
                     other = 0
                     while simplices[nb, other] != point:
                         other += 1
-                    b = _root(parent, 4 * rank[nb] + other)
+                    b = find_root(parent, 4 * rank[nb] + other)
                 if a != b:
                     parent[max(a, b)] = min(a, b)
     size = np.zeros(n_nodes)
     for t in range(n_tets):
         if rank[t] >= 0:
             for c in range(4):
-                size[_root(parent, 4 * rank[t] + c)] += volume[t]
+                size[find_root(parent, 4 * rank[t] + c)] += volume[t]
     if hull:
         for p in range(n_points):
             if active[p]:
-                size[_root(parent, 4 * m + p)] = np.inf
+                size[find_root(parent, 4 * m + p)] = np.inf
     best = np.full(n_points, -1, np.int64)
     for t in range(n_tets):
         if rank[t] >= 0:
@@ -247,13 +240,13 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, writte
                 p = simplices[t, c]
                 if not active[p]:
                     continue
-                r = _root(parent, 4 * rank[t] + c)
+                r = find_root(parent, 4 * rank[t] + c)
                 if best[p] < 0 or size[r] > size[best[p]]:
                     best[p] = r
     minor = np.zeros(n_tets, np.bool_)
     for t in range(n_tets):
         if rank[t] >= 0:
             for c in range(4):
-                if active[simplices[t, c]] and _root(parent, 4 * rank[t] + c) != best[simplices[t, c]]:
+                if active[simplices[t, c]] and find_root(parent, 4 * rank[t] + c) != best[simplices[t, c]]:
                     minor[t] = True
     return minor

@@ -19,16 +19,9 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
+from medialaxis.core._kernels import find_root
 
 __all__ = ["merge_clusters", "component_labels", "adjacency_lists", "regrow_tips_kernel"]
-
-
-@njit(cache=True, nogil=True)
-def _root(parent, i):  # type: ignore[no-untyped-def]
-    while parent[i] != i:
-        parent[i] = parent[parent[i]]
-        i = parent[i]
-    return i
 
 
 @njit(cache=True, nogil=True)
@@ -37,13 +30,13 @@ def component_labels(n, edges, use):  # type: ignore[no-untyped-def]
     parent = np.arange(n)
     for e in range(len(edges)):
         if use[e]:
-            a, b = _root(parent, edges[e, 0]), _root(parent, edges[e, 1])
+            a, b = find_root(parent, edges[e, 0]), find_root(parent, edges[e, 1])
             if a != b:
                 parent[max(a, b)] = min(a, b)
     label = np.full(n, -1, np.int64)
     count = 0
     for i in range(n):
-        r = _root(parent, i)
+        r = find_root(parent, i)
         if label[r] < 0:
             label[r] = count
             count += 1
