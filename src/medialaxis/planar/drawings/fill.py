@@ -29,11 +29,15 @@ FILL_RULES = ("nonzero", "evenodd")
 _WINDING_BLOCK = 4_000_000
 
 
+def _without_repeats(points: np.ndarray) -> np.ndarray:
+    """The polyline without consecutive repeated points."""
+    points = np.asarray(points, dtype=np.float64)
+    return points[np.r_[True, np.any(points[1:] != points[:-1], axis=1)]]
+
+
 def _closed(ring: np.ndarray) -> np.ndarray | None:
     """The ring without repeated consecutive points, or None if it encloses nothing."""
-    ring = np.asarray(ring, dtype=np.float64)
-    keep = np.r_[True, np.any(ring[1:] != ring[:-1], axis=1)]
-    ring = ring[keep]
+    ring = _without_repeats(ring)
     if len(ring) > 1 and np.array_equal(ring[0], ring[-1]):
         ring = ring[:-1]
     if len(ring) < 3:
@@ -228,9 +232,7 @@ def stroke_region(
         return Polygon()
     parts = []
     for points, closed in lines:
-        points = np.asarray(points, dtype=np.float64)
-        keep = np.r_[True, np.any(points[1:] != points[:-1], axis=1)]
-        points = points[keep]
+        points = _without_repeats(points)
         if len(points) < 2:
             if cap in ("round", "square") and len(points) == 1:  # a zero-length subpath paints a cap only
                 dot = shapely.Point(points[0]).buffer(width / 2, quad_segs=quad_segs, cap_style=_CAPS[cap])

@@ -61,6 +61,11 @@ _REFUSED_PROPERTIES = {
 }
 
 
+def _filled(lines: list[tuple[np.ndarray, bool]], rule: str) -> Any:
+    """The region subpaths fill under an SVG fill rule (an unknown rule is SVG's default, nonzero)."""
+    return fill_rings([points for points, _ in lines], rule if rule in ("nonzero", "evenodd") else "nonzero")
+
+
 class _Reader:
     """One pass over the parsed document, collecting painted regions in root user units."""
 
@@ -128,9 +133,7 @@ class _Reader:
         return region.intersection(mask)
 
     def fill(self, shape: Any, full: np.ndarray, rule: str) -> Any:
-        scale = largest_scale(full)
-        lines = subpaths(shape.segments(transformed=False), self.tol / scale)
-        return fill_rings([p for p, _ in lines], rule if rule in ("nonzero", "evenodd") else "nonzero")
+        return _filled(subpaths(shape.segments(transformed=False), self.tol / largest_scale(full)), rule)
 
     def shape_region(self, shape: Any) -> Any:
         from svgelements import SimpleLine
@@ -144,8 +147,7 @@ class _Reader:
         lines = subpaths(shape.segments(transformed=False), self.tol / scale)
         parts = []
         if not isinstance(shape, SimpleLine) and painted(shape.fill, values, "fill", self.ids, self.where):
-            rule = str(values.get("fill-rule", "nonzero")).strip()
-            parts.append(fill_rings([p for p, _ in lines], rule if rule in ("nonzero", "evenodd") else "nonzero"))
+            parts.append(_filled(lines, str(values.get("fill-rule", "nonzero")).strip()))
         if self.strokes and painted(shape.stroke, values, "stroke", self.ids, self.where):
             parts.append(stroke(shape, lines))
         parts = [p for p in parts if not p.is_empty]
