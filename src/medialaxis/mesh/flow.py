@@ -65,7 +65,7 @@ from medialaxis.mesh.flow_mesh import (
     readonly,
     smoothed_gaussian_curvature,
 )
-from medialaxis.mesh.flow_refine import centre_on_rings
+from medialaxis.mesh.flow_refine import centre_nodes
 from medialaxis.mesh.refine import refine_coarse
 
 __all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices", "smoothed_gaussian_curvature"]
@@ -309,7 +309,7 @@ def flow_skeleton(
     node_edges, node_of_vertex = graph.edges, graph.correspondence
     pinned = np.zeros(len(graph.points), dtype=bool)
     pinned[node_of_vertex[fixed]] = True
-    nodes, node_radii = centre_on_rings(graph.points, node_edges, node_of_vertex, p0, pinned)
+    nodes, radii = centre_nodes(graph.points, node_edges, node_of_vertex, p0, faces, pinned)
     if region is not None:
         slack = 1e-9 * diag
         keep = np.all((nodes >= box[0] - slack) & (nodes <= box[1] + slack), axis=1)
@@ -317,7 +317,7 @@ def flow_skeleton(
         old_index, node_edges = _graph.compact(len(nodes), kept_edges, keep_nodes=keep)
         new_of_old = np.full(len(nodes) + 1, -1, dtype=np.int64)
         new_of_old[old_index] = np.arange(len(old_index))
-        nodes, node_radii = nodes[old_index], node_radii[old_index]
+        nodes, radii = nodes[old_index], radii[old_index]
         node_of_vertex = np.where(in_box & (node_of_vertex >= 0), new_of_old[node_of_vertex], -1)
     correspondence = np.where(vertex_map >= 0, node_of_vertex[vertex_map], -1)
     metadata = {
@@ -342,5 +342,5 @@ def flow_skeleton(
         "seconds": time.perf_counter() - t_start,
     }
     return MedialAxis(
-        nodes, node_radii, node_edges, extras={"correspondence": correspondence}, metadata=metadata, shape=clean
+        nodes, radii, node_edges, extras={"correspondence": correspondence}, metadata=metadata, shape=clean
     )

@@ -1,14 +1,30 @@
 """Embedding refinement of a flow skeleton: chain nodes onto the medial axis.
 
 The diffusion flow smooths as it contracts, and smoothing shrinks curved
-tubes: a torus's skeleton comes out inside its core circle by a fraction of
-the tube radius (about 0.12 for major radius 3, minor 1), the "shrinkage"
-that Au et al. (2008) correct by an embedding refinement. Here each node
-inside a branch (degree 2) moves, across its branch only, to the mean of the
-inner medial-ball centres of the surface vertices it stands for: those
-centres lie on the medial axis, and their mean, taken across the branch,
-is the axis point the node represents. Junctions, tips and fixed nodes stay
-where the graph put them; the radii are measured again from the new places.
+tubes: the flow stops where the pull towards the inner-ball centres balances
+the Laplacian, ``(L + w M) p = w M c``, which is the medial axis moved by
+``-(1/w) M^-1 L p`` towards the centre of curvature (a torus of major radius 3
+and minor radius 1 came out 0.12 inside its core circle): the "shrinkage" that
+Au et al. (2008) correct by an embedding refinement. Tagliasacchi, Alhashim,
+Olson, Zhang (Mean Curvature Skeletons. Computer Graphics Forum 31(5) (Proc.
+SGP), 2012, doi:10.1111/j.1467-8659.2012.03167.x) reach centred skeletons with
+a medial attraction term in the flow; here the nodes are centred after it,
+which leaves the flow's topology alone and costs a fraction of a second.
+
+Each node inside a branch (degree 2) moves within its plane across the branch:
+
+1. to the centre of the circle fitted to the surface vertices in a thin slab
+   along that plane, where they form one round ring all around the node (a
+   tube: least squares over the whole ring, the most accurate centre);
+2. elsewhere, away from junctions, to the point of the plane farthest from
+   the surface, the centre of the largest ball there: the plane meets the
+   medial axis there (a tube of radius ``r``: ``r`` minus the distance to the
+   axis, whichever way the plane tilts), whatever the shape of the section.
+
+Junctions, tips, fixed nodes and the nodes near junctions (which
+:func:`~medialaxis.mesh.graph_shape.straighten_junction` put on the branch
+lines) stay where the graph put them; the radii are measured again from the
+new places.
 """
 
 from __future__ import annotations
@@ -21,34 +37,54 @@ from scipy.spatial import cKDTree
 
 from medialaxis.core import graph as _graph
 
-__all__ = ["centre_on_rings", "MAX_SHIFT", "MIN_RING", "RING_TOLERANCE", "RING_BALANCE"]
+__all__ = ["centre_nodes", "node_radii", "surface_samples", "MAX_SHIFT", "MIN_RING", "RING_TOLERANCE",
+           "RING_SECTORS", "SLAB", "GRID", "LEVELS", "TIE", "SAMPLE_SPACING", "JUNCTION_CLEARANCE"]
 
 #: Largest move of a node, as a fraction of its radius (a safeguard against
 #: stray balls on a coarse or noisy surface).
 MAX_SHIFT = 0.5
-#: Fewest surface vertices a node needs to be moved (a circle needs three;
-#: a handful more keep one stray vertex from deciding).
+#: Fewest surface vertices a ring needs (a circle needs three; a handful more
+#: keep one stray vertex from deciding).
 MIN_RING = 8
-#: A node moves only if its vertices lie on a circle across the branch: the
-#: spread of their distances to the fitted centre is at most this fraction
-#: of the mean distance.
+#: A ring is round when the spread of its vertices' distances to the fitted
+#: centre is at most this fraction of the mean distance ...
 RING_TOLERANCE = 0.1
-#: ... and they surround it: the mean of the unit vectors from the centre to
-#: them is at most this long (0 for a full, evenly sampled ring).
-RING_BALANCE = 0.25
+#: ... and its vertices lie in every one of this many equal angular sectors
+#: around the centre (an arc on one side fits a circle as well). Sectors, not
+#: the mean direction: the slab of a curved tube holds more rings on its inner
+#: side than on its outer one.
+RING_SECTORS = 8
 #: Half-thickness of the slab across a branch whose vertices give a node's
-#: cross-section, as a fraction of its radius.
+#: ring, as a fraction of its radius.
 SLAB = 0.2
+#: Points per side of the square grid searched in a node's plane, at each level.
+GRID = 7
+#: Levels of that search; each level's grid spans the previous level's step around its best point.
+LEVELS = 4
+#: Depth differences below this fraction of the node's radius are ties (a plate's
+#: ridge, a noisy surface): of the tied points, the one nearest the node wins.
+TIE = 0.01
+#: Surface samples for the depth are spaced at most this fraction of the median
+#: radius apart (the nearest-sample distance then exceeds the distance to the
+#: surface by well under 1% of the radius) ...
+SAMPLE_SPACING = 0.125
+#: ... but there are no more than about this many (the spacing grows instead).
+MAX_SAMPLES = 2_000_000
+#: The largest-ball search leaves alone the nodes closer to a junction than
+#: this many junction radii: there the plane across one branch meets the hub,
+#: and the largest ball leans towards it.
+JUNCTION_CLEARANCE = 3.0
 
 
-def centre_on_rings(
+def centre_nodes(
     points: np.ndarray,
     edges: np.ndarray,
     correspondence: np.ndarray,
-    original: np.ndarray,
+    surface: np.ndarray,
+    faces: np.ndarray,
     keep: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Move chain nodes, across their branch, to the centre of their ring of surface vertices.
+    """Move chain nodes, within their plane across the branch, onto the medial axis.
 
     Parameters
     ----------
@@ -57,8 +93,10 @@ def centre_on_rings(
     edges : (e, 2) int64 ndarray
     correspondence : (n,) int64 ndarray
         Node of each surface vertex (-1: none).
-    original : (n, 3) float64 ndarray
-        Surface vertices.
+    surface : (n, 3) float64 ndarray
+        Vertices of the closed surface.
+    faces : (k, 3) int64 ndarray
+        Its triangles.
     keep : (s,) bool ndarray
         Nodes that must not move (user-fixed points).
 
@@ -69,53 +107,115 @@ def centre_on_rings(
         Mean distance from each node to its surface vertices.
     """
     s = len(points)
-    own = np.flatnonzero(correspondence >= 0)
-    node = correspondence[own]
-    count = np.bincount(node, minlength=s).astype(np.float64)
     out = np.array(points, dtype=np.float64, copy=True)
+    radius = node_radii(points, correspondence, surface)
     deg = _graph.degree(s, edges)
     adj = _graph.adjacency(s, edges)
     # two distinct neighbours (a repeated edge or a self-loop also gives degree 2)
-    move = (deg == 2) & (np.diff(adj.indptr) == 2) & (count > 0) & ~np.asarray(keep, bool)
-    rows = np.flatnonzero(move)
-    if len(rows):
-        first = adj.indices[adj.indptr[rows]]
-        second = adj.indices[adj.indptr[rows] + 1]
-        # the tangent spans two nodes either side, where the chain goes on
-        # (neighbouring nodes can be close and a little off the axis)
-        tangent = np.zeros((s, 3))
-        tangent[rows] = points[_beyond(adj, deg, first, rows)] - points[_beyond(adj, deg, second, rows)]
-        tangent[rows] /= np.maximum(np.linalg.norm(tangent[rows], axis=1, keepdims=True), 1e-300)
-        e1, e2 = _plane_basis(tangent)
-        # each node fits the cross-section of the surface through it: the
-        # vertices in a thin slab across the branch, near the node
-        radius = _radii(points, node, original[own], count)
-        member, target = _slab(points, tangent, radius, original, rows)
-        rel = original[member] - points[target]
-        x = np.einsum("ij,ij->i", rel, e1[target])
-        y = np.einsum("ij,ij->i", rel, e2[target])
-        centres = _circle_centres(x, y, target, s)
-        # only round rings: a cross-section through a cap or a junction is
-        # not one circle, and its node stays where it is
-        dist = np.hypot(x - centres[target, 0], y - centres[target, 1])
-        total = np.bincount(target, minlength=s).astype(np.float64)
-        ring = np.maximum(total, 1.0)
-        mean = np.bincount(target, weights=dist, minlength=s) / ring
-        spread = np.sqrt(np.maximum(np.bincount(target, weights=dist * dist, minlength=s) / ring - mean**2, 0.0))
-        # ... and all round the centre: an arc on one side fits a circle as well
-        with np.errstate(invalid="ignore", divide="ignore"):
-            ux = np.nan_to_num((x - centres[target, 0]) / dist)
-            uy = np.nan_to_num((y - centres[target, 1]) / dist)
-        lop = np.hypot(np.bincount(target, weights=ux, minlength=s), np.bincount(target, weights=uy, minlength=s)) / ring
-        with np.errstate(invalid="ignore"):
-            round_ring = (total >= MIN_RING) & (spread <= RING_TOLERANCE * mean) & (lop <= RING_BALANCE)
-        centre = np.where(round_ring[:, None], centres, np.nan)[rows]
-        offset = centre[:, :1] * e1[rows] + centre[:, 1:] * e2[rows]
-        length = np.linalg.norm(offset, axis=1)
-        scale = np.where(np.isfinite(length),
-                         np.minimum(1.0, MAX_SHIFT * radius[rows] / np.maximum(length, 1e-300)), 0.0)
-        out[rows] += scale[:, None] * np.nan_to_num(offset)
-    return out, _radii(out, node, original[own], count)
+    rows = np.flatnonzero((deg == 2) & (np.diff(adj.indptr) == 2) & (radius > 0) & ~np.asarray(keep, bool))
+    if len(rows) == 0:
+        return out, radius
+    # the tangent spans two nodes either side, where the chain goes on
+    # (neighbouring nodes can be close and a little off the axis)
+    first = adj.indices[adj.indptr[rows]]
+    second = adj.indices[adj.indptr[rows] + 1]
+    tangent = np.zeros((s, 3))
+    tangent[rows] = points[_beyond(adj, deg, first, rows)] - points[_beyond(adj, deg, second, rows)]
+    tangent[rows] /= np.maximum(np.linalg.norm(tangent[rows], axis=1, keepdims=True), 1e-300)
+    e1, e2 = _plane_basis(tangent)
+    offset, round_ring = _ring_offsets(points, tangent, e1, e2, radius, surface, rows)
+    length = np.linalg.norm(offset, axis=1)
+    scale = np.minimum(1.0, MAX_SHIFT * radius[rows] / np.maximum(length, 1e-300))
+    out[rows] += scale[:, None] * offset
+    clear = ~round_ring
+    for j in np.flatnonzero(deg >= 3):
+        clear &= np.linalg.norm(points[rows] - points[j], axis=1) >= JUNCTION_CLEARANCE * radius[j]
+    if clear.any():
+        rest = rows[clear]
+        out[rest] = _largest_balls(points[rest], e1[rest], e2[rest], radius[rest], surface, faces)
+    return out, node_radii(out, correspondence, surface)
+
+
+def _ring_offsets(points: np.ndarray, tangent: np.ndarray, e1: np.ndarray, e2: np.ndarray, radius: np.ndarray,
+                  surface: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Move ``(r, 3)`` of each node of ``rows`` to the centre of its round ring, and which rings are round."""
+    s = len(points)
+    member, target = _slab(points, tangent, radius, surface, rows)
+    rel = surface[member] - points[target]
+    x = np.einsum("ij,ij->i", rel, e1[target])
+    y = np.einsum("ij,ij->i", rel, e2[target])
+    centres = _circle_centres(x, y, target, s)
+    dist = np.hypot(x - centres[target, 0], y - centres[target, 1])
+    total = np.bincount(target, minlength=s).astype(np.float64)
+    ring = np.maximum(total, 1.0)
+    mean = np.bincount(target, weights=dist, minlength=s) / ring
+    spread = np.sqrt(np.maximum(np.bincount(target, weights=dist * dist, minlength=s) / ring - mean**2, 0.0))
+    with np.errstate(invalid="ignore"):
+        angle = np.arctan2(y - centres[target, 1], x - centres[target, 0])
+        sector = np.floor((angle + np.pi) / (2 * np.pi) * RING_SECTORS).astype(np.int64) % RING_SECTORS
+        filled = np.bincount(target * RING_SECTORS + sector, minlength=s * RING_SECTORS).reshape(s, RING_SECTORS) > 0
+        round_ring = (total >= MIN_RING) & (spread <= RING_TOLERANCE * mean) & filled.all(axis=1)
+    round_ring &= np.isfinite(centres).all(axis=1)
+    centre = np.where(round_ring[:, None], centres, 0.0)[rows]
+    return centre[:, :1] * e1[rows] + centre[:, 1:] * e2[rows], round_ring[rows]
+
+
+def _largest_balls(start: np.ndarray, e1: np.ndarray, e2: np.ndarray, radius: np.ndarray, surface: np.ndarray,
+                   faces: np.ndarray) -> np.ndarray:
+    """Point ``(r, 3)`` of each plane (through ``start``, spanned by ``e1, e2``) farthest from the surface, near ``start``.
+
+    A coarse-to-fine grid search; the grid stays in the ball already empty
+    around its centre (so inside the solid) and within ``MAX_SHIFT`` radii of
+    the start; ties along a ridge (a plate's mid-surface) keep the point
+    nearest the start.
+    """
+    tri = surface[faces]
+    area = 0.5 * float(np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1).sum())
+    spacing = max(SAMPLE_SPACING * float(np.median(radius)), float(np.sqrt(area / MAX_SAMPLES)))
+    tree = cKDTree(surface_samples(surface, faces, spacing))
+    centre = start.copy()
+    depth = tree.query(centre, workers=-1)[0]
+    half = np.minimum(MAX_SHIFT * radius, 0.7 * depth)
+    a, b = (g.ravel() for g in np.meshgrid(np.linspace(-1, 1, GRID), np.linspace(-1, 1, GRID), indexing="ij"))
+    tie = TIE * radius
+    rows = np.arange(len(start))
+    for _level in range(LEVELS):
+        cand = centre[:, None, :] + half[:, None, None] * (a[None, :, None] * e1[:, None, :] + b[None, :, None] * e2[:, None, :])
+        d = tree.query(cand.reshape(-1, 3), workers=-1)[0].reshape(len(start), -1)
+        gap = np.linalg.norm(cand - start[:, None, :], axis=2)
+        gap[gap > MAX_SHIFT * radius[:, None]] = np.inf
+        pick = np.argmin(np.where(d >= d.max(axis=1, keepdims=True) - tie[:, None], gap, np.inf), axis=1)
+        better = (d[rows, pick] > depth) & np.isfinite(gap[rows, pick])
+        centre[better] = cand[better, pick[better]]
+        depth[better] = d[better, pick[better]]
+        # the next grid spans this one's step; its corners stay in the empty ball
+        half = np.minimum(half / ((GRID - 1) / 2), 0.7 * depth)
+    return centre
+
+
+def surface_samples(points: np.ndarray, faces: np.ndarray, spacing: float) -> np.ndarray:
+    """The vertices and, on faces with an edge longer than ``spacing``, a barycentric grid of about that step."""
+    tri = points[faces]
+    longest = np.max(np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2), axis=1)
+    steps = np.ceil(longest / spacing).astype(np.int64)
+    out = [points]
+    for k in np.unique(steps[steps >= 2]):
+        i, j = np.meshgrid(np.arange(k + 1), np.arange(k + 1), indexing="ij")
+        inner = (i + j <= k) & (i + j > 0) & (i < k) & (j < k)  # not the corners: they are vertices
+        u, v = i[inner] / k, j[inner] / k
+        t = tri[steps == k]
+        grid = t[:, :1] + u[None, :, None] * (t[:, 1:2] - t[:, :1]) + v[None, :, None] * (t[:, 2:3] - t[:, :1])
+        out.append(grid.reshape(-1, 3))
+    return np.concatenate(out)
+
+
+def node_radii(points: np.ndarray, correspondence: np.ndarray, surface: np.ndarray) -> np.ndarray:
+    """Mean distance ``(s,)`` from each node to the surface vertices mapped to it (0 where none)."""
+    own = np.flatnonzero(correspondence >= 0)
+    node = correspondence[own]
+    d = np.linalg.norm(surface[own] - points[node], axis=1)
+    count = np.bincount(node, minlength=len(points))
+    return np.bincount(node, weights=d, minlength=len(points)) / np.maximum(count, 1)
 
 
 def _beyond(adj: Any, deg: np.ndarray, nxt: np.ndarray, prev: np.ndarray) -> np.ndarray:
@@ -169,8 +269,3 @@ def _circle_centres(x: np.ndarray, y: np.ndarray, group: np.ndarray, s: int) -> 
         sol = np.linalg.solve(a[good], b[good][:, :, None])[:, :, 0]
         out[good] = 0.5 * sol[:, :2]
     return out
-
-
-def _radii(points: np.ndarray, node: np.ndarray, surface: np.ndarray, count: np.ndarray) -> np.ndarray:
-    d = np.linalg.norm(surface - points[node], axis=1)
-    return np.bincount(node, weights=d, minlength=len(points)) / np.maximum(count, 1.0)
