@@ -6,8 +6,8 @@ on local threads or a Dask cluster (:func:`~medialaxis.core.parallel.run_tasks`)
 Passes over the blocks:
 
 1. the iso value, when not given: exact value counts of 8 and 16-bit scans
-   (or a 256-bin histogram and the class sums of float scans) give the
-   ISO-50 value the whole array gives (:func:`~medialaxis.volume.inputs.iso50_counts`);
+   (or a 256-bin histogram of float scans, their class sums only without two peaks) give the ISO-50
+   value the whole array gives (:func:`~medialaxis.volume.inputs.iso50_counts`, ``iso50_histogram``);
 2. one read per block: the lengths of its plate-crossing pairs, its deepest
    voxel, its foreground box and its candidate medial pairs
    (:func:`~medialaxis.volume.blocks.scan_block`). The part-wide plate
@@ -60,7 +60,15 @@ from medialaxis.volume.blocks import (
     scan_block,
 )
 from medialaxis.volume.distance import Grid
-from medialaxis.volume.inputs import VolumeInput, check_spacing, counted, iso50_counts, value_counts
+from medialaxis.volume.inputs import (
+    HISTOGRAM_BINS,
+    VolumeInput,
+    check_spacing,
+    counted,
+    iso50_counts,
+    iso50_histogram,
+    value_counts,
+)
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels
 from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness, nominal_thicknesses, plate_summary
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
@@ -144,7 +152,7 @@ def _range(block: Block, source: Source) -> tuple[float, float]:
 
 def _histogram(block: Block, source: Source, lo: float, hi: float) -> np.ndarray:
     grey = np.asarray(source.read(block.region), np.float32)
-    return np.histogram(grey, bins=256, range=(lo, hi))[0]
+    return np.histogram(grey, bins=HISTOGRAM_BINS, range=(lo, hi))[0]
 
 
 def _class_sums(block: Block, source: Source, t: float) -> np.ndarray:
@@ -153,32 +161,32 @@ def _class_sums(block: Block, source: Source, t: float) -> np.ndarray:
     return np.array([grey[low].sum(dtype=np.float64), low.sum(), grey[~low].sum(dtype=np.float64), (~low).sum()])
 
 
-def _iso(source: Source, blocks: list[Block], iso: Any, run: Callable[..., list[Any]]) -> tuple[float, float]:
-    """The iso value (ISO-50 when not given) and the smallest grey value (NaN when not read)."""
+def _iso(source: Source, blocks: list[Block], iso: Any, run: Callable[..., list[Any]]) -> tuple[float, float, str]:
+    """The iso value (ISO-50 when not given), the smallest grey value (NaN when not read), ``threshold_method``."""
     if iso is not None:
-        return check_finite(iso, "iso"), math.nan
+        return check_finite(iso, "iso"), math.nan, "given"
     if source.dtype == bool:
-        return 0.5, 0.0
+        return 0.5, 0.0, "mask"
     if counted(source.dtype):
         tables = run(_value_counts, blocks, source, desc="grey values")
         values, inverse = np.unique(np.concatenate([t[0] for t in tables]), return_inverse=True)
         counts = np.bincount(inverse, np.concatenate([t[1] for t in tables]))
         if len(values) == 1:
             raise EmptyShapeError(f"the volume is constant ({values[0]:g}); nothing to threshold")
-        return iso50_counts(values, counts), float(values[0])
-    from skimage.filters import threshold_otsu
-
+        found = iso50_counts(values, counts)
+        return found.value, float(values[0]), found.method
     ranges = run(_range, blocks, source, desc="grey range")
     lo, hi = min(r[0] for r in ranges), max(r[1] for r in ranges)
     if lo == hi:
         raise EmptyShapeError(f"the volume is constant ({lo}); nothing to threshold")
     hist = np.sum(run(_histogram, blocks, source, lo, hi, desc="grey histogram"), axis=0)
-    edges = np.linspace(lo, hi, 257)
-    t = float(threshold_otsu(hist=(hist, 0.5 * (edges[:-1] + edges[1:]))))
-    sums = np.sum(run(_class_sums, blocks, source, t, desc="grey classes"), axis=0)
-    if sums[1] == 0 or sums[3] == 0:
-        return t, lo
-    return float(0.5 * (sums[0] / sums[1] + sums[2] / sums[3])), lo
+
+    def class_means(t: float) -> tuple[float, float] | None:  # Otsu's fallback only: one more pass
+        sums = np.sum(run(_class_sums, blocks, source, t, desc="grey classes"), axis=0)
+        return None if sums[1] == 0 or sums[3] == 0 else (sums[0] / sums[1], sums[2] / sums[3])
+
+    found = iso50_histogram(hist, lo, hi, class_means)
+    return found.value, lo, found.method
 
 
 def _plates(scans: list[Any], thickness: Any, lam: Any, spacing: np.ndarray) -> tuple[PlateThickness, float | None, np.ndarray | None]:
@@ -228,7 +236,7 @@ def chunked_medial_voxels(
 ) -> dict[str, Any]:
     """Passes 1-3: the medial voxels of a volume, block by block.
 
-    Returns a state dict with ``source``, ``iso``, ``minimum``, ``spacing``,
+    Returns a state dict with ``source``, ``iso``, ``threshold_method``, ``minimum``, ``spacing``,
     ``grid``, ``medial``, ``plates``, ``thickness``, ``lam``, ``chunks`` and ``halo``.
     """
     check_scheduler(scheduler)
@@ -248,7 +256,7 @@ def chunked_medial_voxels(
             return run_tasks(fn, items, *args, scheduler=scheduler, n_jobs=jobs, desc=desc,
                              show_progress=show_progress, callback=callback)
 
-        iso_value, minimum = _iso(source, blocks, iso, run)
+        iso_value, minimum, threshold_method = _iso(source, blocks, iso, run)
         unit = float(spacing.min())
         if thickness is not None and not isinstance(thickness, (tuple, list, np.ndarray)):
             value = check_number(thickness, "thickness", positive=True)
@@ -290,9 +298,9 @@ def chunked_medial_voxels(
         grid = Grid(grid.offset, grid.shape, spacing)
         if nominal is not None:  # marks the result as judged per plate (labels live in the blocks)
             plates = PlateThickness(plates.value, plates.lower, plates.upper, np.zeros(0), ranged=True)
-        return {"source": source, "iso": iso_value, "minimum": minimum, "spacing": spacing, "grid": grid,
-                "medial": medial, "plates": plates, "thickness": plates.value, "lam": lam_value, "chunks": chunks,
-                "halo": halo}
+        return {"source": source, "iso": iso_value, "threshold_method": threshold_method, "minimum": minimum,
+                "spacing": spacing, "grid": grid, "medial": medial, "plates": plates, "thickness": plates.value,
+                "lam": lam_value, "chunks": chunks, "halo": halo}
     except BaseException:
         _cleanup(source)
         raise
@@ -376,7 +384,7 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
             sampler = BlockSampler(source, state["chunks"], minimum)
             extension_stage(state, sampler, state["iso"], state["spacing"], density)
         metadata = stage_metadata("midsurface", state["iso"], state["plates"], state["lam"], state["dropped"],
-                                  state["spacing"], source.shape)
+                                  state["spacing"], source.shape, threshold_method=state["threshold_method"])
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
                          "chunks": list(state["chunks"]), "halo": state["halo"].tolist()})
         shell = shell_of_source(source, state["iso"], state["spacing"])
@@ -396,7 +404,8 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], **options: Any)
         medial, grid, plates = state["medial"], state["grid"], state["plates"]
         dropped = dropped_report(medial, plates, state["lam"])
         kind = classify_voxels(voxel_table(medial.voxels, grid.shape), medial.voxels)
-        metadata = stage_metadata("voxels", state["iso"], plates, state["lam"], dropped, state["spacing"], source.shape)
+        metadata = stage_metadata("voxels", state["iso"], plates, state["lam"], dropped, state["spacing"], source.shape,
+                                  threshold_method=state["threshold_method"])
         metadata.update({"chunks": list(state["chunks"]), "halo": state["halo"].tolist()})
         return MedialAxis(
             grid.physical(medial.voxels), medial.radius,

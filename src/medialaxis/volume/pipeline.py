@@ -164,7 +164,7 @@ def volume_stages(
         timings[stage] = time.perf_counter() - t0
     src = state["source"]
     metadata = stage_metadata("midsurface", src.iso, state["plates"], state["lam"], state["dropped"], src.spacing,
-                              src.mask.shape)
+                              src.mask.shape, threshold_method=src.threshold_method)
     metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density})
     t0 = time.perf_counter()
     shell = isosurface_shell(src)
@@ -211,7 +211,8 @@ def midsurface_medial_axis(
     iso, threshold : float, optional
         Foreground is ``grey > iso`` (``threshold`` is the dispatcher's name
         for it). Default 0.5 for bool input, else ISO-50: half-way between
-        the mean grey levels of Otsu's two classes (:func:`~medialaxis.volume.inputs.iso50`).
+        the background and material peaks of the grey-value histogram, or
+        Otsu's class means where it has not two (:func:`~medialaxis.volume.inputs.iso50`).
     thickness : float or (min, max), optional
         Plate thickness (the paper's epsilon), physical units. Omitted: every
         plate at least 2 voxels (of the finest spacing) thick is kept, each
@@ -281,7 +282,8 @@ def midsurface_medial_axis(
         (non-manifold along junctions); ``edges`` the faces' edges;
         ``radii`` half the local thickness; extras ``thickness (n,)`` and
         ``vertex_kind (n,)`` (0 surface, 1 free edge, 2 junction, 3 extension).
-        ``metadata``: ``thickness`` (the nominal one, or the median of the
+        ``metadata``: ``iso`` and ``threshold_method`` (``"peaks"``,
+        ``"otsu"``, ``"given"`` or ``"mask"``), ``thickness`` (the nominal one, or the median of the
         plates kept), ``thickness_range`` (``[min, max]``, ``None`` for no
         bound; ``None`` for a nominal thickness), ``lam`` (``None``: per
         plate) and ``dropped`` (``None``, or the ``fraction`` of the plate
@@ -375,7 +377,8 @@ def medial_voxel_axis(
     medial = medial_voxels(features, lam_value, plates)
     dropped = dropped_report(medial, plates, lam_value)
     kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
-    metadata = stage_metadata("voxels", src.iso, plates, lam_value, dropped, src.spacing, src.mask.shape)
+    metadata = stage_metadata("voxels", src.iso, plates, lam_value, dropped, src.spacing, src.mask.shape,
+                              threshold_method=src.threshold_method)
     return MedialAxis(
         features.physical(medial.voxels), medial.radius,
         extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},

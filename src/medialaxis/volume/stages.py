@@ -86,12 +86,13 @@ def dropped_report(medial: MedialVoxels, plates: PlateThickness, lam: float | No
 
 
 def stage_metadata(method: str, iso: float, plates: PlateThickness, lam: float | None, dropped: Any,
-                   spacing: np.ndarray, shape: tuple[int, ...]) -> dict[str, Any]:
+                   spacing: np.ndarray, shape: tuple[int, ...], *, threshold_method: str) -> dict[str, Any]:
     """The metadata every volume result carries (``midsurface`` and ``voxels``, in memory or by blocks)."""
     return {
         "method": method,
         "domain": "volume",
         "iso": iso,
+        "threshold_method": threshold_method,
         "thickness": plates.value,
         "thickness_range": thickness_range(plates),
         "lam": lam,
