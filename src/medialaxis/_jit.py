@@ -10,7 +10,8 @@ on first use (slower start, same results).
 
 :class:`Beside` runs a function on a second thread while the caller runs a
 serial kernel, where numba's threading layer lets two threads launch
-parallel kernels at once.
+parallel kernels at once; its errors reach the caller as raised (running
+out of memory as a :class:`~medialaxis.errors.ResourceLimitError`).
 """
 
 from __future__ import annotations
@@ -23,6 +24,8 @@ from typing import Any
 
 import numba
 import numpy as np
+
+from medialaxis.errors import ResourceLimitError
 
 __all__ = ["njit", "prange", "Beside", "concurrent_kernels"]
 
@@ -87,24 +90,33 @@ class Beside:
     """``fn(*args)`` on a daemon thread, or at once when :func:`concurrent_kernels` says no.
 
     :meth:`result` waits for it and returns its value or raises its
-    exception. Meant for work that overlaps a long serial kernel of the
+    exception; running out of memory there raises a
+    :class:`~medialaxis.errors.ResourceLimitError` naming the function (a
+    ``MemoryError`` of its own; the MemoryError raised is its cause). Meant for work that overlaps a long serial kernel of the
     caller (the Delaunay insertion), on the core that kernel leaves idle:
-    its own parallel kernels run on one thread.
+    its own parallel kernels run on one thread. Where no thread can be
+    started (a memory limit leaves no room for its stack) the work is done at once.
     """
 
     def __init__(self, fn: Callable[..., Any], *args: Any) -> None:
+        self._name = getattr(fn, "__name__", repr(fn))
         self._value: Any = None
         self._error: BaseException | None = None
         self._thread: threading.Thread | None = None
         if concurrent_kernels():
-            self._thread = threading.Thread(target=self._run, args=(fn, args), daemon=True)
-            self._thread.start()
-        else:
-            self._run(fn, args)
+            thread = threading.Thread(target=self._run, args=(fn, args, True), daemon=True)
+            try:
+                thread.start()
+            except (RuntimeError, MemoryError):  # "can't start new thread"
+                pass
+            else:
+                self._thread = thread
+                return
+        self._run(fn, args, False)
 
-    def _run(self, fn: Callable[..., Any], args: tuple[Any, ...]) -> None:
+    def _run(self, fn: Callable[..., Any], args: tuple[Any, ...], on_thread: bool) -> None:
         try:
-            if self._thread is not None:
+            if on_thread:
                 numba.set_num_threads(1)  # per thread: leave the other cores to the caller
             self._value = fn(*args)
         except BaseException as exc:  # handed to the caller by result()
@@ -113,6 +125,10 @@ class Beside:
     def result(self) -> Any:
         if self._thread is not None:
             self._thread.join()
-        if self._error is not None:
-            raise self._error
+        error = self._error
+        if isinstance(error, MemoryError) and not isinstance(error, ResourceLimitError):
+            detail = f": {error}" if str(error) else ""
+            raise ResourceLimitError(f"out of memory in {self._name}{detail}") from error
+        if error is not None:
+            raise error
         return self._value

@@ -6,7 +6,10 @@ region of the triangle it falls in (a vertex, an edge or the face), so the
 caller can sign the distance with the angle-weighted pseudo-normal
 (Baerentzen and Aanaes 2005; :func:`pseudo_normal_sign`). A candidate whose bounding sphere
 (:func:`face_spheres`) lies farther than the best distance found is skipped
-unread. :func:`closest_point_reference` is a
+unread. :func:`face_tree` and :func:`closest_in_tree` search every face
+that may be nearer than a distance found, through a bounding volume
+hierarchy: memory bounded by the mesh, whatever the number of nearly
+equidistant faces. :func:`closest_point_reference` is a
 brute-force NumPy version over every triangle, used by the tests.
 """
 
@@ -16,12 +19,17 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["closest_on_candidates", "closest_point_reference", "face_spheres", "pseudo_normal_sign", "REGION_FACE"]
+__all__ = [
+    "closest_on_candidates", "closest_in_tree", "closest_point_reference", "face_spheres", "face_tree",
+    "pseudo_normal_sign", "REGION_FACE",
+]
 
 #: Region codes: 0, 1, 2 = vertex a, b, c; 3, 4, 5 = edge ab, bc, ca; 6 = face.
 REGION_FACE = 6
 #: Most steps of the local descent from the best face found.
 MAX_WALK = 16
+#: Most faces in a leaf of :func:`face_tree`.
+LEAF_FACES = 8
 
 
 def face_spheres(tri_a: np.ndarray, tri_b: np.ndarray, tri_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -74,6 +82,16 @@ def _closest_on_triangle(px, py, pz, a, b, c):  # type: ignore[no-untyped-def]
         return 1.0 - w, w, 4
     denom = 1.0 / (va + vb + vc)
     return vb * denom, vc * denom, 6
+
+
+@njit(cache=True, nogil=True)
+def _point_on_face(p, a_, b_, c_):  # type: ignore[no-untyped-def]
+    """Squared distance from ``p`` to triangle ``a_ b_ c_``, its closest point and region."""
+    v, w, r = _closest_on_triangle(p[0], p[1], p[2], a_, b_, c_)
+    x0 = a_[0] + v * (b_[0] - a_[0]) + w * (c_[0] - a_[0])
+    x1 = a_[1] + v * (b_[1] - a_[1]) + w * (c_[1] - a_[1])
+    x2 = a_[2] + v * (b_[2] - a_[2]) + w * (c_[2] - a_[2])
+    return (p[0] - x0) ** 2 + (p[1] - x1) ** 2 + (p[2] - x2) ** 2, x0, x1, x2, r
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -152,12 +170,7 @@ def _closest_one(i, query, tri_a, tri_b, tri_c, centre, reach, near, ring_ptr, r
             bound = best_dist + reach[f]
             if e0 * e0 + e1 * e1 + e2 * e2 >= bound * bound:
                 continue
-            a_, b_, c_ = tri_a[f], tri_b[f], tri_c[f]
-            v, w, r = _closest_on_triangle(p[0], p[1], p[2], a_, b_, c_)
-            x0 = a_[0] + v * (b_[0] - a_[0]) + w * (c_[0] - a_[0])
-            x1 = a_[1] + v * (b_[1] - a_[1]) + w * (c_[1] - a_[1])
-            x2 = a_[2] + v * (b_[2] - a_[2]) + w * (c_[2] - a_[2])
-            d2 = (p[0] - x0) ** 2 + (p[1] - x1) ** 2 + (p[2] - x2) ** 2
+            d2, x0, x1, x2, r = _point_on_face(p, tri_a[f], tri_b[f], tri_c[f])
             if d2 < best:
                 best = d2
                 best_dist = np.sqrt(d2)
@@ -165,6 +178,126 @@ def _closest_one(i, query, tri_a, tri_b, tri_c, centre, reach, near, ring_ptr, r
                 face[i] = f
                 region[i] = r
     dist[i] = np.sqrt(best)
+
+
+@njit(cache=True, nogil=True)
+def face_tree(centre, tri_a, tri_b, tri_c):  # type: ignore[no-untyped-def]
+    """Bounding volume hierarchy of triangles: median splits of their centroids along the widest axis.
+
+    Returns
+    -------
+    order : (f,) int64 ndarray
+        Faces in leaf order: node ``n`` holds ``order[start[n]:stop[n]]``.
+    low, high : (m, 3) float64 ndarray
+        Box of each node's triangles (padded for rounding, as :func:`face_spheres`).
+    child : (m,) int64 ndarray
+        First child (the second is ``child + 1``), -1 for a leaf of at most ``LEAF_FACES`` faces.
+    start, stop : (m,) int64 ndarray
+    """
+    nf = centre.shape[0]
+    order = np.arange(nf)
+    cap = 2 * max(nf, 1)  # a binary tree with at most nf leaves
+    low, high = np.empty((cap, 3)), np.empty((cap, 3))
+    child = np.full(cap, -1, np.int64)
+    start, stop = np.zeros(cap, np.int64), np.zeros(cap, np.int64)
+    stop[0] = nf
+    scale = 0.0
+    for f in range(nf):
+        for k in range(3):
+            scale = max(scale, abs(tri_a[f, k]), abs(tri_b[f, k]), abs(tri_c[f, k]))
+    pending = np.empty(cap, np.int64)
+    pending[0] = 0
+    top, m = 1, 1
+    while top > 0:
+        top -= 1
+        node = pending[top]
+        s, e = start[node], stop[node]
+        lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
+        c_lo, c_hi = np.full(3, np.inf), np.full(3, -np.inf)
+        for r in range(s, e):
+            f = order[r]
+            for k in range(3):
+                lo[k] = min(lo[k], tri_a[f, k], tri_b[f, k], tri_c[f, k])
+                hi[k] = max(hi[k], tri_a[f, k], tri_b[f, k], tri_c[f, k])
+                c_lo[k] = min(c_lo[k], centre[f, k])
+                c_hi[k] = max(c_hi[k], centre[f, k])
+        for k in range(3):
+            pad = 1e-9 * (hi[k] - lo[k]) + 1e-12 * scale
+            low[node, k], high[node, k] = lo[k] - pad, hi[k] + pad
+        if e - s <= LEAF_FACES:
+            continue
+        axis = np.argmax(c_hi - c_lo)
+        part = order[s:e].copy()
+        order[s:e] = part[np.argsort(centre[part, axis], kind="mergesort")]
+        mid = (s + e) // 2
+        child[node] = m
+        start[m], stop[m], start[m + 1], stop[m + 1] = s, mid, mid, e
+        pending[top], pending[top + 1] = m, m + 1
+        top += 2
+        m += 2
+    return order, low[:m], high[:m], child[:m], start[:m], stop[:m]
+
+
+@njit(cache=True, nogil=True)
+def _box_distance2(p, low, high, n):  # type: ignore[no-untyped-def]
+    d = 0.0
+    for k in range(3):
+        if p[k] < low[n, k]:
+            d += (low[n, k] - p[k]) ** 2
+        elif p[k] > high[n, k]:
+            d += (p[k] - high[n, k]) ** 2
+    return d
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def closest_in_tree(query, tri_a, tri_b, tri_c, centre, reach, tree, dist, point, face, region):  # type: ignore[no-untyped-def]
+    """Improve, in place, the closest points found for each query to the nearest face of the whole mesh.
+
+    ``dist``, ``point``, ``face``, ``region`` (as :func:`closest_on_candidates`
+    returns them) hold a face found for each query; every node of ``tree``
+    (:func:`face_tree`) whose box is nearer is opened, nearer child first,
+    and every face in it whose bounding sphere is nearer is tested. Returns
+    the number of faces tested per query.
+    """
+    order, low, high, child, start, stop = tree
+    nq = query.shape[0]
+    tested = np.zeros(nq, np.int64)
+    n_blocks = min(nq, 64)
+    for block in prange(n_blocks):
+        pending = np.empty(128, np.int64)  # the tree is at most log2(f) deep: two entries a level
+        for i in range(block * nq // n_blocks, (block + 1) * nq // n_blocks):
+            p = query[i]
+            best = dist[i] * dist[i]
+            best_dist = dist[i]
+            pending[0] = 0
+            top = 1
+            while top > 0:
+                top -= 1
+                node = pending[top]
+                if _box_distance2(p, low, high, node) >= best:
+                    continue
+                first = child[node]
+                if first >= 0:
+                    near_first = _box_distance2(p, low, high, first) <= _box_distance2(p, low, high, first + 1)
+                    pending[top], pending[top + 1] = (first + 1, first) if near_first else (first, first + 1)
+                    top += 2
+                    continue
+                for r in range(start[node], stop[node]):
+                    f = order[r]
+                    e0, e1, e2 = p[0] - centre[f, 0], p[1] - centre[f, 1], p[2] - centre[f, 2]
+                    bound = best_dist + reach[f]
+                    if e0 * e0 + e1 * e1 + e2 * e2 >= bound * bound:
+                        continue
+                    tested[i] += 1
+                    d2, x0, x1, x2, reg = _point_on_face(p, tri_a[f], tri_b[f], tri_c[f])
+                    if d2 < best:
+                        best = d2
+                        best_dist = np.sqrt(d2)
+                        point[i, 0], point[i, 1], point[i, 2] = x0, x1, x2
+                        face[i] = f
+                        region[i] = reg
+                        dist[i] = best_dist
+    return tested
 
 
 @njit(cache=True, nogil=True, parallel=True)
