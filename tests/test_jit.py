@@ -36,16 +36,3 @@ def test_concurrent_kernels_follows_the_threading_layer():
     assert jit.concurrent_kernels() == (numba.threading_layer() in ("omp", "tbb"))
 
 
-def test_a_self_intersecting_mesh_is_refused_with_or_without_a_second_thread(monkeypatch):
-    trimesh = pytest.importorskip("trimesh")
-    import medialaxis as mx
-
-    sphere = trimesh.creation.icosphere(2)
-    vertices = sphere.vertices.copy()
-    vertices[np.argmax(vertices[:, 2])] = [0.05, 0.03, -1.5]  # the top pulled out through the bottom
-    folded = trimesh.Trimesh(vertices, sphere.faces, process=False)
-    # a second thread only where the layer allows it (workqueue would abort on concurrent kernels)
-    for concurrent in (jit.concurrent_kernels(), False):
-        monkeypatch.setattr(jit, "concurrent_kernels", lambda c=concurrent: c)
-        with pytest.raises(mx.InvalidInputError, match="passes through itself"):
-            mx.medial_axis(folded, method="voronoi")

@@ -8,7 +8,7 @@ import trimesh
 from mesh_balls import interpolated_balls
 
 import medialaxis as mx
-from medialaxis.errors import EmptyShapeError, InvalidInputError
+from medialaxis.errors import EmptyShapeError, InvalidInputError, MedialAxisWarning
 from medialaxis.mesh._closest_kernels import closest_on_candidates, closest_point_reference, face_spheres
 from medialaxis.mesh._collapse_kernels import collapse_facets, collapse_free_sides
 from medialaxis.mesh.voronoi import euler_characteristic, voronoi_medial_axis
@@ -382,12 +382,27 @@ def test_scale_and_rigid_motion_equivariance(capsule_mesh):
     assert off_a <= 0.1 * 0.5 and off_b <= 0.1 * 0.5
 
 
-def test_rejects_open_mesh_and_repairs_on_request(box_mesh):
-    open_mesh = trimesh.Trimesh(box_mesh.vertices, box_mesh.faces[1:], process=False)
-    with pytest.raises(InvalidInputError, match="not watertight"):
+def test_rejects_a_large_hole_and_caps_it_on_request(box_mesh):
+    open_mesh = trimesh.Trimesh(box_mesh.vertices, box_mesh.faces[1:], process=False)  # half a side missing
+    with pytest.raises(InvalidInputError, match=r"not watertight \(3 open edges.*1 holes, the largest .* pass repair=True"):
         voronoi_medial_axis(open_mesh)
-    ma = voronoi_medial_axis(open_mesh, repair=True, samples=5000)
-    assert any("fill_holes" in r for r in ma.metadata["repairs"])
+    with pytest.warns(MedialAxisWarning, match="closed 1 holes"):
+        ma = voronoi_medial_axis(open_mesh, repair=True, samples=5000)
+    assert any("closed 1 holes" in r for r in ma.metadata["repairs"])
+    assert ma.metadata["mesh_volume"] == pytest.approx(box_mesh.volume, rel=1e-12)  # the missing face, exactly
+
+
+def test_a_scan_with_small_holes_gets_the_solid_its_winding_number_defines():
+    sphere = trimesh.creation.icosphere(4)
+    rng = np.random.default_rng(0)
+    gone = rng.choice(len(sphere.faces), 6, replace=False)  # six one-face holes, far apart
+    holed = trimesh.Trimesh(sphere.vertices, np.delete(sphere.faces, gone, axis=0), process=False)
+    assert not holed.is_watertight
+    with pytest.warns(MedialAxisWarning, match="not watertight: closed 6 holes"):
+        ma = voronoi_medial_axis(holed, samples=5000)
+    assert ma.betti == (1, 0, 0)
+    assert ma.metadata["mesh_volume"] == pytest.approx(sphere.volume, rel=1e-12)
+    assert ma.radii.max() == pytest.approx(1.0, abs=0.02)
 
 
 def test_signed_volume_is_exact_far_from_the_origin_and_load_mesh_turns_an_inward_mesh_out():
@@ -403,14 +418,6 @@ def test_signed_volume_is_exact_far_from_the_origin_and_load_mesh_turns_an_inwar
     assert loaded.volume == pytest.approx(24.0, rel=1e-9)
     assert any("flipped" in r for r in loaded.repairs)
     assert signed_volume(loaded.mesh.triangles) > 0
-
-
-def test_rejects_self_intersecting_mesh():
-    a = trimesh.creation.box(extents=(2.0, 1.0, 1.0))
-    b = trimesh.creation.box(extents=(1.0, 2.0, 1.0))
-    both = trimesh.util.concatenate([a, b])  # two overlapping closed shells
-    with pytest.raises(InvalidInputError, match="self-intersecting"):
-        voronoi_medial_axis(both, samples=5000)
 
 
 @pytest.mark.parametrize(

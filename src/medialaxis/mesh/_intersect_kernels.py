@@ -13,7 +13,8 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["first_crossing", "first_crossing_reference", "segment_crosses_triangle", "near_pairs"]
+__all__ = ["first_crossing", "first_crossing_reference", "crossing_mask", "segment_crosses_triangle", "near_pairs",
+           "planes_meet"]
 
 
 @njit(cache=True, nogil=True)
@@ -147,12 +148,8 @@ def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> int:
-    """Index of the first pair ``(i, j)`` of ``pairs`` whose triangles share no vertex and cross, or -1.
-
-    Pairs whose bounding boxes are apart are skipped at once; the others
-    are tested on all cores.
-    """
+def crossing_mask(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> np.ndarray:
+    """Whether each pair ``(i, j)`` of ``pairs`` is of triangles that share no vertex and cross (all cores)."""
     hit = np.zeros(len(pairs), np.bool_)
     for k in prange(len(pairs)):
         i, j = pairs[k, 0], pairs[k, 1]
@@ -160,10 +157,39 @@ def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, 
             continue
         if not _shares_vertex(faces, i, j) and _crosses(triangles[i], triangles[j], tol):
             hit[k] = True
-    for k in range(len(pairs)):
-        if hit[k]:
-            return k
-    return -1
+    return hit
+
+
+def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> int:
+    """Index of the first pair ``(i, j)`` of ``pairs`` whose triangles share no vertex and cross, or -1."""
+    hit = np.flatnonzero(crossing_mask(triangles, faces, pairs, tol))
+    return int(hit[0]) if len(hit) else -1
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def planes_meet(triangles: np.ndarray, pairs: np.ndarray, tol: float) -> np.ndarray:
+    """Whether each pair's triangles may meet: neither lies wholly beyond ``tol`` on one side of the other's plane."""
+    out = np.zeros(len(pairs), np.bool_)
+    for k in prange(len(pairs)):
+        meet = True
+        for side in range(2):
+            t = triangles[pairs[k, side]]
+            u = triangles[pairs[k, 1 - side]]
+            nx = (t[1, 1] - t[0, 1]) * (t[2, 2] - t[0, 2]) - (t[1, 2] - t[0, 2]) * (t[2, 1] - t[0, 1])
+            ny = (t[1, 2] - t[0, 2]) * (t[2, 0] - t[0, 0]) - (t[1, 0] - t[0, 0]) * (t[2, 2] - t[0, 2])
+            nz = (t[1, 0] - t[0, 0]) * (t[2, 1] - t[0, 1]) - (t[1, 1] - t[0, 1]) * (t[2, 0] - t[0, 0])
+            norm = np.sqrt(nx * nx + ny * ny + nz * nz)
+            if norm == 0.0:
+                continue
+            above = below = 0
+            for m in range(3):
+                d = ((u[m, 0] - t[0, 0]) * nx + (u[m, 1] - t[0, 1]) * ny + (u[m, 2] - t[0, 2]) * nz) / norm
+                above += d > tol
+                below += d < -tol
+            if above == 3 or below == 3:
+                meet = False
+        out[k] = meet and not _boxes_apart(triangles[pairs[k, 0]], triangles[pairs[k, 1]])
+    return out
 
 
 def first_crossing_reference(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> int:

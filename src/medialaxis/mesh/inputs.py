@@ -25,7 +25,7 @@ from medialaxis.errors import (
     UnsupportedFormatError,
 )
 
-__all__ = ["MeshInput", "load_mesh", "signed_volume", "MESH_EXTENSIONS"]
+__all__ = ["MeshInput", "load_mesh", "resolve_solid", "signed_volume", "MESH_EXTENSIONS"]
 
 MESH_EXTENSIONS = (".obj", ".ply", ".off", ".stl", ".glb", ".gltf")
 
@@ -47,11 +47,15 @@ class MeshInput:
     volume : float
         Volume enclosed (:func:`signed_volume`, positive once turned
         outward); ``nan`` when the mesh need not be watertight.
+    found : dict of str to int
+        Where the mesh crosses itself or its shells nest (counts of
+        :func:`resolve_solid`); empty when it bounds its solid plainly.
     """
 
     mesh: Any
     repairs: tuple[str, ...] = ()
     volume: float = float("nan")
+    found: dict[str, int] = dataclasses.field(default_factory=dict)
 
 
 def signed_volume(triangles: np.ndarray) -> float:
@@ -121,142 +125,41 @@ def _check_stl(path: Path) -> None:
     )
 
 
-def _solid_angle_sums(points: np.ndarray, triangles: np.ndarray, chunk: int = 2_000_000) -> np.ndarray:
-    """Winding number of the closed triangle surface ``triangles`` (T, 3, 3) at each of ``points`` (P, 3).
+def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: np.ndarray | None = None) -> Any:
+    """``work``, or where its faces cross or its shells overlap or nest, the surface of its solid.
 
-    Sum of the signed solid angles of the triangles (Van Oosterom and
-    Strackee), over 4 pi: 1 inside, 0 outside, 1/2 on the surface.
+    The solid is where the generalized winding number is at least 1/2
+    (:mod:`medialaxis.mesh.arrangement`); what was found goes to ``found``
+    and ``repairs``, and a :class:`~medialaxis.errors.MedialAxisWarning` says it.
+    ``pairs``: the crossing face pairs when the caller has them.
     """
-    out = np.zeros(len(points))
-    step = max(1, chunk // max(len(triangles), 1))
-    for start in range(0, len(points), step):
-        rel = triangles[None, :, :, :] - points[start : start + step, None, None, :]
-        a, b, c = rel[:, :, 0], rel[:, :, 1], rel[:, :, 2]
-        la, lb, lc = (np.linalg.norm(v, axis=2) for v in (a, b, c))
-        det = np.einsum("ptk,ptk->pt", a, np.cross(b, c))
-        den = (la * lb * lc + np.einsum("ptk,ptk->pt", a, b) * lc + np.einsum("ptk,ptk->pt", a, c) * lb
-               + np.einsum("ptk,ptk->pt", b, c) * la)
-        out[start : start + step] = 2.0 * np.arctan2(det, den).sum(axis=1) / (4.0 * np.pi)
-    return out
+    from medialaxis.mesh.arrangement import solid_surface
+    from medialaxis.mesh.crossings import crossing_pairs, nested_shell
+    from medialaxis.mesh.degenerate import coordinate_accuracy
 
-
-#: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
-SHELL_PROBES = 500
-
-
-def shell_labels(mesh: Any) -> np.ndarray:
-    """Shell (connected set of faces) of each face: outer shells and cavities of a closed mesh."""
-    from trimesh.graph import connected_component_labels
-
-    return connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
-
-
-def check_shells(mesh: Any) -> None:
-    """Refuse a mesh whose outer shells overlap or lie inside one another.
-
-    A closed mesh of several shells bounds a solid only if each outward
-    shell lies outside every other shell's solid (inward shells are
-    cavities, inside their outer shell). A vertex of an outward shell where
-    the other shells' winding number is about 1 lies in another shell's
-    solid: the surface is self-intersecting or has nested shells (nested
-    shells do not cross, so :func:`check_self_intersection` alone misses
-    them). Both mesh methods run both checks.
-
-    Raises
-    ------
-    InvalidInputError
-    """
-    labels = shell_labels(mesh)
-    n_shells = int(labels.max()) + 1
-    if n_shells < 2:
-        return
-    tri = np.asarray(mesh.triangles)
-    shells = [np.flatnonzero(labels == k) for k in range(n_shells)]
-    lo = np.array([tri[f].reshape(-1, 3).min(axis=0) for f in shells])
-    hi = np.array([tri[f].reshape(-1, 3).max(axis=0) for f in shells])
-    for k, faces in enumerate(shells):
-        if signed_volume(tri[faces]) <= 0:
-            continue  # a cavity
-        vertices = unique_ints(mesh.faces[faces])
-        pick = np.linspace(0, len(vertices) - 1, min(SHELL_PROBES, len(vertices))).astype(int)
-        probes = np.asarray(mesh.vertices)[vertices[pick]]
-        # Only shells whose boxes meet this one's can hold its vertices; the
-        # winding numbers of closed shells add up (a cavity's is -1 inside).
-        winding = np.zeros(len(probes))
-        for j in np.flatnonzero(np.all((lo <= hi[k]) & (hi >= lo[k]), axis=1)):
-            if j == k:
-                continue
-            near = np.all((probes >= lo[j]) & (probes <= hi[j]), axis=1)
-            if near.any():
-                winding[near] += _solid_angle_sums(probes[near], tri[shells[j]])
-        if (winding > 0.75).any():
-            raise InvalidInputError(
-                f"the mesh has {n_shells} shells and shell {k} lies (partly) inside another one's solid: the surface "
-                "is self-intersecting or has nested shells; fix it (e.g. a mesh boolean union) first"
-            )
-
-
-def _sphere_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Pairs ``(i, j)`` of triangles that may cross (a superset: bounding spheres about the centroids meet).
-
-    Triangles up to twice the median size are binned on a grid
-    (:func:`~medialaxis.mesh._intersect_kernels.near_pairs`, which also
-    drops the pairs with a shared vertex or apart bounding boxes); the
-    larger ones (slivers, long CAD faces) are matched against every
-    triangle within their own reach.
-    """
-    from scipy.spatial import cKDTree
-
-    from medialaxis.mesh._intersect_kernels import near_pairs
-
-    centre = tri.mean(axis=1)
-    radius = np.linalg.norm(tri - centre[:, None, :], axis=2).max(axis=1)
-    small = radius <= 2.0 * float(np.median(radius))
-    idx = np.flatnonzero(small)
-    pairs = []
-    if len(idx) > 1:
-        cell = max(2.0 * float(radius[idx].max()), 2.0**-19)  # ``tri`` lies in a unit box: at most 2^19 cells a side
-        pairs.append(near_pairs(tri, faces, centre, radius, idx, cell))
-    big = np.flatnonzero(~small)
-    if len(big):
-        near = cKDTree(centre).query_ball_point(centre[big], radius[big] + float(radius.max()), return_sorted=False)
-        count = np.fromiter((len(js) for js in near), np.int64, len(big))
-        js = np.concatenate([np.asarray(j, np.int64) for j in near]) if count.sum() else np.empty(0, np.int64)
-        bs = np.repeat(big, count)
-        keep = (js != bs) & (small[js] | (js > bs))  # big-big pairs once
-        keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
-        pairs.append(np.column_stack([bs[keep], js[keep]]))
-    return np.ascontiguousarray(np.vstack(pairs), dtype=np.int64) if pairs else np.empty((0, 2), np.int64)
-
-
-def check_self_intersection(mesh: Any) -> None:
-    """Refuse a surface that passes through itself: two faces sharing no vertex that cross.
-
-    Faces that only touch (a boolean union's touching edge, coincident
-    vertices) do not count. Both mesh methods run this check.
-
-    Raises
-    ------
-    InvalidInputError
-    """
-    from medialaxis.mesh._intersect_kernels import first_crossing
-
-    v = np.asarray(mesh.vertices, np.float64)
-    f = np.asarray(mesh.faces, np.int64)
-    centre, size = v.mean(axis=0), float(np.ptp(v, axis=0).max()) or 1.0
-    tri = np.ascontiguousarray(((v - centre) / size)[f])
-    # tolerance on orientation determinants (volumes), from the typical edge
-    edge = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)
-    tol = 1e-9 * float(np.median(edge)) ** 3
-    f = np.ascontiguousarray(f)
-    pairs = _sphere_pairs(tri, f)
-    k = first_crossing(tri, f, pairs, tol)
-    if k >= 0:
-        i, j = (int(x) for x in pairs[k])
+    pairs = crossing_pairs(work) if pairs is None else pairs
+    nested = nested_shell(work) if not len(pairs) else None
+    if not len(pairs) and nested is None:
+        return work
+    vertices = np.asarray(work.vertices)
+    surface = solid_surface(vertices, np.asarray(work.faces), coordinate_accuracy(vertices))
+    solid = type(work)(surface.vertices, surface.faces, process=False)
+    if not _closed(solid) or not solid.is_winding_consistent:
         raise InvalidInputError(
-            f"the surface passes through itself (faces {i} and {j} cross): it is self-intersecting; "
-            "fix it (e.g. a mesh boolean union or a remesher) first"
+            f"the surface passes through itself ({len(pairs)} pairs of crossing faces) in a way its cut along the "
+            "crossings does not close up (coplanar or touching faces at the accuracy of the coordinates); fix it "
+            "(e.g. a mesh boolean union or a remesher) first"
         )
+    what = (f"the surface passes through itself ({len(pairs)} pairs of faces cross)" if len(pairs)
+            else f"shell {nested} lies inside another shell's solid (nested or overlapping shells)")
+    done = (f"{surface.cut_faces} faces cut where others cross them, {surface.dropped_faces} left out inside or "
+            f"outside the solid" + (f", {surface.flipped_faces} turned over" if surface.flipped_faces else ""))
+    found.update(crossing_face_pairs=int(len(pairs)), nested_shells=int(nested is not None),
+                 cut_faces=surface.cut_faces, dropped_faces=surface.dropped_faces)
+    repairs.append(f"solid by winding number: {done}")
+    warnings.warn(f"{what}: the medial axis is that of the solid where its winding number is at least 1/2 "
+                  f"({done})", MedialAxisWarning, stacklevel=4)
+    return solid
 
 
 def _closed(mesh: Any) -> bool:
@@ -311,6 +214,42 @@ def _take_out_degenerate(work: Any, repairs: list[str]) -> Any:
     return work
 
 
+#: Holes up to this fraction of the mesh's size across are closed without ``repair=True``.
+SMALL_HOLE = 0.1
+
+
+def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, int]) -> Any:
+    """The open ``work`` with its holes capped (:mod:`medialaxis.mesh.holes`): small ones always, any with ``repair``."""
+    from medialaxis.mesh.holes import boundary_loops, cap_holes
+
+    shared = np.bincount(work.edges_unique_inverse, minlength=len(work.edges_unique))
+    open_edges, crowded = int((shared == 1).sum()), int((shared > 2).sum())
+    refusal = (f"the mesh is not watertight ({open_edges} open edges, {crowded} edges shared by more than two "
+               "faces); close it first")
+    if crowded:
+        raise InvalidInputError(refusal)
+    if not work.is_winding_consistent:  # trimesh's fix_winding works on open surfaces too
+        require("trimesh", "medialaxis[mesh]").repair.fix_winding(work)
+    loops = boundary_loops(np.asarray(work.faces))
+    if not loops:
+        raise InvalidInputError(refusal + " (its holes touch one another at vertices)")
+    vertices = np.asarray(work.vertices)
+    size = float(np.linalg.norm(np.ptp(vertices, axis=0)))
+    across = max(float(np.linalg.norm(np.ptp(vertices[loop], axis=0))) for loop in loops)
+    if across > SMALL_HOLE * size and not repair:
+        raise InvalidInputError(
+            f"{refusal}: {len(loops)} holes, the largest {across:.3g} across ({100 * across / size:.0f}% of the "
+            f"mesh's size); close them first or pass repair=True to cap them"
+        )
+    vertices, faces = cap_holes(vertices, np.asarray(work.faces), loops)
+    found["holes"] = len(loops)
+    done = f"closed {len(loops)} holes ({open_edges} open edges), the largest {across:.3g} across, with flat caps"
+    repairs.append(done)
+    warnings.warn(f"the mesh is not watertight: {done}; the solid is the one its winding number defines",
+                  MedialAxisWarning, stacklevel=4)
+    return type(work)(vertices, faces, process=False)
+
+
 def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, crossing: bool = True) -> MeshInput:
     """Read and check a mesh.
 
@@ -320,11 +259,14 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
     watertight : bool
         Require a closed (watertight) surface bounding a positive volume.
     repair : bool
-        Try to close small holes (``trimesh.repair.fill_holes``) before
-        refusing a non-watertight mesh; the repair is reported.
+        Close the holes of a non-watertight mesh whatever their size
+        (holes up to ``SMALL_HOLE`` of the mesh's size are closed anyway,
+        with a warning); the repair is reported.
     crossing : bool
-        Run :func:`check_self_intersection` on a watertight mesh (``False``:
-        the caller runs it, e.g. beside other work).
+        Look for crossing faces on a watertight mesh and take the surface of
+        its solid by winding number where there are (:func:`resolve_solid`;
+        ``False``: the caller does, e.g. beside other work). Nested shells
+        are looked for either way.
 
     Raises
     ------
@@ -373,18 +315,10 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
     if unused:
         work.remove_unreferenced_vertices()
         repairs.append(f"dropped {unused} vertices used by no face")
-    if watertight and not _closed(work) and repair:
-        trimesh.repair.fill_holes(work)
-        if _closed(work):
-            repairs.append("closed holes with trimesh.repair.fill_holes")
+    found: dict[str, int] = {}
     if watertight:
         if not _closed(work):
-            shared = np.bincount(work.edges_unique_inverse, minlength=len(work.edges_unique))
-            open_edges, crowded = int((shared == 1).sum()), int((shared > 2).sum())
-            raise InvalidInputError(
-                f"the mesh is not watertight ({open_edges} open edges, {crowded} edges shared by more than two "
-                "faces); close it first or pass repair=True"
-            )
+            work = _close_holes(work, repair, repairs, found)
         if not work.is_winding_consistent:
             trimesh.repair.fix_winding(work)
             repairs.append("made face winding consistent")
@@ -396,8 +330,8 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
             volume = -volume
         if not volume > 0:
             raise EmptyShapeError(f"the mesh encloses no volume (volume {volume:.3g})")
-        check_shells(work)
-        if crossing:
-            check_self_intersection(work)
-        return MeshInput(work, tuple(repairs), volume)
+        solid = resolve_solid(work, repairs, found, None if crossing else np.empty((0, 2), np.int64))
+        if solid is not work:
+            work, volume = solid, signed_volume(solid.triangles)
+        return MeshInput(work, tuple(repairs), volume, found)
     return MeshInput(work, tuple(repairs))

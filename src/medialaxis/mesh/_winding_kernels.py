@@ -1,0 +1,64 @@
+"""Generalized winding numbers of a triangle surface (numba) with their NumPy reference.
+
+The winding number of a closed, outward surface at a point is the sum of the
+signed solid angles of its triangles over 4 pi: 1 inside, 0 outside, 1/2 on
+the surface; for a surface that crosses itself or has overlapping shells it
+counts how many times the point is enclosed, and for a slightly open one it
+stays close to those values away from the gaps. Each solid angle is Van
+Oosterom and Strackee's formula.
+
+References
+----------
+Van Oosterom, Strackee. The solid angle of a plane triangle. IEEE Transactions
+on Biomedical Engineering 30(2), 125-126, 1983. doi:10.1109/TBME.1983.325207
+
+Jacobson, Kavan, Sorkine-Hornung. Robust inside-outside segmentation using
+generalized winding numbers. ACM Transactions on Graphics 32(4) (Proc.
+SIGGRAPH), 33:1-33:12, 2013. doi:10.1145/2461912.2461916
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis._jit import njit, prange
+
+__all__ = ["winding_numbers", "winding_numbers_reference"]
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def winding_numbers(points, triangles):  # type: ignore[no-untyped-def]
+    """Winding number of the triangles ``(T, 3, 3)`` at each of ``points`` ``(P, 3)``."""
+    out = np.empty(points.shape[0])
+    for p in prange(points.shape[0]):
+        x, y, z = points[p, 0], points[p, 1], points[p, 2]
+        total = 0.0
+        for t in range(triangles.shape[0]):
+            ax, ay, az = triangles[t, 0, 0] - x, triangles[t, 0, 1] - y, triangles[t, 0, 2] - z
+            bx, by, bz = triangles[t, 1, 0] - x, triangles[t, 1, 1] - y, triangles[t, 1, 2] - z
+            cx, cy, cz = triangles[t, 2, 0] - x, triangles[t, 2, 1] - y, triangles[t, 2, 2] - z
+            la = np.sqrt(ax * ax + ay * ay + az * az)
+            lb = np.sqrt(bx * bx + by * by + bz * bz)
+            lc = np.sqrt(cx * cx + cy * cy + cz * cz)
+            det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+            den = (la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (ax * cx + ay * cy + az * cz) * lb
+                   + (bx * cx + by * cy + bz * cz) * la)
+            total += 2.0 * np.arctan2(det, den)
+        out[p] = total / (4.0 * np.pi)
+    return out
+
+
+def winding_numbers_reference(points: np.ndarray, triangles: np.ndarray, chunk: int = 2_000_000) -> np.ndarray:
+    """NumPy twin of :func:`winding_numbers` (chunks of at most ``chunk`` point-triangle terms)."""
+    points, triangles = np.asarray(points, np.float64), np.asarray(triangles, np.float64)
+    out = np.zeros(len(points))
+    step = max(1, chunk // max(len(triangles), 1))
+    for start in range(0, len(points), step):
+        rel = triangles[None, :, :, :] - points[start : start + step, None, None, :]
+        a, b, c = rel[:, :, 0], rel[:, :, 1], rel[:, :, 2]
+        la, lb, lc = (np.linalg.norm(v, axis=2) for v in (a, b, c))
+        det = np.einsum("ptk,ptk->pt", a, np.cross(b, c))
+        den = (la * lb * lc + np.einsum("ptk,ptk->pt", a, b) * lc + np.einsum("ptk,ptk->pt", a, c) * lb
+               + np.einsum("ptk,ptk->pt", b, c) * la)
+        out[start : start + step] = 2.0 * np.arctan2(det, den).sum(axis=1) / (4.0 * np.pi)
+    return out

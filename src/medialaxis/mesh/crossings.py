@@ -1,0 +1,132 @@
+"""Where a closed mesh fails to bound its solid plainly: faces that cross, shells inside other shells.
+
+Both are common in meshes as people have them (scans, CAD exports of
+assemblies, parts put together without a boolean union). Neither makes the
+solid undefined: :mod:`medialaxis.mesh.arrangement` takes the solid where the
+generalized winding number is at least 1/2 and gives its surface.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from medialaxis.core.arrays import unique_ints
+
+__all__ = ["candidate_pairs", "crossing_pairs", "nested_shell", "shell_labels", "unit_triangles", "winding_numbers"]
+
+#: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
+SHELL_PROBES = 500
+
+
+def winding_numbers(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Generalized winding number of the triangles ``(T, 3, 3)`` at ``points`` ``(P, 3)`` (compiled, all cores)."""
+    from medialaxis.mesh._winding_kernels import winding_numbers as kernel
+
+    return kernel(np.ascontiguousarray(points, np.float64), np.ascontiguousarray(triangles, np.float64))
+
+
+def shell_labels(mesh: Any) -> np.ndarray:
+    """Shell (connected set of faces) of each face: outer shells and cavities of a closed mesh."""
+    from trimesh.graph import connected_component_labels
+
+    return connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
+
+
+def nested_shell(mesh: Any) -> int | None:
+    """An outward shell lying (partly) inside another shell's solid, or ``None``.
+
+    A closed mesh of several shells bounds a solid plainly only if each
+    outward shell lies outside every other shell's solid (inward shells are
+    cavities, inside their outer shell). A vertex of an outward shell where
+    the other shells' winding number is about 1 lies in another shell's
+    solid: the shells overlap (their faces cross) or nest (they do not
+    cross, so :func:`crossing_pairs` alone misses them).
+    """
+    from medialaxis.mesh.inputs import signed_volume
+
+    labels = shell_labels(mesh)
+    n_shells = int(labels.max()) + 1
+    if n_shells < 2:
+        return None
+    tri = np.asarray(mesh.triangles)
+    shells = [np.flatnonzero(labels == k) for k in range(n_shells)]
+    lo = np.array([tri[f].reshape(-1, 3).min(axis=0) for f in shells])
+    hi = np.array([tri[f].reshape(-1, 3).max(axis=0) for f in shells])
+    for k, faces in enumerate(shells):
+        if signed_volume(tri[faces]) <= 0:
+            continue  # a cavity
+        vertices = unique_ints(mesh.faces[faces])
+        pick = np.linspace(0, len(vertices) - 1, min(SHELL_PROBES, len(vertices))).astype(int)
+        probes = np.asarray(mesh.vertices)[vertices[pick]]
+        # Only shells whose boxes meet this one's can hold its vertices; the
+        # winding numbers of closed shells add up (a cavity's is -1 inside).
+        winding = np.zeros(len(probes))
+        for j in np.flatnonzero(np.all((lo <= hi[k]) & (hi >= lo[k]), axis=1)):
+            if j == k:
+                continue
+            near = np.all((probes >= lo[j]) & (probes <= hi[j]), axis=1)
+            if near.any():
+                winding[near] += winding_numbers(probes[near], tri[shells[j]])
+        if (winding > 0.75).any():
+            return k
+    return None
+
+
+def unit_triangles(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """The triangles ``(f, 3, 3)`` in a unit box about the centre, that centre and the box's size."""
+    v = np.asarray(vertices, np.float64)
+    centre, size = v.mean(axis=0), float(np.ptp(v, axis=0).max()) or 1.0
+    return np.ascontiguousarray(((v - centre) / size)[np.asarray(faces, np.int64)]), centre, size
+
+
+def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Pairs ``(i, j)`` of triangles that may cross (a superset: bounding spheres about the centroids meet).
+
+    Triangles up to twice the median size are binned on a grid
+    (:func:`~medialaxis.mesh._intersect_kernels.near_pairs`, which also
+    drops the pairs with a shared vertex or apart bounding boxes); the
+    larger ones (slivers, long CAD faces) are matched against every
+    triangle within their own reach.
+    """
+    from scipy.spatial import cKDTree
+
+    from medialaxis.mesh._intersect_kernels import near_pairs
+
+    centre = tri.mean(axis=1)
+    radius = np.linalg.norm(tri - centre[:, None, :], axis=2).max(axis=1)
+    small = radius <= 2.0 * float(np.median(radius))
+    idx = np.flatnonzero(small)
+    pairs = []
+    if len(idx) > 1:
+        cell = max(2.0 * float(radius[idx].max()), 2.0**-19)  # ``tri`` lies in a unit box: at most 2^19 cells a side
+        pairs.append(near_pairs(tri, faces, centre, radius, idx, cell))
+    big = np.flatnonzero(~small)
+    if len(big):
+        near = cKDTree(centre).query_ball_point(centre[big], radius[big] + float(radius.max()), return_sorted=False)
+        count = np.fromiter((len(js) for js in near), np.int64, len(big))
+        js = np.concatenate([np.asarray(j, np.int64) for j in near]) if count.sum() else np.empty(0, np.int64)
+        bs = np.repeat(big, count)
+        keep = (js != bs) & (small[js] | (js > bs))  # big-big pairs once
+        keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
+        keep &= ~(faces[bs][:, :, None] == faces[js][:, None, :]).any(axis=(1, 2))
+        pairs.append(np.column_stack([bs[keep], js[keep]]))
+    return np.ascontiguousarray(np.vstack(pairs), dtype=np.int64) if pairs else np.empty((0, 2), np.int64)
+
+
+def crossing_pairs(mesh: Any) -> np.ndarray:
+    """Pairs ``(i, j)`` of faces that share no vertex and cross: the surface passes through itself there.
+
+    Faces that only touch (a boolean union's touching edge, coincident
+    vertices) do not count.
+    """
+    from medialaxis.mesh._intersect_kernels import crossing_mask
+
+    f = np.ascontiguousarray(np.asarray(mesh.faces, np.int64))
+    tri, _, _ = unit_triangles(mesh.vertices, f)
+    # tolerance on orientation determinants (volumes), from the typical edge
+    edge = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)
+    tol = 1e-9 * float(np.median(edge)) ** 3
+    pairs = candidate_pairs(tri, f)
+    return pairs[crossing_mask(tri, f, pairs, tol)]
