@@ -30,6 +30,9 @@ __all__ = [
 #: angles) would make the system indefinite, infinite ones (needle triangles,
 #: which appear as the mesh collapses) would overflow.
 MAX_COT = 1.0e4
+#: A vertex nearer than the shrinking ball's ``ignore`` distance still stops the
+#: ball when the direction to it is within acos(OPPOSITE) of the inward normal.
+OPPOSITE = 0.8
 
 
 def unique_pairs(pairs: np.ndarray) -> np.ndarray:
@@ -155,7 +158,9 @@ def medial_poles(
         Starting (and largest) radius.
     ignore : float
         Vertices closer than this to ``p`` never shrink its ball: on a
-        sampled surface they only carry noise, not the opposite side.
+        sampled surface they only carry noise, not the opposite side
+        (unless they lie nearly straight below ``p``, within acos(OPPOSITE)
+        of the inward normal: the other side of a thin plate).
     iterations : int
         Upper bound on the shrinking steps.
     k : int
@@ -176,7 +181,11 @@ def medial_poles(
         p, nrm, r = points[active], normals[active], radius[active]
         centre = p - r[:, None] * nrm
         _dist, cand = tree.query(centre, k=range(1, min(k, n) + 1), workers=-1)  # 2D even for k = 1
-        far = np.linalg.norm(points[cand] - p[:, None, :], axis=2) > ignore
+        rel = p[:, None, :] - points[cand]
+        gap = np.linalg.norm(rel, axis=2)
+        # near vertices are noise unless they lie deep below the tangent plane:
+        # the other side of a plate thinner than the ignored distance
+        far = (gap > ignore) | (np.einsum("qkd,qd->qk", rel, nrm) > OPPOSITE * gap)
         first = np.argmax(far, axis=1)
         q_index = cand[np.arange(len(active)), first]
         q_index = np.where(far.any(axis=1), q_index, active)
@@ -233,3 +242,4 @@ def pole_targets(
     weight = 1.0 / (dist + 1e-3 * cell)
     weight /= weight.sum(axis=1, keepdims=True)
     return np.einsum("nk,nkd->nd", weight, centres[nearest]), np.einsum("nk,nk->n", weight, radii[nearest])
+
