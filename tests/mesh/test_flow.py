@@ -186,10 +186,13 @@ def test_curvature_threshold_lets_the_skeleton_reach_the_tips(capsule):
 
 
 # ------------------------------------------------------------ bad input
-def test_open_mesh_is_refused(capsule):
-    open_mesh = trimesh.Trimesh(capsule.vertices, capsule.faces[5:], process=False)
-    with pytest.raises(mx.InvalidInputError, match="watertight"):
-        mx.medial_axis(open_mesh, method="flow")
+def test_a_small_hole_is_capped_and_a_large_one_refused(capsule):
+    open_mesh = trimesh.Trimesh(capsule.vertices, capsule.faces[5:], process=False)  # five faces of a cap
+    with pytest.warns(mx.MedialAxisWarning, match="closed 1 holes"):
+        assert len(mx.medial_axis(open_mesh, method="flow").endpoints) == 2
+    half = capsule.triangles_center[:, 2] > 0  # the upper half gone: no solid to speak of
+    with pytest.raises(mx.InvalidInputError, match=r"not watertight.*the largest .* across.*repair=True"):
+        mx.medial_axis(trimesh.Trimesh(capsule.vertices, capsule.faces[~half], process=False), method="flow")
 
 
 def test_nonmanifold_vertex_is_refused():
