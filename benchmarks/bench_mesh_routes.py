@@ -46,6 +46,7 @@ import hashlib
 import json
 import os
 import resource
+import signal
 import statistics
 import subprocess
 import sys
@@ -71,7 +72,12 @@ def _one_line(exc: BaseException) -> str:
 
 
 def _distance_check(mesh, points, radii, diagonal: float, n: int) -> dict:
-    """``|signed distance - radius|`` of up to ``n`` evenly spaced points, in percent of ``diagonal``."""
+    """``| |signed distance| - radius |`` of up to ``n`` evenly spaced points, in percent of ``diagonal``.
+
+    ``outside``: the share of points on the outer side of the input (the
+    sign of trimesh's signed distance, positive inside; ``mesh`` turned
+    outward by the caller, as the loader turns inward-facing meshes).
+    """
     import numpy as np
     import trimesh
 
@@ -79,7 +85,7 @@ def _distance_check(mesh, points, radii, diagonal: float, n: int) -> dict:
         return {"points": 0}
     take = np.unique(np.linspace(0, len(points) - 1, min(n, len(points))).astype(int))
     d = trimesh.proximity.signed_distance(mesh, np.asarray(points)[take])
-    err = np.abs(d - np.asarray(radii)[take]) / diagonal * 100.0
+    err = np.abs(np.abs(d) - np.asarray(radii)[take]) / diagonal * 100.0
     return {
         "points": int(len(take)),
         "max_pct": float(f"{err.max():.3g}"),
@@ -132,6 +138,8 @@ def worker(path: str, method: str, check_points: int) -> dict:
     out["faces"] = int(len(ma.faces)) if getattr(ma, "faces", None) is not None else 0
     if method == "voronoi" and check_points:
         mesh = trimesh.load(path, force="mesh", process=False)
+        if mesh.volume < 0:  # faces pointing inward (the loader turns them too)
+            mesh.invert()
         diagonal = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
         t0 = time.perf_counter()
         out["distance"] = _distance_check(mesh, ma.points, ma.radii, diagonal, check_points)
@@ -154,9 +162,13 @@ def run_one(path: Path, method: str, *, timeout: float, memory: float, check_poi
     proc = subprocess.Popen(cmd, preexec_fn=limit, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     timer = threading.Timer(timeout, proc.kill)
     timer.start()
-    stderr = proc.stderr.read().decode(errors="replace")
-    _, status, usage = os.wait4(proc.pid, 0)
-    timer.cancel()
+    try:
+        stderr = proc.stderr.read().decode(errors="replace")
+        _, status, usage = os.wait4(proc.pid, 0)
+    finally:
+        timer.cancel()
+        if proc.returncode is None and proc.poll() is None:  # stopped while it ran: do not leave it running
+            proc.kill()
     proc.returncode = os.waitstatus_to_exitcode(status)
     wall = time.perf_counter() - t0
     if out_file.exists():
@@ -190,7 +202,9 @@ def print_row(row: dict) -> None:
         ok = "" if "betti" not in r else (" ok" if r["betti_right"] else " MISS")
         line += f" | {method[:3]} {_betti_text(r):>9}{ok:<5} {r['seconds']:7.1f}s {r['peak_mb']:6d}MB"
         if "distance" in r:
-            line += f" |d-r| max {r['distance'].get('max_pct', float('nan')):.2g}%"
+            raw = r.get("distance_raw", {})
+            line += (f" |d-r| max {r['distance'].get('max_pct', float('nan')):.2g}% (full complex "
+                     f"{raw.get('max_pct', float('nan')):.2g}%, outside {raw.get('outside', float('nan')):.1%})")
     print(line, flush=True)
     for method, r in row["methods"].items():
         for text in [r.get("refused"), r.get("error")] + r["warnings"]:
@@ -224,6 +238,7 @@ def main() -> None:
         record = worker(path, method, int(check_points))
         Path(out_file).write_text(json.dumps(record))
         return
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # ends the running subprocess too (run_one)
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--cache", type=Path, default=default_cache(), help="model cache directory")
     parser.add_argument("--from-mirror", type=Path, help="fill the cache from local git snapshots (see real_models.py)")
