@@ -17,6 +17,7 @@ import numpy as np
 
 from medialaxis.core.io import is_result_file, load
 from medialaxis.core.result import MedialAxis
+from medialaxis.core.validate import is_geometry_text
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
 
 __all__ = ["METHODS", "DEFAULT_METHOD", "RESULT", "classify", "resolve", "repruner", "load_result"]
@@ -68,7 +69,11 @@ def _suffix(path: Path) -> str:
 
 
 def _classify_path(path: Path, method: str | None, channel_axis: Any = CHANNEL_AXIS) -> str:
-    if not path.exists():
+    try:
+        exists = path.exists()
+    except OSError as exc:  # a name too long, say
+        raise InputFileError(f"not a file name: {str(path)[:60]!r}...: {exc.strerror}") from exc
+    if not exists:
         raise InputFileError(f"no such file or folder: {str(path)!r}")
     if path.is_dir():
         return "volume"  # TIFF slices or a DICOM series
@@ -119,6 +124,8 @@ def classify(shape: Any, method: str | None = None, options: Mapping[str, Any] |
     volume method makes it a volume.
     """
     channel_axis = (options or {}).get("channel_axis", CHANNEL_AXIS)
+    if is_geometry_text(shape):  # WKT or GeoJSON text, not a file name
+        return "planar"
     if isinstance(shape, (str, os.PathLike)):
         return _classify_path(Path(shape), method, channel_axis)
     module = type(shape).__module__ or ""

@@ -6,13 +6,28 @@ argument and the bad value, before any kernel runs.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import numpy as np
 
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["MAX_COORDINATE", "check_coordinates", "check_number", "check_spacing", "memory_budget"]
+__all__ = ["MAX_COORDINATE", "check_coordinates", "check_number", "check_spacing", "memory_budget", "is_geometry_text"]
+
+#: A string that is a geometry rather than a file name: WKT, or GeoJSON text.
+GEOMETRY_TEXT = re.compile(r"\s*(\{|(MULTI)?(POINT|LINESTRING|POLYGON)\s*[(EZM]|GEOMETRYCOLLECTION\b)", re.IGNORECASE)
+
+
+def is_geometry_text(shape: Any) -> bool:
+    """Whether ``shape`` is WKT or GeoJSON text rather than a file name.
+
+    Examples
+    --------
+    >>> is_geometry_text("POLYGON ((0 0, 4 0, 4 1, 0 0))"), is_geometry_text("polygon.wkt")
+    (True, False)
+    """
+    return isinstance(shape, str) and GEOMETRY_TEXT.match(shape) is not None
 
 #: Largest coordinate magnitude accepted: squared distances and areas must
 #: stay finite in float64 (about 1.8e308).

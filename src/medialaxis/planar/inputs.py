@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import shapely
 
-from medialaxis.core.validate import check_spacing
+from medialaxis.core.validate import check_spacing, is_geometry_text
 from medialaxis.errors import InputFileError, InvalidInputError, MedialAxisWarning, UnsupportedFormatError
 from medialaxis.planar.images import (
     FOREGROUNDS,
@@ -33,7 +33,7 @@ from medialaxis.planar.images import (
     shape_side,
 )
 from medialaxis.planar.labels import is_label_image, label_regions
-from medialaxis.planar.vectors import loop_polygon, read_vector, validate_polygonal
+from medialaxis.planar.vectors import loop_polygon, parse_vector, read_vector, validate_polygonal
 
 __all__ = ["PlanarInput", "load_planar", "max_pixels", "shape_side", "contour_region", "FOREGROUNDS", "DRAWINGS"]
 
@@ -156,6 +156,9 @@ def load_planar(
     UnsupportedFeatureError
     """
     foreground = check_foreground(foreground)
+    if is_geometry_text(shape):  # WKT or GeoJSON text rather than a file name
+        return load_planar(parse_vector(shape, wkt=not shape.lstrip().startswith("{")), threshold=threshold,
+                           spacing=spacing, foreground=foreground, strokes=strokes, layers=layers)
     is_drawing = isinstance(shape, (str, os.PathLike)) and Path(shape).suffix.lower() in DRAWINGS
     if not is_drawing and (strokes is not None or layers is not None):
         name = "strokes" if strokes is not None else "layers"

@@ -13,7 +13,7 @@ from shapely.geometry import Polygon
 from medialaxis.core.validate import check_coordinates
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError
 
-__all__ = ["validate_polygonal", "loop_polygon", "read_vector", "NEAR_DUPLICATE"]
+__all__ = ["validate_polygonal", "loop_polygon", "read_vector", "parse_vector", "NEAR_DUPLICATE"]
 
 #: Consecutive vertices closer than this fraction of the shape's extent are one vertex.
 NEAR_DUPLICATE = 1e-9
@@ -63,24 +63,29 @@ def loop_polygon(loop: np.ndarray) -> Any:
 
 
 def read_vector(path: Path) -> Any:
-    ext = path.suffix.lower()
+    """The polygons of a WKT or GeoJSON file, merged."""
     try:
         text = path.read_text()
     except (OSError, UnicodeDecodeError) as exc:
         raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
-    if ext == ".wkt":
+    return parse_vector(text, wkt=path.suffix.lower() == ".wkt", what=repr(str(path)))
+
+
+def parse_vector(text: str, *, wkt: bool, what: str = "the text") -> Any:
+    """The polygons of WKT (``wkt``) or GeoJSON text, merged; ``what`` names the source in errors."""
+    if wkt:
         try:
             return shapely.from_wkt(text.strip())
         except shapely.errors.GEOSException as exc:
-            raise InputFileError(f"cannot parse WKT in {str(path)!r}: {exc}") from exc
+            raise InputFileError(f"cannot parse WKT in {what}: {exc}") from exc
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
-        raise InputFileError(f"cannot parse JSON in {str(path)!r}: {exc}") from exc
+        raise InputFileError(f"cannot parse JSON in {what}: {exc}") from exc
     geoms = []
     feats = doc.get("features") if isinstance(doc, dict) else None
     if feats is not None and not isinstance(feats, list):
-        raise InputFileError(f"bad GeoJSON in {str(path)!r}: 'features' must be a list, got {type(feats).__name__}")
+        raise InputFileError(f"bad GeoJSON in {what}: 'features' must be a list, got {type(feats).__name__}")
     items = feats if feats is not None else [doc]
     for item in items:
         g = item.get("geometry", item) if isinstance(item, dict) else None
@@ -89,8 +94,8 @@ def read_vector(path: Path) -> Any:
         try:
             geoms.append(shapely.geometry.shape(g))
         except Exception as exc:  # noqa: BLE001 - shapely raises several types
-            raise InputFileError(f"bad GeoJSON geometry in {str(path)!r}: {exc}") from exc
+            raise InputFileError(f"bad GeoJSON geometry in {what}: {exc}") from exc
     polys = [g for g in geoms if g.geom_type in ("Polygon", "MultiPolygon")]
     if not polys:
-        raise EmptyShapeError(f"{str(path)!r} holds no Polygon or MultiPolygon")
+        raise EmptyShapeError(f"{what} holds no Polygon or MultiPolygon")
     return shapely.union_all(polys)
