@@ -7,24 +7,24 @@ the Laplacian, ``(L + w M) p = w M c``, which is the medial axis moved by
 and minor radius 1 came out 0.12 inside its core circle): the "shrinkage" that
 Au et al. (2008) correct by an embedding refinement. Tagliasacchi, Alhashim,
 Olson, Zhang (Mean Curvature Skeletons. Computer Graphics Forum 31(5) (Proc.
-SGP), 2012, doi:10.1111/j.1467-8659.2012.03167.x) reach centred skeletons with
-a medial attraction term in the flow; here the nodes are centred after it,
-which leaves the flow's topology alone and costs a fraction of a second.
+SGP), 1735-1744, 2012) reach centred skeletons with a medial attraction term
+in the flow; here the nodes are centred after it, which leaves the flow and
+its topology alone and costs a fraction of a second.
 
 Each node inside a branch (degree 2) moves within its plane across the branch:
 
 1. to the centre of the circle fitted to the surface vertices in a thin slab
    along that plane, where they form one round ring all around the node (a
    tube: least squares over the whole ring, the most accurate centre);
-2. elsewhere, away from junctions, to the point of the plane farthest from
-   the surface, the centre of the largest ball there: the plane meets the
-   medial axis there (a tube of radius ``r``: ``r`` minus the distance to the
-   axis, whichever way the plane tilts), whatever the shape of the section.
+2. elsewhere, unless it is within ``JUNCTION_CLEARANCE`` junction radii of a
+   junction (there the plane meets the hub, and the largest ball leans
+   towards it), to the point of the plane farthest from the surface, the
+   centre of the largest ball there: the plane meets the medial axis there
+   (a tube of radius ``r``: ``r`` minus the distance to the axis, whichever
+   way the plane tilts), whatever the shape of the section.
 
-Junctions, tips, fixed nodes and the nodes near junctions (which
-:func:`~medialaxis.mesh.graph_shape.straighten_junction` put on the branch
-lines) stay where the graph put them; the radii are measured again from the
-new places.
+Junctions, tips and fixed nodes stay where the graph put them; the radii are
+measured again from the new places.
 """
 
 from __future__ import annotations
@@ -57,10 +57,11 @@ RING_SECTORS = 8
 #: Half-thickness of the slab across a branch whose vertices give a node's
 #: ring, as a fraction of its radius.
 SLAB = 0.2
-#: Points per side of the square grid searched in a node's plane, at each level.
+#: Points per side of the first square grid searched in a node's plane.
 GRID = 7
-#: Levels of that search; each level's grid spans the previous level's step around its best point.
-LEVELS = 4
+#: Levels of that search; each later level's grid (3 x 3) spans the previous level's step
+#: around its best point, so the last step is ``MAX_SHIFT / ((GRID - 1) / 2) / 2**(LEVELS - 1)`` radii.
+LEVELS = 7
 #: Depth differences below this fraction of the node's radius are ties (a plate's
 #: ridge, a noisy surface): of the tied points, the one nearest the node wins.
 TIE = 0.01
@@ -176,10 +177,12 @@ def _largest_balls(start: np.ndarray, e1: np.ndarray, e2: np.ndarray, radius: np
     centre = start.copy()
     depth = tree.query(centre, workers=-1)[0]
     half = np.minimum(MAX_SHIFT * radius, 0.7 * depth)
-    a, b = (g.ravel() for g in np.meshgrid(np.linspace(-1, 1, GRID), np.linspace(-1, 1, GRID), indexing="ij"))
     tie = TIE * radius
     rows = np.arange(len(start))
-    for _level in range(LEVELS):
+    for level in range(LEVELS):
+        # a fine grid first, then 3 x 3 grids each spanning the last one's step
+        side = np.linspace(-1, 1, GRID if level == 0 else 3)
+        a, b = (g.ravel() for g in np.meshgrid(side, side, indexing="ij"))
         cand = centre[:, None, :] + half[:, None, None] * (a[None, :, None] * e1[:, None, :] + b[None, :, None] * e2[:, None, :])
         d = tree.query(cand.reshape(-1, 3), workers=-1)[0].reshape(len(start), -1)
         gap = np.linalg.norm(cand - start[:, None, :], axis=2)
@@ -189,7 +192,7 @@ def _largest_balls(start: np.ndarray, e1: np.ndarray, e2: np.ndarray, radius: np
         centre[better] = cand[better, pick[better]]
         depth[better] = d[better, pick[better]]
         # the next grid spans this one's step; its corners stay in the empty ball
-        half = np.minimum(half / ((GRID - 1) / 2), 0.7 * depth)
+        half = np.minimum(half / ((len(side) - 1) / 2), 0.7 * depth)
     return centre
 
 
