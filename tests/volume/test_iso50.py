@@ -47,7 +47,7 @@ def test_the_previous_rule_read_the_plate_thick(plate):
     """What the issue reports: Otsu's class means read the plate 4-7 % thick."""
     name, volume, normal, centre = plate
     found = bench.measure(mx.medial_axis(volume, method="midsurface", iso=bench.previous_iso(volume)), normal, centre)
-    assert found["iso"] < 1900 and found["thickness"] > 6.2, (name, found)
+    assert found["iso"] < 1900 and found["thickness"] > 6.15, (name, found)
 
 
 @pytest.mark.filterwarnings("ignore::medialaxis.MedialAxisWarning")  # the rim's voxels, under the plates' lam
