@@ -85,7 +85,7 @@ def torus_samples(n_vertices: int) -> tuple[np.ndarray, int]:
 
     from medialaxis.mesh.inputs import load_mesh
     from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, pseudo_normals, sample_surface
-    from medialaxis.mesh.voronoi import _sample_count
+    from medialaxis.mesh.sampling import sample_count as _sample_count
 
     work = load_mesh(bumpy_torus(n_vertices), watertight=True).mesh
     count = _sample_count(None, len(work.vertices))  # the number of vertices (at least 20,000)

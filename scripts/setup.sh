@@ -8,3 +8,5 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install --quiet --upgrade pip
 .venv/bin/python -m pip install --quiet -e ".[all,test]"
+# Compile the numba kernels once, now, rather than in the first call (about 80 s of CPU; cached on disk)
+.venv/bin/medialaxis warmup

@@ -107,8 +107,33 @@ def _run_demo(args: argparse.Namespace) -> int:
     return 0
 
 
+# ------------------------------------------------------------- warmup
+def _add_warmup(sub: Any) -> None:
+    p = sub.add_parser(
+        "warmup",
+        help="compile the kernels once (the first call after an install is then fast)",
+        description="Run every method on a small shape so that its compiled kernels are cached on disk; "
+                    "scripts/setup.sh runs it after installing.",
+        formatter_class=HelpFormatter,
+    )
+    p.add_argument("--domains", default="planar,mesh,volume", help="comma-separated: planar, mesh, volume")
+    p.set_defaults(run=_run_warmup)
+
+
+def _run_warmup(args: argparse.Namespace) -> int:
+    from medialaxis.warmup import DOMAINS, warm_up
+
+    domains = tuple(d.strip() for d in args.domains.split(",") if d.strip())
+    unknown = [d for d in domains if d not in DOMAINS]
+    if unknown or not domains:
+        raise UsageError(f"--domains takes {', '.join(DOMAINS)}; got {args.domains!r}")
+    for name, seconds in warm_up(domains):
+        print(f"{name}: compiled in {seconds:.1f} s")
+    return 0
+
+
 #: Subcommand builders; each adds a parser whose ``run`` default handles it.
-SUBCOMMANDS: list[Callable[[Any], None]] = [_add_compute, _add_centerlines, _add_demo]
+SUBCOMMANDS: list[Callable[[Any], None]] = [_add_compute, _add_centerlines, _add_demo, _add_warmup]
 
 from medialaxis.compare.cli import add_compare, add_search  # noqa: E402
 

@@ -35,12 +35,19 @@ from medialaxis.errors import (
     InvalidInputError,
     MedialAxisError,
     MedialAxisWarning,
-    ResourceLimitError,
 )
 from medialaxis.mesh._voronoi_kernels import tet_centroids
 from medialaxis.mesh.crossings import crossing_pairs, shell_labels
 from medialaxis.mesh.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
-from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, measure_epsilon, pseudo_normals, sample_surface
+from medialaxis.mesh.sampling import (
+    adaptive_spacing,
+    lfs_estimate,
+    measure_epsilon,
+    pseudo_normals,
+    sample_count,
+    sample_surface,
+    thin_part_count,
+)
 from medialaxis.mesh.signed_distance import SignedDistance
 from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, medial_complex
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
@@ -52,9 +59,6 @@ __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM
 #: sample to converge (Chazal and Lieutier; paper 001); 0.65 keeps the
 #: capsule's axis within 3 % and 95 % of a box's volume covered.
 LAM_FACTOR = 0.65
-#: Fewest samples used by default, and the most accepted.
-MIN_SAMPLES = 20_000
-MAX_SAMPLES = 2_000_000
 #: Largest relative difference between the volume of the inner Delaunay
 #: tetrahedra and the mesh's signed volume before a warning (a coarse sample).
 VOLUME_TOLERANCE = 2e-3
@@ -83,18 +87,6 @@ def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | N
     n = max(int(n_points), int(pairs.max()) + 1 if len(pairs) else 1)
     n_edges = len(unique_ints(pairs[:, 0] * n + pairs[:, 1]))
     return int(n_points - n_edges + len(f))
-
-
-def _sample_count(samples: Any, n_vertices: int) -> int:
-    if samples is None:
-        return int(min(max(MIN_SAMPLES, n_vertices), MAX_SAMPLES))
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)):
-        raise InvalidInputError(f"samples must be an integer number of surface samples, got {samples!r}")
-    if samples < 1000 or samples > MAX_SAMPLES:
-        raise (ResourceLimitError if samples > MAX_SAMPLES else InvalidInputError)(
-            f"samples must be between 1000 and {MAX_SAMPLES}, got {samples}"
-        )
-    return int(samples)
 
 
 def _inner_tets(dt: Any, smp: Any, sd: SignedDistance, tolerance: float) -> np.ndarray:
@@ -164,7 +156,10 @@ def voronoi_medial_axis(
         at depth ``r``, so a lambda linear in epsilon keeps noise sheets.
     samples : int, optional
         Target number of surface samples. Default ``max(20000,
-        n_vertices)``; the mesh vertices are always included.
+        n_vertices)``, more for a mostly thin part (up to 250,000, so that
+        a plate's two sides are three spacings apart:
+        :func:`~medialaxis.mesh.sampling.thin_part_count`); the mesh
+        vertices are always included.
     simplify : int or float, optional
         Reduce the medial mesh by quadric error minimisation on spheres
         (:func:`medialaxis.mesh.qmat.simplify_medial_mesh`): an ``int`` is the
@@ -267,7 +262,7 @@ def voronoi_medial_axis(
     src = load_mesh(mesh, watertight=True, repair=repair, crossing=False)  # checked beside the Delaunay
     work = src.mesh
     rng = np.random.default_rng(rng)
-    count = _sample_count(samples, len(work.vertices))
+    count = sample_count(samples, len(work.vertices))
     lam_given = None if lam is None else check_number(lam, "lam", positive=True)
     if topology not in TOPOLOGY_MODES:
         raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
@@ -290,6 +285,8 @@ def voronoi_medial_axis(
         try:
             tree = lfs_estimate(work, max(count // 8, 2000), normals)
             spacing = adaptive_spacing(work, tree, count)
+            if samples is None:  # enough for the plates of a thin part
+                count, spacing = thin_part_count(work, spacing, count, normals)
             smp = sample_surface(work, spacing, normals)
         except MedialAxisError:
             pairs = crossing_pairs(work)  # a surface through itself: its solid rather than what it broke

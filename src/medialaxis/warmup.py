@@ -1,0 +1,68 @@
+"""Compile the numba kernels once, ahead of the first real call (``medialaxis warmup``).
+
+The kernels are compiled on first use and cached on disk (``cache=True``,
+next to the installed package or in :mod:`medialaxis._jit`'s fallback
+folder), so only the first call after an install pays for compiling: about
+a minute for the mesh routes on two cores. ``scripts/setup.sh`` runs this
+after installing; a user who installs otherwise can run it once. Each
+method is run on a small shape of its domain, which compiles the same
+signatures (float64 and int64 arrays) that real inputs use.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from collections.abc import Callable, Iterator
+
+import numpy as np
+
+from medialaxis.errors import MedialAxisWarning
+
+__all__ = ["DOMAINS", "warm_up"]
+
+
+def _planar() -> None:
+    import medialaxis as mx
+    from medialaxis.demo import data_path
+
+    mx.medial_axis(data_path("kimia_class1_01.png"))
+    mx.medial_axis(data_path("bracket_two_holes.wkt").read_text())
+    labels = np.zeros((40, 60), np.int32)
+    labels[5:35, 5:25], labels[5:35, 30:55] = 1, 2
+    mx.medial_axis(labels)
+
+
+def _mesh() -> None:
+    import trimesh
+
+    import medialaxis as mx
+
+    capsule = trimesh.creation.capsule(height=2.0, radius=0.5)
+    mx.medial_axis(capsule, samples=4000, simplify=40)  # the compact complex and the simplification too
+    mx.medial_axis(capsule, method="flow")
+    crossing = trimesh.util.concatenate([trimesh.creation.box(extents=(2, 1, 1)), trimesh.creation.box(extents=(1, 2, 1))])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", MedialAxisWarning)
+        mx.medial_axis(crossing, samples=2000)  # the arrangement and winding-number kernels
+
+
+def _volume() -> None:
+    import medialaxis as mx
+    from medialaxis.volume.phantoms import t_phantom
+
+    phantom = t_phantom((40, 64, 64), thickness=6, margin=8)
+    mx.medial_axis(phantom.volume, method="midsurface")
+    mx.medial_axis(phantom.volume, method="voxels")
+
+
+#: What each domain runs; its optional dependencies must be installed.
+DOMAINS: dict[str, Callable[[], None]] = {"planar": _planar, "mesh": _mesh, "volume": _volume}
+
+
+def warm_up(domains: tuple[str, ...] = tuple(DOMAINS)) -> Iterator[tuple[str, float]]:
+    """Run each domain's small shapes; yields ``(domain, seconds)`` as each is done."""
+    for name in domains:
+        start = time.perf_counter()
+        DOMAINS[name]()
+        yield name, time.perf_counter() - start

@@ -1,0 +1,49 @@
+"""Thin parts as CAD tools write them (float32 STL): the default call keeps their plates.
+
+Truth is the geometry: a plate's mid-plane and half thickness, the solid's
+Betti numbers from its construction.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import medialaxis as mx
+from medialaxis.mesh.sampling import local_thickness
+
+trimesh = pytest.importorskip("trimesh")
+shapely = pytest.importorskip("shapely")
+
+
+def test_the_shrinking_ball_measures_a_plate_and_a_rod():
+    plate = trimesh.creation.box(extents=(4.0, 4.0, 0.2))
+    points, face = trimesh.sample.sample_surface_even(plate, 4000, seed=1)
+    normals = plate.face_normals[face]
+    thickness = local_thickness(points, normals, np.full(len(points), 10.0))
+    flat = np.abs(normals[:, 2]) > 0.9
+    inner = flat & (np.abs(points[:, :2]).max(axis=1) < 1.8)  # away from the rim
+    assert np.median(thickness[inner]) == pytest.approx(0.2, rel=0.05)
+    assert thickness[inner].max() < 0.2 * 1.5
+    # capped where the ball would be larger than asked about
+    assert local_thickness(points, normals, np.full(len(points), 0.05)).max() <= 0.05
+
+
+def test_a_cad_plate_keeps_its_mid_surface_by_default(tmp_path):
+    trimesh.creation.box(extents=(10.0, 10.0, 0.2)).export(tmp_path / "plate.stl")  # 8 vertices, float32
+    ma = mx.medial_axis(tmp_path / "plate.stl")
+    assert ma.betti == (1, 0, 0)
+    assert np.abs(ma.points[:, 2]).max() < 0.02  # on the mid-plane
+    assert np.median(ma.radii) == pytest.approx(0.1, rel=0.02)  # half the thickness
+    sheet = trimesh.Trimesh(ma.points, ma.faces, process=False).area
+    assert sheet > 0.9 * 9.8**2  # the mid-plane inset by half the thickness, nearly whole
+    assert ma.metadata["n_samples"] > 20_000  # grown for the thin part
+
+
+def test_an_extruded_l_plate_with_a_hole_keeps_its_tunnel(tmp_path):
+    outline = shapely.Polygon([(0, 0), (4, 0), (4, 1), (1, 1), (1, 4), (0, 4)]).difference(
+        shapely.Point(0.5, 2.5).buffer(0.25))
+    trimesh.creation.extrude_polygon(outline, 0.3).export(tmp_path / "l.stl")
+    ma = mx.medial_axis(tmp_path / "l.stl")
+    assert ma.betti == (1, 1, 0)  # genus 1: the hole
+    assert np.abs(ma.points[:, 2] - 0.15).max() < 0.05
