@@ -25,7 +25,7 @@ LAYERS = {
     "planar": 2, "mesh": 2, "volume": 2,
     "_dispatch": 3, "api": 3,
     "compare": 4, "metrics": 4, "gis": 4,
-    "demo": 5, "cli": 5, "cli_compute": 5, "cli_batch": 5, "_entry": 5, "__main__": 5, "": 5,
+    "demo": 5, "warmup": 5, "cli": 5, "cli_compute": 5, "cli_batch": 5, "_entry": 5, "__main__": 5, "": 5,
 }
 DOMAINS = {"planar", "mesh", "volume"}
 #: Modules that sit above their folder's layer (the command line of a part).

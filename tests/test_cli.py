@@ -223,3 +223,12 @@ def test_foreground_option(tmp_path, capsys):
     assert main(["compute", str(path), "--foreground", "black"]) == 2
     err = capsys.readouterr().err
     assert "--foreground" in err and "black" in err
+
+
+def test_warmup_runs_the_domains_asked_and_refuses_others(capsys):
+    from medialaxis.cli import main
+
+    assert main(["warmup", "--domains", "planar"]) == 0
+    assert capsys.readouterr().out.startswith("planar: compiled in")
+    assert main(["warmup", "--domains", "planar,cad"]) == 2
+    assert "--domains takes planar, mesh, volume" in capsys.readouterr().err
