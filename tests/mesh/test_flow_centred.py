@@ -64,8 +64,11 @@ def test_bent_tube_nodes_lie_on_its_arc():
 
 def test_surface_samples_cover_large_faces():
     box = trimesh.creation.box(extents=(4.0, 2.0, 1.0))
-    samples = surface_samples(np.asarray(box.vertices), np.asarray(box.faces), 0.25)
+    samples, normals = surface_samples(np.asarray(box.vertices), np.asarray(box.faces), 0.25)
     assert np.abs(box.nearest.signed_distance(samples)).max() < 1e-9  # on the surface
+    assert np.allclose(np.linalg.norm(normals, axis=1), 1.0)
+    outside = samples + 0.01 * normals  # outward
+    assert not box.contains(outside).any()
     on_faces = trimesh.sample.sample_surface_even(box, 2000, seed=0)[0]
     gap = np.min(np.linalg.norm(on_faces[:, None] - samples[None], axis=2), axis=1)
     assert gap.max() <= 0.25  # no hole wider than the spacing
@@ -91,6 +94,22 @@ def test_swept_arc_nodes_lie_on_its_arc():
     assert np.percentile(core_circle_distance(p[inside], 3.0), 99) <= 0.02 * 3.0
     assert sk.n_components == 1 and sk.betti[1] == 0 and len(sk.endpoints) == 2
 
+
+
+def test_square_section_arc_nodes_lie_on_its_arc():
+    """A square (side 1.2) swept along a half circle of radius 3: its sections are not round rings."""
+    from shapely.geometry import box
+
+    t = np.linspace(0.0, np.pi, 73)
+    path = np.column_stack([3.0 * np.cos(t), 3.0 * np.sin(t), np.zeros_like(t)])
+    tube = trimesh.creation.sweep_polygon(box(-0.6, -0.6, 0.6, 0.6), path)
+    sk = mx.medial_axis(tube, method="flow")
+    p = sk.points
+    angle = np.arctan2(p[:, 1], p[:, 0])
+    inside = (angle > 0.4) & (angle < np.pi - 0.4)  # away from the flat ends
+    assert inside.sum() >= 12
+    assert np.percentile(core_circle_distance(p[inside], 3.0), 99) <= 0.02 * 3.0
+    assert sk.betti[1] == 0 and len(sk.endpoints) == 2
 
 def test_thin_plate_poles_reach_the_other_side():
     """Vertices nearer than the shrinking ball's ``ignore`` distance still stop it when they lie straight below."""
@@ -118,3 +137,31 @@ def test_l_plate_with_a_hole_keeps_its_cycle():
     # the skeleton lies in the plate, about half-way through it
     assert np.all((sk.points[:, 2] > 0.0) & (sk.points[:, 2] < 2.0))
     assert abs(np.median(sk.points[:, 2]) - 1.0) < 0.25
+
+
+def test_nodes_of_a_non_round_section_move_onto_its_medial_axis():
+    """An elliptic cylinder (semi-axes 1 and 0.6, axis z): no round rings, so the nodes climb to the largest balls.
+
+    The medial axis of the ellipse is the segment y = 0, |x| <= 1 - 0.6**2; the
+    inscribed radius barely changes along it (0.6 at x = 0, 0.597 at x = 0.1),
+    so a node crosses to it and stays about where it was along it.
+    """
+    from shapely import affinity
+    from shapely.geometry import Point
+
+    from medialaxis.mesh.flow_refine import centre_nodes
+
+    ellipse = affinity.scale(Point(0, 0).buffer(1.0, quad_segs=32), 1.0, 0.6)
+    tube = trimesh.creation.extrude_polygon(ellipse, 8.0).subdivide_to_size(0.15)
+    surface, faces = np.asarray(tube.vertices), np.asarray(tube.faces)
+    z = np.arange(1.0, 7.01, 0.5)
+    nodes = np.column_stack([np.full_like(z, 0.2), np.full_like(z, -0.15), z])
+    edges = np.column_stack([np.arange(len(z) - 1), np.arange(1, len(z))])
+    correspondence = np.argmin(np.abs(surface[:, 2:3] - z[None, :]), axis=1)
+    moved, radii = centre_nodes(nodes, edges, correspondence, surface, faces, np.zeros(len(z), dtype=bool))
+    inner = slice(1, -1)  # the two ends are tips: they stay
+    assert np.abs(moved[inner, 1]).max() < 0.006  # as far from the top as from the bottom: 1% of 0.6
+    assert np.all(np.abs(moved[inner, 0]) <= 0.2)  # on the medial segment, not pushed along it
+    assert np.allclose(moved[inner, 2], z[inner])  # within the plane across the branch
+    assert np.array_equal(moved[[0, -1]], nodes[[0, -1]])
+    assert radii.shape == (len(z),)

@@ -36,6 +36,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.core import graph as _graph
+from medialaxis.mesh._flow_operators import vertex_normals
 
 __all__ = ["centre_nodes", "node_radii", "surface_samples", "MAX_SHIFT", "MIN_RING", "RING_TOLERANCE",
            "RING_SECTORS", "SLAB", "GRID", "LEVELS", "TIE", "SAMPLE_SPACING", "JUNCTION_CLEARANCE"]
@@ -59,9 +60,10 @@ RING_SECTORS = 8
 SLAB = 0.2
 #: Points per side of the first square grid searched in a node's plane.
 GRID = 7
-#: Levels of that search; each later level's grid (3 x 3) spans the previous level's step
-#: around its best point, so the last step is ``MAX_SHIFT / ((GRID - 1) / 2) / 2**(LEVELS - 1)`` radii.
-LEVELS = 7
+#: Levels of that search; the second level's grid (3 x 3) spans the first one's step around
+#: its best point, each later one half the step before, so the last step is
+#: ``MAX_SHIFT / ((GRID - 1) / 2) / 2**(LEVELS - 2)`` radii (0.1% of the radius).
+LEVELS = 9
 #: Depth differences below this fraction of the node's radius are ties (a plate's
 #: ridge, a noisy surface): of the tied points, the one nearest the node wins.
 TIE = 0.01
@@ -173,10 +175,13 @@ def _largest_balls(start: np.ndarray, e1: np.ndarray, e2: np.ndarray, radius: np
     tri = surface[faces]
     area = 0.5 * float(np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1).sum())
     spacing = max(SAMPLE_SPACING * float(np.median(radius)), float(np.sqrt(area / MAX_SAMPLES)))
-    tree = cKDTree(surface_samples(surface, faces, spacing))
+    samples, normals = surface_samples(surface, faces, spacing)
+    tree = cKDTree(samples)
     centre = start.copy()
-    depth = tree.query(centre, workers=-1)[0]
-    half = np.minimum(MAX_SHIFT * radius, 0.7 * depth)
+    depth, nearest = tree.query(centre, workers=-1)
+    # only nodes inside the solid move (then the grids, in the empty ball, stay inside)
+    inside = np.einsum("ij,ij->i", centre - samples[nearest], normals[nearest]) < 0
+    half = np.where(inside, np.minimum(MAX_SHIFT * radius, 0.7 * depth), 0.0)
     tie = TIE * radius
     rows = np.arange(len(start))
     for level in range(LEVELS):
@@ -191,17 +196,27 @@ def _largest_balls(start: np.ndarray, e1: np.ndarray, e2: np.ndarray, radius: np
         better = (d[rows, pick] > depth) & np.isfinite(gap[rows, pick])
         centre[better] = cand[better, pick[better]]
         depth[better] = d[better, pick[better]]
-        # the next grid spans this one's step; its corners stay in the empty ball
-        half = np.minimum(half / ((len(side) - 1) / 2), 0.7 * depth)
+        # the next grid spans this one's step (7 x 7), or half of it (3 x 3); its corners stay in the empty ball
+        half = np.minimum(half / ((GRID - 1) / 2 if level == 0 else 2.0), 0.7 * depth)
     return centre
 
 
-def surface_samples(points: np.ndarray, faces: np.ndarray, spacing: float) -> np.ndarray:
-    """The vertices and, on faces with an edge longer than ``spacing``, a barycentric grid of about that step."""
+def surface_samples(points: np.ndarray, faces: np.ndarray, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices and, on faces with an edge longer than ``spacing``, a barycentric grid of about that step.
+
+    Returns
+    -------
+    samples : (m, 3) float64 ndarray
+        The vertices first, at their indices.
+    normals : (m, 3) float64 ndarray
+        Outward unit normals: area-weighted at the vertices, the face's inside it.
+    """
     tri = points[faces]
     longest = np.max(np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2), axis=1)
     steps = np.ceil(longest / spacing).astype(np.int64)
-    out = [points]
+    face_normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    face_normal /= np.maximum(np.linalg.norm(face_normal, axis=1, keepdims=True), 1e-300)
+    out, normals = [points], [vertex_normals(points, faces)]
     for k in np.unique(steps[steps >= 2]):
         i, j = np.meshgrid(np.arange(k + 1), np.arange(k + 1), indexing="ij")
         inner = (i + j <= k) & (i + j > 0) & (i < k) & (j < k)  # not the corners: they are vertices
@@ -209,7 +224,8 @@ def surface_samples(points: np.ndarray, faces: np.ndarray, spacing: float) -> np
         t = tri[steps == k]
         grid = t[:, :1] + u[None, :, None] * (t[:, 1:2] - t[:, :1]) + v[None, :, None] * (t[:, 2:3] - t[:, :1])
         out.append(grid.reshape(-1, 3))
-    return np.concatenate(out)
+        normals.append(np.repeat(face_normal[steps == k], len(u), axis=0))
+    return np.concatenate(out), np.concatenate(normals)
 
 
 def node_radii(points: np.ndarray, correspondence: np.ndarray, surface: np.ndarray) -> np.ndarray:
