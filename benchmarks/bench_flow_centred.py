@@ -10,14 +10,20 @@ Every figure comes from geometry, never from the result's metadata:
   the caps), as a percentage of the bend radius;
 - a helical tube swept by ``trimesh.creation.sweep_polygon`` (radius 0.5 around a
   helix of radius 3): distance to the helix, as a percentage of the helix radius;
-- a straight rod voxelized and meshed by marching cubes: its number of endpoints
-  (two);
+- a disc and a square swept along a half circle of radius 3 (flat ends): distance
+  to the arc, one tube radius away from the ends;
+- straight rods voxelized and meshed by marching cubes (5 and 10 voxels across
+  the radius): their numbers of endpoints (two);
 - an extruded L-shaped plate with a round hole, written and read back as float32
   STL: its Betti numbers (one cycle).
 
 Usage::
 
     .venv/bin/python benchmarks/bench_flow_centred.py
+
+Before issue 31 point 5 (commit 6171f7a) the torus of 4,608 vertices had every
+node 4.13% of R inside its core circle, the swept disc 4.27% (p99, away from the
+ends), the square 7.1%, and the L-plate one node, Betti (1, 0, 0).
 """
 
 from __future__ import annotations
@@ -115,6 +121,7 @@ def run(name: str, mesh: object) -> tuple[object, float]:
 
 def main() -> None:
     import trimesh
+    from shapely.geometry import Point, box
 
     total = 0.0
     for sections in ((32, 32), (96, 48), (128, 48)):
@@ -131,17 +138,32 @@ def main() -> None:
     mesh = helix_tube()
     sk, sec = run("helix", mesh)
     total += sec
-    print(f"helix tube (R=3 r=0.5 pitch 4; {len(mesh.vertices)} v): to helix "
-          f"{pct(polyline_distance(sk.points, helix()), 3.0)} of R, {pct(polyline_distance(sk.points, helix()), 0.5)} of r; "
+    line = helix()
+    away = np.minimum(np.linalg.norm(sk.points - line[0], axis=1), np.linalg.norm(sk.points - line[-1], axis=1)) > 1.0
+    print(f"helix tube (R=3 r=0.5 pitch 4, flat ends; {len(mesh.vertices)} v): to helix "
+          f"{pct(polyline_distance(sk.points, line), 0.5)} of r, two radii from the ends "
+          f"{pct(polyline_distance(sk.points[away], line), 0.5)} of r; "
           f"ends {len(sk.endpoints)} betti {tuple(sk.betti)}; {sec:.2f} s")
-    mesh = marching_cubes_rod()
-    sk, sec = run("rod", mesh)
-    total += sec
+    for name, section in (("disc r=1", Point(0, 0).buffer(1.0, quad_segs=12)), ("square 1.6", box(-0.8, -0.8, 0.8, 0.8))):
+        t = np.linspace(0.0, np.pi, 49)
+        path = np.column_stack([3.0 * np.cos(t), 3.0 * np.sin(t), np.zeros_like(t)])
+        mesh = trimesh.creation.sweep_polygon(section, path)
+        sk, sec = run("arc", mesh)
+        total += sec
+        angle = np.arctan2(sk.points[:, 1], sk.points[:, 0])
+        inside = (angle > 1.0 / 3.0) & (angle < np.pi - 1.0 / 3.0)
+        print(f"{name} swept along a half circle R=3 ({len(mesh.vertices)} v): to arc, away from the ends, "
+              f"{pct(torus_distance(sk.points[inside], 3.0), 3.0)} of R; ends {len(sk.endpoints)}; {sec:.2f} s")
     from medialaxis.mesh.flow_samples import segment_distance
 
-    axis = np.array([[[-3.0, 0, 0], [3.0, 0, 0]]])
-    print(f"marching-cubes rod (length 6 r=0.5; {len(mesh.vertices)} v): ends {len(sk.endpoints)} "
-          f"junctions {len(sk.junctions)}; to axis {pct(segment_distance(sk.points, axis), 0.5)} of r; {sec:.2f} s")
+    for length, radius, pitch in ((6.0, 0.5, 0.1), (6.0, 0.5, 0.05)):
+        mesh = marching_cubes_rod(length, radius, pitch)
+        sk, sec = run("rod", mesh)
+        total += sec
+        axis = np.array([[[-length / 2, 0, 0], [length / 2, 0, 0]]])
+        print(f"marching-cubes rod (length {length:g} r={radius:g}, {radius / pitch:g} voxels; {len(mesh.vertices)} v): "
+              f"ends {len(sk.endpoints)} junctions {len(sk.junctions)}; "
+              f"to axis {pct(segment_distance(sk.points, axis), radius)} of r; {sec:.2f} s")
     mesh = l_plate_with_hole()
     sk, sec = run("plate", mesh)
     total += sec
