@@ -31,8 +31,7 @@ __all__ = [
 #: which appear as the mesh collapses) would overflow.
 MAX_COT = 1.0e4
 #: A vertex nearer than the shrinking ball's ``ignore`` distance still stops the
-#: ball when the direction to it is within acos(OPPOSITE) of the inward normal
-#: and its normal faces the other way.
+#: ball when the direction to it is within acos(OPPOSITE) of the inward normal.
 OPPOSITE = 0.8
 
 
@@ -161,8 +160,7 @@ def medial_poles(
         Vertices closer than this to ``p`` never shrink its ball: on a
         sampled surface they only carry noise, not the opposite side
         (unless they lie nearly straight below ``p``, within acos(OPPOSITE)
-        of the inward normal, and face the other way: the other side of a
-        thin plate).
+        of the inward normal: the other side of a thin plate).
     iterations : int
         Upper bound on the shrinking steps.
     k : int
@@ -185,12 +183,9 @@ def medial_poles(
         _dist, cand = tree.query(centre, k=range(1, min(k, n) + 1), workers=-1)  # 2D even for k = 1
         rel = p[:, None, :] - points[cand]
         gap = np.linalg.norm(rel, axis=2)
-        # near vertices are noise unless they lie deep below the tangent plane
-        # and face the other way: the other side of a plate thinner than the
-        # ignored distance (not a step of a staircase surface, which faces out as p does)
-        below = np.einsum("qkd,qd->qk", rel, nrm) > OPPOSITE * gap
-        facing = np.einsum("qkd,qd->qk", normals[cand], nrm) < 0.0
-        far = (gap > ignore) | (below & facing)
+        # near vertices are noise unless they lie deep below the tangent plane:
+        # the other side of a plate thinner than the ignored distance
+        far = (gap > ignore) | (np.einsum("qkd,qd->qk", rel, nrm) > OPPOSITE * gap)
         first = np.argmax(far, axis=1)
         q_index = cand[np.arange(len(active)), first]
         q_index = np.where(far.any(axis=1), q_index, active)
