@@ -9,7 +9,8 @@ Au et al. (2008) correct by an embedding refinement. Tagliasacchi, Alhashim,
 Olson, Zhang (Mean Curvature Skeletons. Computer Graphics Forum 31(5) (Proc.
 SGP), 1735-1744, 2012) reach centred skeletons with a medial attraction term
 in the flow; here the nodes are centred after it, which leaves the flow and
-its topology alone and costs a fraction of a second.
+its topology alone (on a 164,000-vertex tripod, 1.5-1.9 s against 1.5 s for
+the ring fit alone before).
 
 Each node inside a branch (degree 2) moves within its plane across the branch:
 
