@@ -18,7 +18,8 @@ records:
   differ from: the table flags such models);
 * the seconds of the call (after a warm-up on a small sphere in the same
   process, so that loading compiled kernels is not counted) and the peak
-  memory (maximum resident set of the subprocess, ``os.wait4``);
+  memory (the subprocess's ``VmHWM`` after the call, warm-up included;
+  ``ru_maxrss`` from ``os.wait4`` if it was killed);
 * for voronoi, the two-sided check that each ball touches the input and
   holds none of it: ``trimesh.proximity.signed_distance`` of the points
   (a subset of ``--check-points``) against their radii, as the largest and
@@ -95,6 +96,21 @@ def _distance_check(mesh, points, radii, diagonal: float, n: int) -> dict:
     }
 
 
+def _peak_mb() -> int | None:
+    """This process's peak resident memory since it started its program (``VmHWM``), in MB.
+
+    Not ``ru_maxrss``: Linux carries the parent's resident set at the fork
+    over the ``exec`` into it, so a small worker would show the parent's size.
+    """
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("VmHWM:"):
+                return round(int(line.split()[1]) / 1024)
+    except OSError:
+        pass
+    return None
+
+
 def worker(path: str, method: str, check_points: int) -> dict:
     """Run one method on one model in this process; the record of :func:`run_one` without memory."""
     import warnings
@@ -129,6 +145,7 @@ def worker(path: str, method: str, check_points: int) -> dict:
         if text not in seen:
             seen.append(text)
     out["warnings"] = seen
+    out["peak_mb"] = _peak_mb()  # of the call, before the checks below
     if "refused" in out or "error" in out:
         return out
     t0 = time.perf_counter()
@@ -178,7 +195,10 @@ def run_one(path: Path, method: str, *, timeout: float, memory: float, check_poi
         tail = [line for line in stderr.strip().splitlines() if line.strip()][-1:] or [""]
         ended = (f"timeout after {timeout:g} s" if wall >= timeout else f"process ended with code {proc.returncode}")
         record = {"method": method, "error": f"{ended}: {tail[0][:300]}", "seconds": round(wall, 1), "warnings": []}
-    record["peak_mb"] = round(usage.ru_maxrss / 1024)  # ru_maxrss is in KiB on Linux
+    # the worker's own figure; else (killed) ru_maxrss, in KiB on Linux, at least the parent's size at the fork
+    record["maxrss_mb"] = round(usage.ru_maxrss / 1024)
+    if record.get("peak_mb") is None:
+        record["peak_mb"] = record["maxrss_mb"]
     record["wall_seconds"] = round(wall, 1)
     return record
 
