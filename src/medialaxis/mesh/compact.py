@@ -83,6 +83,9 @@ NEAR_BALLS = 4
 #: Spacing of the spheres sampled over new edges and triangles (in centre and radius), times the tolerance.
 LATTICE_SPACING = 2.0
 
+#: Rows (spheres, triangles) whose temporaries are made at once: memory bounded whatever the complex's size.
+CHUNK = 65_536
+
 #: Most rounds of collapses (each halves the remaining candidates or more in practice).
 MAX_ROUNDS = 400
 
@@ -112,11 +115,17 @@ def sphere_quadrics(points: np.ndarray, contacts: np.ndarray) -> tuple[np.ndarra
     to ``p``; the signed distance of a sphere ``s = (x, r)`` to it is
     ``n.(p - x) - r``, so its square is ``s.A.s - 2 b.s + c``.
     """
-    normal = contacts - points[:, None, :]
-    normal /= np.maximum(np.linalg.norm(normal, axis=2, keepdims=True), 1e-300)
-    a = np.concatenate([normal, np.ones(normal.shape[:2] + (1,))], axis=2)
-    d = np.einsum("ijk,ijk->ij", normal, contacts)
-    return np.einsum("ijk,ijl->ikl", a, a), np.einsum("ijk,ij->ik", a, d), (d * d).sum(axis=1)
+    n = len(points)
+    qa, qb, qc = np.empty((n, 4, 4)), np.empty((n, 4)), np.empty(n)
+    for lo in range(0, n, CHUNK):  # the temporaries of a chunk at a time (0.3 GB for 700,000 spheres at once)
+        part, touch = points[lo : lo + CHUNK], contacts[lo : lo + CHUNK]
+        normal = touch - part[:, None, :]
+        normal /= np.maximum(np.linalg.norm(normal, axis=2, keepdims=True), 1e-300)
+        a = np.concatenate([normal, np.ones(normal.shape[:2] + (1,))], axis=2)
+        d = np.einsum("ijk,ijk->ij", normal, touch)
+        qa[lo : lo + CHUNK], qb[lo : lo + CHUNK] = np.einsum("ijk,ijl->ikl", a, a), np.einsum("ijk,ij->ik", a, d)
+        qc[lo : lo + CHUNK] = (d * d).sum(axis=1)
+    return qa, qb, qc
 
 
 def complex_edges(faces: np.ndarray, edges: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -188,6 +197,7 @@ def compact_complex(
     rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
+        star = ok = cand = src = dst = cost = move = None  # the last round's, freed before this one's are made
         ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
         tri_count = np.diff(apex_ptr)
         ok = link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
@@ -264,28 +274,40 @@ def _inside(
     refused = np.zeros(len(src), bool)
     moving = np.zeros(n, bool)
     moving[src[chosen]] = True
-    faces, edges = faces[moving[faces].any(axis=1)], edges[moving[edges].any(axis=1)]  # all that may change
+    # all that may change, an edge as a triangle (a, b, b); CHUNK of them at a time: 2M on the first
+    # round of a 40k-vertex torus's complex, whose sample arrays took 0.3 GB at once
+    prims = (faces[moving[faces].any(axis=1)], edges[moving[edges].any(axis=1)][:, [0, 1, 1]])
     while True:
         to = np.arange(n)
         to[src[chosen]] = dst[chosen]
-        moved_faces = to[faces]
-        changed = (moved_faces != faces).any(axis=1) & ~_flat(moved_faces)
-        moved_edges = to[edges]
-        changed_edges = (moved_edges != edges).any(axis=1) & (moved_edges[:, 0] != moved_edges[:, 1])
-        before = np.concatenate([faces[changed], edges[changed_edges][:, [0, 1, 1]]])
-        after = np.concatenate([moved_faces[changed], moved_edges[changed_edges][:, [0, 1, 1]]])
-        samples, owner = lattice(spheres, after, np.c_[after, before], LATTICE_SPACING * tolerance, tolerance)  # corners old and new
-        k = min(NEAR_BALLS, n)
-        near, which = centres.query(samples[:, :3], k=k, workers=-1)
-        near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
-        far = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1) > tolerance
-        samples, owner = samples[far], owner[far]
-        deep = samples[:, 3] + signed(samples[:, :3], which[far]) > tolerance if len(samples) else np.zeros(0, bool)
-        if not deep.any():
-            return chosen, np.flatnonzero(refused), unique_ints(after)
-        culprit = np.isin(src[chosen], before[unique_ints(owner[deep])])
+        deep, touched = [np.empty((0, 3), np.int64)], [np.empty(0, np.int64)]
+        for part in (p[lo : lo + CHUNK] for p in prims for lo in range(0, len(p), CHUNK)):
+            after = to[part]
+            flat = (after[:, 0] == after[:, 1]) | (after[:, 2] == after[:, 0]) | ((after[:, 1] == after[:, 2]) & (part[:, 1] != part[:, 2]))
+            changed = (after != part).any(axis=1) & ~flat
+            touched.append(unique_ints(after[changed]))
+            deep.append(part[changed][_reaching_out(after[changed], part[changed], spheres, signed, centres, tolerance)])
+        deep_prims = np.concatenate(deep)
+        if not len(deep_prims):
+            return chosen, np.flatnonzero(refused), unique_ints(np.concatenate(touched))
+        culprit = np.isin(src[chosen], deep_prims)
         refused[chosen[culprit]] = True
         chosen = chosen[~culprit]
+
+
+def _reaching_out(
+    after: np.ndarray, before: np.ndarray, spheres: np.ndarray, signed: Callable[[np.ndarray, np.ndarray], np.ndarray],
+    centres: cKDTree, tolerance: float,
+) -> np.ndarray:
+    """Which primitives ``after`` (replacing ``before``) carry a sphere reaching more than ``tolerance`` out."""
+    samples, owner = lattice(spheres, after, np.c_[after, before], LATTICE_SPACING * tolerance, tolerance)  # corners old and new
+    k = min(NEAR_BALLS, len(spheres))
+    near, which = centres.query(samples[:, :3], k=k, workers=-1)
+    near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
+    far = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1) > tolerance
+    samples, owner = samples[far], owner[far]
+    deep = samples[:, 3] + signed(samples[:, :3], which[far]) > tolerance if len(samples) else np.zeros(0, bool)
+    return unique_ints(owner[deep])
 
 
 def _components_and_euler(n: int, faces: np.ndarray, edges: np.ndarray) -> tuple[int, int]:
