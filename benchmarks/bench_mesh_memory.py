@@ -96,12 +96,14 @@ name, vertices, path, method = {args!r}
 shape = model(name, vertices) if path is None else path
 start = time.perf_counter()
 ma = medialaxis.medial_axis(shape, method=method)
-print(json.dumps(dict(seconds=time.perf_counter() - start, betti=list(ma.betti), points=len(ma.points))))
+seconds = time.perf_counter() - start
+hwm = [int(line.split()[1]) for line in open("/proc/self/status") if line.startswith("VmHWM")]
+print(json.dumps(dict(seconds=seconds, betti=list(ma.betti), points=len(ma.points), peak_gb=hwm[0] / 1e6 if hwm else None)))
 """
 
 
 def run(name: str, vertices: int, path: str | None, method: str, limit_gb: float) -> dict[str, Any]:
-    """One call in a subprocess limited to ``limit_gb`` of address space: its figures and its own peak RSS."""
+    """One call in a subprocess limited to ``limit_gb`` of address space: its figures and its peak RSS."""
     limit = int(limit_gb * 1e9)
 
     def cap() -> None:
@@ -114,11 +116,14 @@ def run(name: str, vertices: int, path: str | None, method: str, limit_gb: float
         child.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
+        # the child's own high-water mark (VmHWM); ru_maxrss, for a run that failed, also counts the
+        # resident set of this process, which the child had at the fork
         peak = usage.ru_maxrss / 1e6  # kB on Linux
         if child.returncode != 0:
             lines = err.read().strip().splitlines() or [f"killed ({child.returncode})"]
             return {"error": lines[-1][:70], "peak_gb": peak}
-        return {**json.loads(out.read().strip().splitlines()[-1]), "peak_gb": peak}
+        figures = json.loads(out.read().strip().splitlines()[-1])
+        return {**figures, "peak_gb": figures["peak_gb"] or peak}
 
 
 def main() -> None:
