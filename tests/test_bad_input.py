@@ -243,7 +243,7 @@ def test_crossing_kernel_matches_its_reference():
 
     rng = np.random.default_rng(5)
     triangles = rng.normal(size=(400, 3, 3))
-    faces = rng.integers(0, 300, size=(400, 3))  # some pairs share a vertex index: never counted
+    faces = rng.integers(0, 300, size=(400, 3))  # some pairs share a vertex index: only folds count then
     pairs = rng.integers(0, 400, size=(3000, 2))
     pairs = pairs[pairs[:, 0] != pairs[:, 1]]
     hits_fast = [first_crossing(triangles, faces, pairs[k : k + 1], 1e-12) for k in range(len(pairs))]

@@ -69,14 +69,50 @@ def _shares_vertex(faces: np.ndarray, i: int, j: int) -> bool:
 
 
 @njit(cache=True, nogil=True)
+def _shared(faces: np.ndarray, i: int, j: int) -> int:
+    """How many vertices faces ``i`` and ``j`` share."""
+    count = 0
+    for a in range(3):
+        for b in range(3):
+            count += faces[i, a] == faces[j, b]
+    return count
+
+
+@njit(cache=True, nogil=True)
+def _fold_crosses(t: np.ndarray, u: np.ndarray, ct: int, cu: int, tol: float) -> bool:
+    """Whether triangles sharing one vertex (corner ``ct`` of ``t``, ``cu`` of ``u``) cross: an opposite edge through the other."""
+    if segment_crosses_triangle(t[(ct + 1) % 3], t[(ct + 2) % 3], u[0], u[1], u[2], tol):
+        return True
+    return segment_crosses_triangle(u[(cu + 1) % 3], u[(cu + 2) % 3], t[0], t[1], t[2], tol)
+
+
+@njit(cache=True, nogil=True)
+def _pair_crosses(triangles: np.ndarray, faces: np.ndarray, i: int, j: int, tol: float) -> bool:
+    """Whether faces ``i`` and ``j`` cross: sharing no vertex, or one (a fold through a neighbour), not an edge."""
+    shared = _shared(faces, i, j)
+    if shared == 0:
+        return _crosses(triangles[i], triangles[j], tol)
+    if shared > 1:
+        return False
+    for a in range(3):
+        for b in range(3):
+            if faces[i, a] == faces[j, b]:
+                return _fold_crosses(triangles[i], triangles[j], a, b, tol)
+    return False
+
+
+@njit(cache=True, nogil=True)
 def _cell_key(x: float, y: float, z: float) -> int:
     """One integer per grid cell (cell indices within +-2^20)."""
     return (np.int64(x) * 2097152 + np.int64(y)) * 2097152 + np.int64(z)
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore[no-untyped-def]
+def near_pairs(triangles, faces, centre, radius, members, cell, one_apart=True):  # type: ignore[no-untyped-def]
     """Pairs ``(i, j)``, ``i < j``, of ``members`` that may cross: bounding spheres and boxes meet, no shared vertex.
+
+    ``one_apart=False``: pairs sharing one vertex too (a face folded through
+    a neighbour of its corner), not those sharing an edge.
 
     The members are binned on a grid of side ``cell`` (at least the largest
     sum of two of their radii), so each is compared with those of its own
@@ -136,7 +172,9 @@ def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore
                         reach = sr[q] + sr[r]
                         if d2 > reach * reach:
                             continue
-                        if _boxes_apart(triangles[i], triangles[j]) or _shares_vertex(faces, i, j):
+                        if _boxes_apart(triangles[i], triangles[j]) or (
+                            _shares_vertex(faces, i, j) if one_apart else _shared(faces, i, j) >= 2
+                        ):
                             continue
                         if sweep == 1:
                             pairs[start[q] + found, 0] = min(i, j)
@@ -149,13 +187,13 @@ def near_pairs(triangles, faces, centre, radius, members, cell):  # type: ignore
 
 @njit(cache=True, nogil=True, parallel=True)
 def crossing_mask(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> np.ndarray:
-    """Whether each pair ``(i, j)`` of ``pairs`` is of triangles that share no vertex and cross (all cores)."""
+    """Whether each pair ``(i, j)`` of ``pairs`` crosses: sharing no vertex, or one and folded through (all cores)."""
     hit = np.zeros(len(pairs), np.bool_)
     for k in prange(len(pairs)):
         i, j = pairs[k, 0], pairs[k, 1]
         if _boxes_apart(triangles[i], triangles[j]):
             continue
-        if not _shares_vertex(faces, i, j) and _crosses(triangles[i], triangles[j], tol):
+        if _pair_crosses(triangles, faces, i, j, tol):
             hit[k] = True
     return hit
 
@@ -167,10 +205,17 @@ def first_crossing(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, 
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def planes_meet(triangles: np.ndarray, pairs: np.ndarray, tol: float) -> np.ndarray:
-    """Whether each pair's triangles may meet: neither lies wholly beyond ``tol`` on one side of the other's plane."""
+def planes_meet(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, tol: float) -> np.ndarray:
+    """Whether each pair's triangles may meet: neither lies wholly beyond ``tol`` on one side of the other's plane.
+
+    Pairs that share a vertex meet there: they count only where one is
+    folded through the other (:func:`crossing_mask` without tolerance).
+    """
     out = np.zeros(len(pairs), np.bool_)
     for k in prange(len(pairs)):
+        if _shared(faces, pairs[k, 0], pairs[k, 1]):
+            out[k] = _pair_crosses(triangles, faces, pairs[k, 0], pairs[k, 1], 0.0)
+            continue
         meet = True
         for side in range(2):
             t = triangles[pairs[k, side]]
@@ -206,10 +251,13 @@ def first_crossing_reference(triangles: np.ndarray, faces: np.ndarray, pairs: np
         return all(v > tol for v in s) or all(v < -tol for v in s)
 
     for k, (i, j) in enumerate(pairs):
-        if set(faces[i].tolist()) & set(faces[j].tolist()):
-            continue
+        shared = [(a, b) for a in range(3) for b in range(3) if faces[i][a] == faces[j][b]]
         t, u = triangles[i], triangles[j]
-        for e in range(3):
-            if seg(t[e], t[(e + 1) % 3], *u) or seg(u[e], u[(e + 1) % 3], *t):
+        if not shared:
+            if any(seg(t[e], t[(e + 1) % 3], *u) or seg(u[e], u[(e + 1) % 3], *t) for e in range(3)):
+                return k
+        elif len(shared) == 1:  # a fold: the edge opposite the shared corner through the other face
+            a, b = shared[0]
+            if seg(t[(a + 1) % 3], t[(a + 2) % 3], *u) or seg(u[(b + 1) % 3], u[(b + 2) % 3], *t):
                 return k
     return -1

@@ -268,7 +268,7 @@ def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0
     if len(pairs):
         from medialaxis.mesh._intersect_kernels import planes_meet
 
-        pairs = pairs[planes_meet(tri, pairs, tol)]
+        pairs = pairs[planes_meet(tri, faces, pairs, tol)]
     cuts = _Cuts(tri, faces, unit_vertices, tol)
     for i, j in pairs:
         _cut_pair(cuts, int(i), int(j))
@@ -298,7 +298,10 @@ def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0
     new_faces = label[new_faces]
     new_faces, keep_flip, dropped = _select(points, new_faces, origin, cuts.covered, tri)
     if not len(new_faces):
-        raise InvalidInputError("the mesh bounds no solid: its winding number is below 1/2 everywhere")
+        if dropped:
+            raise InvalidInputError("the mesh bounds no solid: its winding number is below 1/2 everywhere")
+        raise InvalidInputError(f"the mesh's faces vanish at the accuracy of its size ({size:.3g} across): its details "
+                                "are too small beside its extent to cut it where it passes through itself")
     used, inverse = np.unique(new_faces, return_inverse=True)
     return SolidSurface(points[used] * size + centre, inverse.reshape(-1, 3).astype(np.int64), len(touched),
                         dropped, keep_flip)
@@ -315,6 +318,8 @@ def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray,
     valid = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
     faces, origin = faces[valid], origin[valid]
     n = len(faces)
+    if not n:  # every face welded flat (coordinates far apart in scale)
+        return faces, 0, len(np.unique(origin))
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     owner = np.tile(np.arange(n), 3)
     _, inverse, counts = np.unique(edges, axis=0, return_inverse=True, return_counts=True)

@@ -84,9 +84,11 @@ def unit_triangles(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray,
 def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Pairs ``(i, j)`` of triangles that may cross (a superset: bounding spheres about the centroids meet).
 
+    Pairs sharing an edge cannot cross and are left out; pairs sharing one
+    vertex are kept (a face folded through a neighbour of its corner).
     Triangles up to twice the median size are binned on a grid
     (:func:`~medialaxis.mesh._intersect_kernels.near_pairs`, which also
-    drops the pairs with a shared vertex or apart bounding boxes); the
+    drops the pairs with apart bounding boxes); the
     larger ones (slivers, long CAD faces) are matched against every
     triangle within their own reach.
     """
@@ -101,7 +103,7 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
     pairs = []
     if len(idx) > 1:
         cell = max(2.0 * float(radius[idx].max()), 2.0**-19)  # ``tri`` lies in a unit box: at most 2^19 cells a side
-        pairs.append(near_pairs(tri, faces, centre, radius, idx, cell))
+        pairs.append(near_pairs(tri, faces, centre, radius, idx, cell, False))
     big = np.flatnonzero(~small)
     if len(big):
         near = cKDTree(centre).query_ball_point(centre[big], radius[big] + float(radius.max()), return_sorted=False)
@@ -110,13 +112,13 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
         bs = np.repeat(big, count)
         keep = (js != bs) & (small[js] | (js > bs))  # big-big pairs once
         keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
-        keep &= ~(faces[bs][:, :, None] == faces[js][:, None, :]).any(axis=(1, 2))
+        keep &= (faces[bs][:, :, None] == faces[js][:, None, :]).sum(axis=(1, 2)) < 2  # not an edge apart
         pairs.append(np.column_stack([bs[keep], js[keep]]))
     return np.ascontiguousarray(np.vstack(pairs), dtype=np.int64) if pairs else np.empty((0, 2), np.int64)
 
 
 def crossing_pairs(mesh: Any) -> np.ndarray:
-    """Pairs ``(i, j)`` of faces that share no vertex and cross: the surface passes through itself there.
+    """Pairs ``(i, j)`` of faces that cross (sharing no vertex, or one): the surface passes through itself there.
 
     Faces that only touch (a boolean union's touching edge, coincident
     vertices) do not count.

@@ -125,13 +125,17 @@ def _check_stl(path: Path) -> None:
     )
 
 
-def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: np.ndarray | None = None) -> Any:
+def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: np.ndarray | None = None,
+                  *, force: bool = False) -> Any:
     """``work``, or where its faces cross or its shells overlap or nest, the surface of its solid.
 
     The solid is where the generalized winding number is at least 1/2
     (:mod:`medialaxis.mesh.arrangement`); what was found goes to ``found``
     and ``repairs``, and a :class:`~medialaxis.errors.MedialAxisWarning` says it.
-    ``pairs``: the crossing face pairs when the caller has them.
+    ``pairs``: the crossing face pairs when the caller has them. ``force``:
+    cut along where faces meet (within the coordinates' accuracy) even
+    where no face crosses another strictly (a crossing through a vertex);
+    ``work`` itself if that changes nothing.
     """
     from medialaxis.mesh.arrangement import solid_surface
     from medialaxis.mesh.crossings import crossing_pairs, nested_shell
@@ -139,10 +143,12 @@ def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: n
 
     pairs = crossing_pairs(work) if pairs is None else pairs
     nested = nested_shell(work) if not len(pairs) else None
-    if not len(pairs) and nested is None:
+    if not len(pairs) and nested is None and not force:
         return work
     vertices = np.asarray(work.vertices)
     surface = solid_surface(vertices, np.asarray(work.faces), coordinate_accuracy(vertices))
+    if force and not (surface.cut_faces or surface.dropped_faces or surface.flipped_faces):
+        return work
     solid = type(work)(surface.vertices, surface.faces, process=False)
     if not _closed(solid) or not solid.is_winding_consistent:
         raise InvalidInputError(
@@ -151,7 +157,8 @@ def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: n
             "(e.g. a mesh boolean union or a remesher) first"
         )
     what = (f"the surface passes through itself ({len(pairs)} pairs of faces cross)" if len(pairs)
-            else f"shell {nested} lies inside another shell's solid (nested or overlapping shells)")
+            else f"shell {nested} lies inside another shell's solid (nested or overlapping shells)" if nested is not None
+            else "the surface passes through itself (where faces meet at a vertex or an edge)")
     done = (f"{surface.cut_faces} faces cut where others cross them, {surface.dropped_faces} left out inside or "
             f"outside the solid" + (f", {surface.flipped_faces} turned over" if surface.flipped_faces else ""))
     found.update(crossing_face_pairs=int(len(pairs)), nested_shells=int(nested is not None),

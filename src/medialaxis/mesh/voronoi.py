@@ -27,7 +27,6 @@ from typing import Any, Literal
 import numpy as np
 
 from medialaxis._jit import Beside
-from medialaxis.core.arrays import unique_ints
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import (
@@ -49,7 +48,7 @@ from medialaxis.mesh.sampling import (
     thin_part_count,
 )
 from medialaxis.mesh.signed_distance import SignedDistance
-from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, medial_complex
+from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, euler_characteristic, medial_complex
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
@@ -59,8 +58,7 @@ __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM
 #: sample to converge (Chazal and Lieutier; paper 001); 0.65 keeps the
 #: capsule's axis within 3 % and 95 % of a box's volume covered.
 LAM_FACTOR = 0.65
-#: Largest relative difference between the volume of the inner Delaunay
-#: tetrahedra and the mesh's signed volume before a warning (a coarse sample).
+#: Largest relative gap between the inner Delaunay tetrahedra's volume and the mesh's.
 VOLUME_TOLERANCE = 2e-3
 #: A tetrahedron is inner when its centroid is deeper than this fraction of
 #: its longest edge (see :func:`_classify_tets`). Surface slivers on a sphere
@@ -72,21 +70,6 @@ FLAT_DEPTH = 1e-5
 #: reach further into a ball empty of samples; 2 allows for epsilon being
 #: measured on random points, from below).
 EMPTY_BALL_SLACK = 2.0
-
-
-def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | None = None) -> int:
-    """Euler characteristic ``V - E + F`` of a simplicial 2-complex.
-
-    ``E`` counts the distinct edges of the triangles and of ``edges``.
-    """
-    f = np.asarray(faces, np.int64).reshape(-1, 3)
-    e = [np.sort(f[:, [0, 1]], 1), np.sort(f[:, [1, 2]], 1), np.sort(f[:, [2, 0]], 1)]
-    if edges is not None:
-        e.append(np.sort(np.asarray(edges, np.int64).reshape(-1, 2), 1))
-    pairs = np.concatenate(e)
-    n = max(int(n_points), int(pairs.max()) + 1 if len(pairs) else 1)
-    n_edges = len(unique_ints(pairs[:, 0] * n + pairs[:, 1]))
-    return int(n_points - n_edges + len(f))
 
 
 def _inner_tets(dt: Any, smp: Any, sd: SignedDistance, tolerance: float) -> np.ndarray:
@@ -114,11 +97,11 @@ def _beside_delaunay(
     return pairs, eps, eps_lfs, SignedDistance(work, normals)
 
 
-def _solid_of(src: MeshInput, pairs: np.ndarray) -> MeshInput:
+def _solid_of(src: MeshInput, pairs: np.ndarray, force: bool = False) -> MeshInput:
     """The input whose surface crosses itself at ``pairs`` as the surface of its solid (winding number)."""
     repairs, found = list(src.repairs), dict(src.found)
-    solid = resolve_solid(src.mesh, repairs, found, pairs)
-    return MeshInput(solid, tuple(repairs), signed_volume(solid.triangles), found)
+    solid = resolve_solid(src.mesh, repairs, found, pairs, force=force)
+    return src if solid is src.mesh else MeshInput(solid, tuple(repairs), signed_volume(solid.triangles), found)
 
 
 def voronoi_medial_axis(
@@ -211,10 +194,9 @@ def voronoi_medial_axis(
         (always, except possibly for facets kept only for topology),
         ``face_contact_diameter``
         (k,) the Delaunay edge length of each triangle's facet,
-        ``face_certified`` (k,) whether that facet is one of Algorithm 5
-        (at least ``lam`` wide, all vertices inside and no nearer the mesh
-        than their circumradius minus ``EMPTY_BALL_SLACK`` epsilons) rather than kept for
-        topology (``metadata["n_filling_faces"]`` counts those). Metadata:
+        ``face_certified`` (k,) whether that facet is one of Algorithm 5 (at least
+        ``lam`` wide, all vertices inside and no nearer the mesh than their circumradius
+        minus ``EMPTY_BALL_SLACK`` epsilons) rather than kept for topology. Metadata:
         ``lam``, ``epsilon`` (measured ``max d(x, P)``), ``epsilon_lfs``
         (the same relative to the estimated local feature size),
         ``lam_bound`` (the lambda of Algorithm 5 step 3 as we read the
@@ -222,9 +204,9 @@ def voronoi_medial_axis(
         bounding-box diagonal standing for the diameter: a worst-case bound,
         usually larger than the shape, hence the practical default ``lam``),
         ``euler_characteristic``, ``n_filling_faces``, ``timings`` (seconds
-        per step; ``epsilon`` is the wait for the work done beside the
-        Delaunay insertion: the self-intersection check, epsilon and the
-        closest-point structure) and ``delaunay_share``. The compact complex keeps a subset
+        per step; ``epsilon`` is the wait for the work done beside the Delaunay
+        insertion: the crossing check, epsilon, the closest-point structure),
+        ``delaunay_share`` and ``defects`` (crossings, holes). The compact complex keeps a subset
         of these points (extras follow them) and adds ``compact`` (the
         collapse rule that ran), ``compact_tolerance``, ``full_points`` and
         ``full_faces``.
@@ -297,8 +279,8 @@ def voronoi_medial_axis(
             continue
         timings["sampling"] = time.perf_counter() - t0
 
-        # the self-intersection check, epsilon and the closest-point structure run on the core the
-        # serial Delaunay insertion leaves idle (about 0.6 s of the uv ellipsoid's 10.5)
+        # the crossing check, epsilon and the closest-point structure run on the core the serial
+        # Delaunay insertion leaves idle (about 0.6 s of the uv ellipsoid's 10.5)
         t0 = time.perf_counter()
         side = Beside(_beside_delaunay, work, smp.points, rng, tree, normals)
         try:
@@ -310,19 +292,25 @@ def voronoi_medial_axis(
         timings["delaunay"] = time.perf_counter() - t0
         t0 = time.perf_counter()
         pairs, eps, eps_lfs, sd = side.result()
+        timings["epsilon"] = time.perf_counter() - t0
         if not len(pairs):
-            break
-        src = _solid_of(src, pairs)
+            t0 = time.perf_counter()
+            inner = _inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
+            union_volume = float(dt.volume[inner].sum())
+            timings["inside"] = time.perf_counter() - t0
+            if abs(union_volume - src.volume) <= VOLUME_TOLERANCE * src.volume or src.found:
+                break
+            # faces crossing at the accuracy of the coordinates (through a vertex): the winding number decides
+            solid = _solid_of(src, pairs, force=True)
+            if solid is src:
+                break
+            src = solid
+        else:
+            src = _solid_of(src, pairs)
         work = src.mesh
     assert dt is not None and sd is not None
     lam_used = LAM_FACTOR * float(np.sqrt(eps * diag)) if lam_given is None else lam_given
-    timings["epsilon"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
     point_spacing = np.asarray(spacing)[smp.face]  # that of its face (a sample on an edge takes one of them)
-    inner = _inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
-    timings["inside"] = time.perf_counter() - t0
-    union_volume = float(dt.volume[inner].sum())
     if abs(union_volume - src.volume) > VOLUME_TOLERANCE * src.volume:
         # crossings and nested shells were resolved above: what is left is a sample too coarse somewhere
         warnings.warn(
@@ -330,8 +318,7 @@ def voronoi_medial_axis(
             f"{src.volume:.6g} ({100 * abs(union_volume / src.volume - 1):.2g}% apart): the sample may miss thin or "
             "sharp parts; raise samples", MedialAxisWarning, stacklevel=2)
 
-    t0 = time.perf_counter()
-    n_tets = len(dt.simplices)
+    t0, n_tets = time.perf_counter(), len(dt.simplices)
     signed = np.full(n_tets, np.inf)  # of the circumcentres queried (negative inside)
     closest = np.full((n_tets, 3), np.nan)
 
@@ -357,6 +344,10 @@ def voronoi_medial_axis(
     used = cx.tets
     todo = used[~np.isfinite(signed[used])]
     signed[todo], closest[todo] = sd.query(dt.centres[todo], smp.face[dt.simplices[todo]])
+    stray = used[(signed[used] >= 0) | (dt.radii[used] >= diag)]  # kept for topology, its circumcentre out or far
+    if len(stray):  # the centroid of its (inner) tetrahedron stands for it: far circumcentres broke compaction
+        dt.centres[stray] = tet_centroids(dt.points, dt.simplices[stray])
+        signed[stray], closest[stray] = sd.query(dt.centres[stray], smp.face[dt.simplices[stray]])
     points = dt.centres[used]
     radii = np.abs(signed[used])
     inside = signed[used] < 0

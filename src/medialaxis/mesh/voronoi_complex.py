@@ -44,7 +44,7 @@ from medialaxis.mesh._ring_kernels import (
 from medialaxis.mesh._voronoi_kernels import minor_star_groups
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 
-__all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "TOPOLOGY_MODES"]
+__all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "euler_characteristic", "TOPOLOGY_MODES"]
 
 TOPOLOGY_MODES = ("preserve", "lambda")
 #: A facet narrower than lambda spans a thin part when its contact points
@@ -86,6 +86,21 @@ class MedialComplex:
     face_certified: np.ndarray
     edges: np.ndarray
     n_curve_edges: int
+
+
+def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | None = None) -> int:
+    """Euler characteristic ``V - E + F`` of a simplicial 2-complex.
+
+    ``E`` counts the distinct edges of the triangles and of ``edges``.
+    """
+    f = np.asarray(faces, np.int64).reshape(-1, 3)
+    e = [np.sort(f[:, [0, 1]], 1), np.sort(f[:, [1, 2]], 1), np.sort(f[:, [2, 0]], 1)]
+    if edges is not None:
+        e.append(np.sort(np.asarray(edges, np.int64).reshape(-1, 2), 1))
+    pairs = np.concatenate(e)
+    n = max(int(n_points), int(pairs.max()) + 1 if len(pairs) else 1)
+    n_edges = len(unique_ints(pairs[:, 0] * n + pairs[:, 1]))
+    return int(n_points - n_edges + len(f))
 
 
 def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
