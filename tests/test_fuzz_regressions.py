@@ -168,3 +168,22 @@ def test_a_ring_of_near_duplicate_vertices_is_kept_not_a_crash():
     shape = shapely.Polygon([(0, 0), (100, 0), (100, 60), (0, 60)], [hole])
     with pytest.raises(mx.InvalidInputError, match="a ring"):  # the hole is below the resolution: named
         mx.medial_axis(shape)
+
+
+@pytest.mark.parametrize("make, vertex, z", [("ico", 33, 36.0), ("capsule", 12, 3.0)])
+def test_a_vertex_pulled_through_the_solid_is_cut_by_winding_number_not_left_to_hang(make, vertex, z):
+    """A spike through the far side (once refused by the volume check; then compaction hung on a 4e14 radius)."""
+    import warnings
+
+    trimesh = pytest.importorskip("trimesh")
+    mesh = {"ico": lambda: trimesh.creation.icosphere(subdivisions=1),
+            "capsule": lambda: trimesh.creation.capsule(height=1.0, radius=0.4, count=[8, 8])}[make]()
+    vertices = mesh.vertices.copy()
+    vertices[vertex, 2] = z  # the fuzz harness's copy_number mutation
+    spiked = trimesh.Trimesh(vertices, mesh.faces, process=False)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ma = mx.medial_axis(spiked, samples=1000)
+    assert any("passes through itself" in str(w.message) for w in caught)
+    assert ma.radii.max() < 2.0 * z  # no ball from far away
+    assert ma.betti[0] == 1
