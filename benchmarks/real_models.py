@@ -1,16 +1,24 @@
-"""Real closed triangle meshes of genus 0 to 8 for benchmarks.
+"""Real triangle meshes for benchmarks, pinned to a commit and checked by SHA-256.
 
-Eleven scanned or modelled watertight, consistently oriented 2-manifolds from
-public GitHub repositories, pinned to a commit and checked by SHA-256. A model
-missing from the cache is downloaded from raw.githubusercontent.com; a model
-already in the cache is used as it is. ``licence`` names the host repository's
-licence and the model's origin; none of the models is redistributed here.
-All are free of non-manifold edges and vertices, but the bunny's faces point
-inward and the seahorse has 16 faces crossing others.
+``MODELS``: eleven scanned or modelled watertight, consistently oriented
+2-manifolds of genus 0 to 8 (the bunny's faces point inward, the seahorse has
+27 pairs of faces crossing). ``AS_GIVEN`` (issue 31, ``bench_mesh_routes.py``):
+46 more meshes as people have them, 1k-62k vertices: scans, ABC CAD exports
+whose patches do not share their seam vertices, Thingi10K solids up to genus
+24, and meshes with crossing faces, holes, non-manifold edges, several shells,
+inconsistent winding, a triangle soup. ``ALL_MODELS`` is both. The genus is
+the sum over shells from the Euler characteristic, holes counted as capped
+(half-integers: a pinched vertex).
+
+A model missing from the cache is downloaded from raw.githubusercontent.com,
+or (``--from-mirror DIR``) read from local git clones; a model already in the
+cache is used as it is. ``licence`` names the host repository's licence and
+the model's origin; none of the models is redistributed here.
 
 Usage::
 
     python benchmarks/real_models.py --list [--cache DIR]
+    python benchmarks/real_models.py [--all] [--from-mirror /work/.mirror]
 
 The cache defaults to ``$MEDIALAXIS_MODELS`` or ``~/.cache/medialaxis-models``.
 """
@@ -50,6 +58,8 @@ _ROWS = [
     ("rolling-stage", _DIRECTIONAL, "tutorial/data/rolling_stage.obj", 7, 49988,
      f"{_NO_LICENCE} (sources MPL-2.0); origin unstated, name of AIM@SHAPE Rolling Stage"),
     ("seahorse", _AVAXMAN, "data/seahorse2_100K.off", 8, 49986, f"{_NO_LICENCE}; origin unstated"),
+]
+_AS_GIVEN_ROWS = [
     # meshes as people have them (issue 31): scans, CAD exports with unwelded seams, crossing faces,
     # small holes, non-manifold edges, several shells, a triangle soup; the genus is from the Euler
     # characteristic with the holes capped (half-integers: pinched vertices)
@@ -205,19 +215,27 @@ _SHA256 = {
     "camel-pinched": "91f7a9a22a273e3dc4c9eab85674ac2a04355f21699a18032f2d5f1f7a7f62c4",
     "truck": "c3aeca508490cbb8a0d58131619685b6cee82eb51c0af4ded984dac5ee9f3c11",
 }
-MODELS = [
-    {
-        "name": name,
-        "repo": repo,
-        "commit": commit,
-        "path": path,
-        "licence": licence,
-        "genus": genus,
-        "vertices": vertices,
-        "sha256": _SHA256[name],
-    }
-    for name, (repo, commit), path, genus, vertices, licence in _ROWS
-]
+
+
+def _table(rows: list) -> list[dict]:
+    return [
+        {
+            "name": name,
+            "repo": repo,
+            "commit": commit,
+            "path": path,
+            "licence": licence,
+            "genus": genus,
+            "vertices": vertices,
+            "sha256": _SHA256[name],
+        }
+        for name, (repo, commit), path, genus, vertices, licence in rows
+    ]
+
+
+MODELS = _table(_ROWS)
+AS_GIVEN = _table(_AS_GIVEN_ROWS)
+ALL_MODELS = MODELS + AS_GIVEN
 
 
 def default_cache() -> Path:
@@ -240,12 +258,13 @@ def _sha256(path: Path) -> str:
 
 
 def _select(names: list[str] | None) -> list[dict]:
+    """``MODELS`` by default (the benchmarks written for them), else the named ones of ``ALL_MODELS``."""
     if names is None:
         return MODELS
-    unknown = set(names) - {m["name"] for m in MODELS}
+    unknown = set(names) - {m["name"] for m in ALL_MODELS}
     if unknown:
         raise ValueError(f"unknown models: {', '.join(sorted(unknown))}")
-    return [m for m in MODELS if m["name"] in names]
+    return [m for m in ALL_MODELS if m["name"] in names]
 
 
 def fetch_models(cache_dir: str | os.PathLike, names: list[str] | None = None) -> dict[str, Path]:
@@ -256,7 +275,7 @@ def fetch_models(cache_dir: str | os.PathLike, names: list[str] | None = None) -
     cache_dir : str or os.PathLike
         Directory holding ``<name><suffix>`` files; created if absent.
     names : list of str, optional
-        Only these models (default: all).
+        These models of ``ALL_MODELS`` (default: ``MODELS``).
 
     Returns
     -------
@@ -310,7 +329,7 @@ def fill_from_mirror(cache_dir: str | os.PathLike, mirror_dir: str | os.PathLike
         (a git directory, bare or with a ``.git``), ``owner+name`` or
         ``owner/name``; each model is read with ``git show commit:path``.
     names : list of str, optional
-        Only these models (default: all).
+        These models of ``ALL_MODELS`` (default: ``MODELS``).
 
     Returns
     -------
@@ -422,17 +441,25 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--cache", type=Path, default=default_cache(), help="model cache directory")
     parser.add_argument("--list", action="store_true", help="print the cached models without downloading")
+    parser.add_argument("--all", action="store_true", help="ALL_MODELS, not only MODELS")
+    parser.add_argument("--from-mirror", type=Path, help="fill the cache from local git clones (owner+name/repo)")
     args = parser.parse_args()
 
+    models = ALL_MODELS if args.all else MODELS
+    names = [m["name"] for m in models]
     if args.list:
-        paths = {m["name"]: _cached(args.cache, m) for m in MODELS if _cached(args.cache, m).exists()}
+        paths = {m["name"]: _cached(args.cache, m) for m in models if _cached(args.cache, m).exists()}
+    elif args.from_mirror:
+        paths = fill_from_mirror(args.cache, args.from_mirror, names)
     else:
-        paths = fetch_models(args.cache)
-    print(f"{'name':<13} {'vertices':>8} {'genus':>5} {'watertight':>10}  licence")
-    for model in MODELS:
+        paths = fetch_models(args.cache, names)
+    print(f"{'name':<16} {'vertices':>8} {'shells':>6} {'genus':>5} {'holes':>5} {'crossing':>8} watertight oriented"
+          "  licence")
+    for model in models:
         if model["name"] in paths:
             d = describe(paths[model["name"]])
-            row = f"{model['name']:<13} {d['vertices']:>8} {d['genus']:>5g} {d['watertight']!s:>10}"
+            row = (f"{model['name']:<16} {d['vertices']:>8} {d['components']:>6} {d['genus']:>5g} {d['holes']:>5} "
+                   f"{d['crossing_pairs']!s:>8} {d['watertight']!s:>10} {d['oriented']!s:>8}")
             print(f"{row}  {model['licence']}")
 
 
