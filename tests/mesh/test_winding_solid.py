@@ -141,3 +141,13 @@ def test_the_same_result_with_or_without_a_second_thread(monkeypatch):
             results.append(mx.medial_axis(soup, method="voronoi", samples=5000))
     assert np.array_equal(results[0].points, results[1].points)
     assert results[0].betti == (1, 0, 0)
+
+
+def test_a_triangle_soup_with_a_hole_is_welded_before_its_hole_is_capped():
+    sphere = trimesh.creation.icosphere(3)
+    keep = np.arange(1, len(sphere.faces))  # one face missing
+    soup = trimesh.Trimesh(sphere.triangles[keep].reshape(-1, 3), np.arange(3 * len(keep)).reshape(-1, 3), process=False)
+    with pytest.warns(mx.MedialAxisWarning, match="closed 1 holes"):
+        ma = mx.medial_axis(soup, method="flow")
+    assert ma.betti[:2] == (1, 0)
+    assert any("welded" in r for r in ma.metadata["repairs"])

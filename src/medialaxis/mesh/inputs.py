@@ -169,6 +169,12 @@ def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: n
     return solid
 
 
+def _edge_defects(mesh: Any) -> tuple[int, int]:
+    """Edges shared by more than two faces, and open edges (one face)."""
+    shared = np.bincount(mesh.edges_unique_inverse, minlength=len(mesh.edges_unique))
+    return int((shared > 2).sum()), int((shared == 1).sum())
+
+
 def _closed(mesh: Any) -> bool:
     """Every edge (by vertex index) shared by exactly two faces."""
     return bool(mesh.is_watertight)
@@ -229,8 +235,7 @@ def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, i
     """The open ``work`` with its holes capped (:mod:`medialaxis.mesh.holes`): small ones always, any with ``repair``."""
     from medialaxis.mesh.holes import boundary_loops, cap_holes
 
-    shared = np.bincount(work.edges_unique_inverse, minlength=len(work.edges_unique))
-    open_edges, crowded = int((shared == 1).sum()), int((shared > 2).sum())
+    crowded, open_edges = _edge_defects(work)
     refusal = (f"the mesh is not watertight ({open_edges} open edges, {crowded} edges shared by more than two "
                "faces); close it first")
     if crowded:
@@ -314,7 +319,7 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
         welded.merge_vertices(merge_tex=True, merge_norm=True)
         welded = trimesh.Trimesh(welded.vertices, _drop_bad_faces(welded.vertices, welded.faces, [], flat=not watertight),
                                  process=False)  # faces whose corners were welded together
-        if _closed(welded) or not watertight:
+        if _closed(welded) or not watertight or _edge_defects(welded) < _edge_defects(work):  # seams welded, holes left
             if len(welded.vertices) < len(work.vertices):
                 repairs.append(f"welded {len(work.vertices) - len(welded.vertices)} coincident vertices")
             work = welded
