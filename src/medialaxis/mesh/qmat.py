@@ -33,6 +33,7 @@ from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh.compact import sphere_quadrics
 from medialaxis.mesh.envelope import envelope_gap, surface_sample, two_sided_distance
+from medialaxis.mesh.medial_candidates import MedialCandidates
 
 __all__ = ["simplify_medial_mesh", "check_simplify", "REGULARISATION"]
 
@@ -46,6 +47,17 @@ REGULARISATION = 1e-3
 #: Ten real models at 200 spheres, median / worst two-sided error measured apart:
 #: 0.1: 1.54 / 2.15%, 0.15: 1.52 / 2.15%, 0.2: 1.49 / 2.15%, 0.25: 1.45 / 2.15%.
 REPAIR_SHARE = 0.25
+
+#: ``mode`` of :func:`simplify_medial_mesh`: ``"medial"`` keeps only spheres of the medial complex
+#: that touch two sides (:class:`~medialaxis.mesh.medial_candidates.MedialCandidates`); ``"packing"`` keeps the collapses' quadric optima and
+#: shrinking balls at the farthest surface points (a tighter fill, fewer spheres medial, some
+#: poking out: the default before issue 31).
+MODES = ("medial", "packing")
+
+#: In ``mode="medial"``, a surface point that no medial candidate reaches within this share of its
+#: gap gets the shrinking ball there instead (a patch: convex corners, where the medial spheres shrink
+#: to nothing before their contacts span 90 degrees).
+PATCH_GAP = 0.9
 
 #: Sphere count the search for ``simplify=e`` (an error bound) starts from, doubling.
 MIN_SEARCH = 32
@@ -109,7 +121,7 @@ def _pair_costs(qa, qb, qc, spheres, reg, pairs):  # type: ignore[no-untyped-def
 
 
 def simplify_medial_mesh(
-    ma: MedialAxis, simplify: int | float, surface: Any = None, signed: Any = None
+    ma: MedialAxis, simplify: int | float, surface: Any = None, signed: Any = None, mode: str = "medial"
 ) -> MedialAxis:
     """Reduce a medial mesh to fewer spheres by edge collapses of least spherical quadric error.
 
@@ -136,6 +148,16 @@ def simplify_medial_mesh(
         The input surface, for the Hausdorff distance (default ``ma.shape``).
     signed : SignedDistance, optional
         Of ``surface``, when the caller has one (made here otherwise).
+    mode : {"medial", "packing"}
+        ``"medial"`` (default): every sphere kept is a sphere of the medial
+        complex (``ma`` or the full complex ``ma.raw``) whose contacts span
+        at least 90 degrees from its centre, so it touches two sides of the
+        surface and lies inside: a collapse's quadric optimum is replaced by
+        the nearby such sphere of least quadric error, and the spheres added
+        where the surface is farthest out are such spheres too.
+        ``"packing"``: the optima and shrinking balls as they come (a
+        tighter fill of the shape, lower error, but many spheres touch one
+        side only or poke out; see ``benchmarks/bench_simplify_medial.py``).
 
     Returns
     -------
@@ -168,6 +190,8 @@ def simplify_medial_mesh(
     40
     """
     check_simplify(simplify)
+    if mode not in MODES:
+        raise InvalidInputError(f"simplify mode must be one of {', '.join(MODES)}, got {mode!r}")
     if ma.dim != 3:
         raise InvalidInputError("simplify applies to 3D medial meshes")
     if surface is None:
@@ -176,12 +200,17 @@ def simplify_medial_mesh(
     points = np.asarray(surface.vertices) if measured else ma.points
     diag = float(np.linalg.norm(np.ptp(points, axis=0))) if len(points) else 0.0
     sample = surface_sample(surface) if measured else None
-    metadata = dict(ma.metadata, simplified=True, diagonal=diag)
+    metadata = dict(ma.metadata, simplified=True, diagonal=diag, simplify_mode=mode)
+    if measured and signed is None:
+        from medialaxis.mesh.signed_distance import SignedDistance
+
+        signed = SignedDistance(surface)  # one for every count tried
+    medial = MedialCandidates(ma) if mode == "medial" else None
     if isinstance(simplify, (int, np.integer)):
-        parts = _reduce(ma, int(simplify), None, sample)
+        parts = _reduce(ma, int(simplify), None, sample, medial)
         errors = two_sided_distance(*parts, surface, sample, signed=signed) if measured else None
     elif measured:
-        parts, errors = _fewest(ma, float(simplify) * diag, surface, sample, signed)
+        parts, errors = _fewest(ma, float(simplify) * diag, surface, sample, signed, medial)
         metadata["target_met"] = max(errors) <= float(simplify) * diag
     else:
         parts, errors = _reduce(ma, 1, float(simplify) * diag, None), None
@@ -194,7 +223,7 @@ def simplify_medial_mesh(
 
 
 def _fewest(
-    ma: MedialAxis, bound: float, surface: Any, sample: Any, signed: Any = None
+    ma: MedialAxis, bound: float, surface: Any, sample: Any, signed: Any, medial: Any
 ) -> tuple[tuple, tuple[float, float]]:
     """The fewest spheres (to a tenth) whose two-sided error is at most ``bound``: doubling, then bisection.
 
@@ -202,14 +231,11 @@ def _fewest(
     own are placed by the cover repair); when even these miss the bound, the
     most accurate result tried is returned.
     """
-    from medialaxis.mesh.signed_distance import SignedDistance
-
     tried: dict[int, tuple[tuple, tuple[float, float]]] = {}
-    signed = SignedDistance(surface) if signed is None else signed  # one for every count tried
 
     def error(k: int) -> float:
         if k not in tried:
-            parts = _reduce(ma, k, None, sample)
+            parts = _reduce(ma, k, None, sample, medial)
             tried[k] = (parts, two_sided_distance(*parts, surface, sample, signed=signed))
         return max(tried[k][1])
 
@@ -228,7 +254,7 @@ def _fewest(
     return tried[hi]
 
 
-def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tuple:
+def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any, medial: Any = None) -> tuple:
     """``(centres, radii, edges, faces)`` of ``ma`` collapsed to ``count`` spheres, or until the root quadric error passes ``bound``.
 
     With a surface ``sample``, ``REPAIR_SHARE`` of the ``count`` spheres (or all
@@ -274,7 +300,7 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tup
         if bound is not None and np.sqrt(cost) > bound:
             break
         s, _ = _optimum(qa[i] + qa[j], qb[i] + qb[j], qc[i] + qc[j], spheres[i], spheres[j], reg)
-        spheres[i] = s
+        spheres[i] = s if medial is None else medial.snap(s, qa[i] + qa[j], qb[i] + qb[j])
         qa[i] += qa[j]
         qb[i] += qb[j]
         qc[i] += qc[j]
@@ -311,7 +337,7 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any) -> tup
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
     curve = np.array(curve, np.int64).reshape(-1, 2)
     if repair:
-        centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, sample, repair)
+        centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
     return centres, radii, curve, out_faces
 
 
@@ -335,7 +361,8 @@ def _medial_ball(p: np.ndarray, n: np.ndarray, tree: cKDTree, samples: np.ndarra
 
 
 def _cover_repair(
-    centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, sample: Any, extra: int
+    centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, sample: Any, extra: int,
+    medial: Any = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Add ``extra`` spheres where the surface is farthest outside the interpolated spheres.
 
@@ -356,7 +383,9 @@ def _cover_repair(
         w = int(np.argmax(gap))
         if gap[w] <= 0:
             break
-        c, r = _medial_ball(x[w], normals[w], sample_tree, x, start)
+        c, r = medial.cover(x[w]) if medial is not None else (x[w], -np.inf)
+        if np.linalg.norm(x[w] - c) - r > PATCH_GAP * gap[w]:  # no medial sphere reaches it: a patch
+            c, r = _medial_ball(x[w], normals[w], sample_tree, x, start)
         if r <= 0.0:
             gap[w] = 0.0
             continue

@@ -1,0 +1,291 @@
+"""Simplified medial meshes: are their spheres medial? Error, medial share, inside share, seconds (issue 31).
+
+A sphere of a simplified medial mesh stands for the medial axis only if it
+touches the surface on two sides. The measure here (the issue's definition),
+computed apart from the package:
+
+* the input surface is sampled independently and densely
+  (``trimesh.sample.sample_surface_even``, 200,000 points, not the
+  package's sampler);
+* a sphere ``(c, r)`` is **medial** when the samples within ``2%`` of ``r``
+  of its sphere (``| |p - c| - r | <= 0.02 r``) span at least 90 degrees as
+  seen from ``c`` (some two of them, ``u.v <= 0`` for their directions
+  ``u, v`` from ``c``): it touches two sides. One that touches one side only
+  is a patch (or, touching nothing, a filler);
+* a sphere is **inside** when ``trimesh.proximity.signed_distance`` of its
+  centre is at least ``0.98 r`` (it holds no more than 2% of its radius of
+  the outside);
+* the two-sided error is ``mat_error.two_sided_error`` (balls interpolated
+  over the edges and triangles, the triangles' sides among the edges), the
+  larger of the two directions, in percent of the bounding-box diagonal
+  (for MATFP's thousands of spheres, the package's exact envelope instead:
+  ``mat_error``'s Python loops take minutes there).
+
+Two runs:
+
+``--spheres 200 [--half tuning|check]``: per model of ``real_models.py``
+(the same hash split as ``bench_mesh_routes.py``), the compact complex
+``voronoi_medial_axis(mesh)`` (seconds "axis") and then
+``simplify_medial_mesh(ma, 200)`` (seconds "simplify"), with its error, medial
+and inside shares; then the median and largest error and the median medial
+share.
+
+``--peers``: the Q-MAT and MATFP medial meshes shipped in
+Frank-ZY-Dou/Geometry_Tools (``data/01<model>_QMAT.ma``, ``_MATFP.ma``) of
+crab, dog, fertility, hand and vase, read from a local git snapshot
+(``--mirror``), against ours at Q-MAT's sphere counts (42 to 106), on both
+figures. (``_QMAT+.ma`` is the same file as ``_QMAT.ma`` there.)
+
+``--mode packing`` measures the former default (spheres added at the surface
+points farthest out, whatever they touch); ``--reuse DIR`` keeps each
+model's compact complex in ``DIR`` between runs (for tuning).
+
+Usage::
+
+    NUMBA_NUM_THREADS=1 python benchmarks/bench_simplify_medial.py --half check
+    NUMBA_NUM_THREADS=1 python benchmarks/bench_simplify_medial.py --peers
+"""
+
+from __future__ import annotations
+
+import argparse
+import pickle
+import subprocess
+import sys
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from mat_error import two_sided_error  # noqa: E402
+from real_models import MODELS, default_cache, fetch_models  # noqa: E402
+
+#: ``half_of`` of bench_mesh_routes.py (imported from there when it has it).
+try:
+    from bench_mesh_routes import half_of  # noqa: E402
+except ImportError:  # pragma: no cover
+    import hashlib
+
+    def half_of(name: str) -> str:
+        return "tuning" if hashlib.sha256(name.encode()).digest()[0] % 2 == 0 else "check"
+
+
+PEERS = ("crab", "dog", "fertility", "hand", "vase")
+MIRROR = Path("/work/.mirror/Frank-ZY-Dou+Geometry_Tools/repo")
+BAND = 0.02
+INDEPENDENT = 2000
+SAMPLES = 200_000
+
+
+def surface_points(mesh, count: int = SAMPLES, seed: int = 7) -> np.ndarray:
+    """An even sample of the surface made by trimesh (not the package's sampler)."""
+    import trimesh
+
+    return np.asarray(trimesh.sample.sample_surface_even(mesh, count, seed=seed)[0])
+
+
+def medial_flags(points: np.ndarray, centres: np.ndarray, radii: np.ndarray, band: float = BAND,
+                 tree: cKDTree | None = None, most: int = 3000) -> np.ndarray:
+    """Per sphere: do the surface ``points`` within ``band * r`` of it span >= 90 degrees from its centre?"""
+    tree = cKDTree(points) if tree is None else tree
+    rng = np.random.default_rng(0)
+    out = np.zeros(len(centres), bool)
+    for k, (c, r) in enumerate(zip(np.asarray(centres, float), np.asarray(radii, float))):
+        if r <= 0:
+            continue
+        near = np.asarray(tree.query_ball_point(c, (1 + band) * r), np.int64)
+        if len(near) < 2:
+            continue
+        v = points[near] - c
+        d = np.linalg.norm(v, axis=1)
+        u = v[d >= (1 - band) * r] / d[d >= (1 - band) * r, None]
+        if len(u) < 2:
+            continue
+        if len(u) > most:
+            u = u[rng.choice(len(u), most, replace=False)]
+        out[k] = bool((u @ u.T).min() <= 0.0)
+    return out
+
+
+def inside_flags(mesh, centres: np.ndarray, radii: np.ndarray, slack: float = BAND) -> np.ndarray:
+    """Per sphere: trimesh's signed distance of the centre (positive inside) >= ``(1 - slack) r``."""
+    import trimesh
+
+    sd = trimesh.proximity.signed_distance(mesh, np.asarray(centres, float))
+    return sd >= (1 - slack) * np.asarray(radii, float)
+
+
+def error(mesh, centres, radii, edges, faces) -> float:
+    """Two-sided error over the diagonal: ``mat_error``'s (the triangles' sides counted as edges), or,
+    past ``INDEPENDENT`` spheres (MATFP's thousands, where its loops take minutes), the package's
+    exact envelope (``medialaxis.mesh.envelope.two_sided_distance``)."""
+    faces = np.asarray(faces, np.int64).reshape(-1, 3)
+    sides = np.concatenate([np.asarray(edges, np.int64).reshape(-1, 2), faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    sides = np.unique(np.sort(sides, axis=1), axis=0)
+    if len(centres) > INDEPENDENT:
+        from medialaxis.mesh.envelope import two_sided_distance
+
+        diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
+        return max(two_sided_distance(np.asarray(centres, float), np.asarray(radii, float), sides, faces, mesh)) / diag
+    m = SimpleNamespace(points=np.asarray(centres, float), radii=np.asarray(radii, float), edges=sides, faces=faces)
+    e = two_sided_error(mesh, m)
+    return max(e["surface_to_medial"], e["medial_to_surface"])
+
+
+def figures(mesh, points, centres, radii, edges, faces, tree=None) -> dict:
+    return {
+        "spheres": len(centres),
+        "error": error(mesh, centres, radii, edges, faces),
+        "medial": float(medial_flags(points, centres, radii, tree=tree).mean()),
+        "inside": float(inside_flags(mesh, centres, radii).mean()),
+    }
+
+
+def read_ma(text: str):
+    """``(centres, radii, edges, faces)`` of a ``.ma`` file (``v x y z r``, ``e i j``, ``f i j k``)."""
+    v, e, f = [], [], []
+    for line in text.splitlines():
+        parts = line.split()
+        if not parts:
+            continue
+        if parts[0] == "v":
+            v.append([float(x) for x in parts[1:5]])
+        elif parts[0] == "e":
+            e.append([int(x) for x in parts[1:3]])
+        elif parts[0] == "f":
+            f.append([int(x) for x in parts[1:4]])
+    v = np.array(v, float)
+    return v[:, :3], v[:, 3], np.array(e, np.int64).reshape(-1, 2), np.array(f, np.int64).reshape(-1, 3)
+
+
+def _git_show(mirror: Path, path: str) -> str:
+    return subprocess.run(["git", "--git-dir", str(mirror), "show", f"HEAD:{path}"], check=True,
+                          capture_output=True, text=True).stdout
+
+
+def _axis(mesh, name: str, reuse: Path | None):
+    """The compact complex of ``mesh`` and its seconds (from ``reuse`` when kept there)."""
+    from medialaxis.core.result import MedialAxis
+    from medialaxis.mesh.voronoi import voronoi_medial_axis
+
+    kept = reuse / f"{name}.pkl" if reuse else None
+    if kept is not None and kept.exists():
+        return pickle.loads(kept.read_bytes())
+    t0 = time.perf_counter()
+    ma = voronoi_medial_axis(mesh)
+    seconds = time.perf_counter() - t0
+    full = ma.raw
+    if full is not None:  # the full complex (the medial candidates), without what it was made from
+        full = MedialAxis(full.points, full.radii, full.edges, full.faces, extras=dict(full.extras),
+                          metadata=dict(full.metadata), shape=full.shape)
+    ma = MedialAxis(ma.points, ma.radii, ma.edges, ma.faces, extras=dict(ma.extras), metadata=dict(ma.metadata),
+                    shape=ma.shape, raw=full)
+    if kept is not None:
+        kept.parent.mkdir(parents=True, exist_ok=True)
+        kept.write_bytes(pickle.dumps((ma, seconds)))
+    return ma, seconds
+
+
+def ours(mesh, name: str, count: int, mode: str, reuse: Path | None, points, tree) -> dict:
+    from medialaxis.mesh.qmat import simplify_medial_mesh
+
+    ma, axis_seconds = _axis(mesh, name, reuse)
+    t0 = time.perf_counter()
+    s = simplify_medial_mesh(ma, count, **({} if mode == "default" else {"mode": mode}))
+    seconds = time.perf_counter() - t0
+    row = figures(mesh, points, s.points, s.radii, s.edges, s.faces, tree)
+    row.update(axis_seconds=axis_seconds, seconds=seconds)
+    return row
+
+
+def _load(path):
+    import trimesh
+
+    return trimesh.load(path, force="mesh", process=False)
+
+
+def run_models(args) -> None:
+    paths = fetch_models(default_cache())
+    names = [m["name"] for m in MODELS if (not args.half or half_of(m["name"]) == args.half)]
+    if args.models:
+        names = [n for n in names if n in args.models.split(",")]
+    print(f"simplify={args.spheres}, mode {args.mode}: error = two-sided (mat_error), medial = two-sided contact "
+          f"within {100 * BAND:.0f}% of r spanning >= 90 deg, inside = centre depth >= {100 - 100 * BAND:.0f}% of r")
+    print("model            half     spheres  error  medial  inside   axis s  simplify s")
+    rows = []
+    for name in names:
+        if name not in paths:
+            print(f"{name:16s} not available")
+            continue
+        mesh = _load(paths[name])
+        try:
+            points = surface_points(mesh)
+            row = ours(mesh, name, args.spheres, args.mode, args.reuse, points, cKDTree(points))
+        except Exception as exc:  # a refused or failing model is reported, not fatal
+            print(f"{name:16s} {half_of(name):8s} failed: {type(exc).__name__}: {str(exc).splitlines()[0][:80]}")
+            continue
+        rows.append(row)
+        print(f"{name:16s} {half_of(name):8s} {row['spheres']:7d} {100 * row['error']:5.2f}% {100 * row['medial']:6.0f}% "
+              f"{100 * row['inside']:6.0f}% {row['axis_seconds']:8.1f} {row['seconds']:11.1f}", flush=True)
+    if rows:
+        err = np.array([r["error"] for r in rows])
+        print(f"models {len(rows)}: error median {100 * np.median(err):.2f}%, largest {100 * err.max():.2f}%, "
+              f"over 3%: {int((err > 0.03).sum())}; medial share median {100 * np.median([r['medial'] for r in rows]):.0f}%, "
+              f"inside share median {100 * np.median([r['inside'] for r in rows]):.0f}%, simplify seconds largest "
+              f"{max(r['seconds'] for r in rows):.1f}")
+
+
+def run_peers(args) -> None:
+    paths = fetch_models(default_cache())
+    print("Q-MAT and MATFP medial meshes of Geometry_Tools against ours at Q-MAT's sphere count "
+          f"(mode {args.mode}); error = two-sided (mat_error), medial / inside shares as above")
+    print("model      spheres | error: ours  Q-MAT  MATFP | medial: ours  Q-MAT  MATFP | inside: ours  Q-MAT  MATFP "
+          "| MATFP spheres | ours s")
+    for model in PEERS:
+        name = f"gt-{model}"
+        mesh = _load(paths[name])
+        points = surface_points(mesh)
+        tree = cKDTree(points)
+        peer = {}
+        for tool in ("QMAT", "MATFP"):
+            c, r, e, f = read_ma(_git_show(args.mirror, f"data/01{model}_{tool}.ma"))
+            if tool == "MATFP":  # MATFP works on the model centred on its box, the longest side scaled to 10
+                lo, hi = mesh.bounds
+                scale = 10.0 / float(np.max(hi - lo))
+                c, r = c / scale + 0.5 * (lo + hi), r / scale
+            peer[tool] = figures(mesh, points, c, r, e, f, tree)
+        mine = ours(mesh, name, peer["QMAT"]["spheres"], args.mode, args.reuse, points, tree)
+        cols = [(mine, peer["QMAT"], peer["MATFP"])]
+        print(f"{model:10s} {mine['spheres']:7d} | " + "  ".join(
+            f"{100 * a[k]:5.2f}% {100 * b[k]:5.2f}% {100 * c[k]:5.2f}% |" if k == "error" else
+            f"{100 * a[k]:4.0f}% {100 * b[k]:5.0f}% {100 * c[k]:5.0f}% |"
+            for a, b, c in cols for k in ("error", "medial", "inside"))
+            + f" {peer['MATFP']['spheres']:13d} | {mine['seconds']:.1f}", flush=True)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--spheres", type=int, default=200)
+    ap.add_argument("--half", choices=["tuning", "check"])
+    ap.add_argument("--models", default="", help="comma-separated names (default: all of the half)")
+    ap.add_argument("--mode", default="default", help="simplify_mode (default: the package's default)")
+    ap.add_argument("--peers", action="store_true", help="the Q-MAT / MATFP comparison instead")
+    ap.add_argument("--mirror", type=Path, default=MIRROR, help="bare git dir of Frank-ZY-Dou/Geometry_Tools")
+    ap.add_argument("--reuse", type=Path, help="keep / reuse each model's compact complex here")
+    args = ap.parse_args()
+    import trimesh
+
+    from medialaxis.mesh.qmat import simplify_medial_mesh
+    from medialaxis.mesh.voronoi import voronoi_medial_axis
+
+    # compile the kernels first (cached on disk after the first run): seconds are steady state
+    simplify_medial_mesh(voronoi_medial_axis(trimesh.creation.icosphere(subdivisions=3)), 40)
+    run_peers(args) if args.peers else run_models(args)
+
+
+if __name__ == "__main__":
+    main()
