@@ -62,7 +62,12 @@ from scipy.spatial import cKDTree
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from mat_error import two_sided_error  # noqa: E402
-from real_models import MODELS, default_cache, fetch_models  # noqa: E402
+from real_models import default_cache, fetch_models  # noqa: E402
+
+try:  # the closed models and the meshes as people have them
+    from real_models import ALL_MODELS as MODELS  # noqa: E402
+except ImportError:  # pragma: no cover
+    from real_models import MODELS  # noqa: E402
 
 #: ``half_of`` of bench_mesh_routes.py (imported from there when it has it).
 try:
@@ -209,10 +214,10 @@ def _load(path):
 
 
 def run_models(args) -> None:
-    paths = fetch_models(default_cache())
     names = [m["name"] for m in MODELS if (not args.half or half_of(m["name"]) == args.half)]
     if args.models:
         names = [n for n in names if n in args.models.split(",")]
+    paths = fetch_models(default_cache(), names)
     print(f"simplify={args.spheres}, mode {args.mode}: error = two-sided (mat_error), medial = two-sided contact "
           f"within {100 * BAND:.0f}% of r spanning >= 90 deg, inside = centre depth >= {100 - 100 * BAND:.0f}% of r")
     print("model            half     spheres  error  medial  inside   axis s  simplify s")
@@ -240,7 +245,7 @@ def run_models(args) -> None:
 
 
 def run_peers(args) -> None:
-    paths = fetch_models(default_cache())
+    paths = fetch_models(default_cache(), [f"gt-{m}" for m in PEERS])
     print("Q-MAT and MATFP medial meshes of Geometry_Tools against ours at Q-MAT's sphere count "
           f"(mode {args.mode}); error = two-sided (mat_error), medial / inside shares as above")
     print("model      spheres | error: ours  Q-MAT  MATFP | medial: ours  Q-MAT  MATFP | inside: ours  Q-MAT  MATFP "
