@@ -18,6 +18,8 @@ __all__ = ["candidate_pairs", "crossing_pairs", "nested_shell", "shell_labels", 
 
 #: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
 SHELL_PROBES = 500
+#: Candidate pairs of the large faces looked at per batch (memory: about 100 bytes each).
+BIG_BATCH = 2_000_000
 
 
 def winding_numbers(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
@@ -106,14 +108,21 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
         pairs.append(near_pairs(tri, faces, centre, radius, idx, cell, False))
     big = np.flatnonzero(~small)
     if len(big):
-        near = cKDTree(centre).query_ball_point(centre[big], radius[big] + float(radius.max()), return_sorted=False)
-        count = np.fromiter((len(js) for js in near), np.int64, len(big))
-        js = np.concatenate([np.asarray(j, np.int64) for j in near]) if count.sum() else np.empty(0, np.int64)
-        bs = np.repeat(big, count)
-        keep = (js != bs) & (small[js] | (js > bs))  # big-big pairs once
-        keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
-        keep &= (faces[bs][:, :, None] == faces[js][:, None, :]).sum(axis=(1, 2)) < 2  # not an edge apart
-        pairs.append(np.column_stack([bs[keep], js[keep]]))
+        tree, reach = cKDTree(centre), radius[big] + float(radius.max())
+        count = tree.query_ball_point(centre[big], reach, return_length=True)
+        lo, hi = tri.min(axis=1), tri.max(axis=1)
+        start = 0
+        while start < len(big):  # a few million candidates at a time: long CAD faces reach every face
+            stop = start + max(1, int(np.searchsorted(np.cumsum(count[start:]), BIG_BATCH)))
+            near = tree.query_ball_point(centre[big[start:stop]], reach[start:stop], return_sorted=False)
+            js = np.concatenate([np.asarray(j, np.int64) for j in near])
+            bs = np.repeat(big[start:stop], count[start:stop])
+            keep = (js != bs) & (small[js] | (js > bs))  # big-big pairs once
+            keep &= np.all((lo[js] <= hi[bs]) & (hi[js] >= lo[bs]), axis=1)
+            keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
+            keep &= (faces[bs][:, :, None] == faces[js][:, None, :]).sum(axis=(1, 2)) < 2  # not an edge apart
+            pairs.append(np.column_stack([bs[keep], js[keep]]))
+            start = stop
     return np.ascontiguousarray(np.vstack(pairs), dtype=np.int64) if pairs else np.empty((0, 2), np.int64)
 
 
