@@ -210,7 +210,10 @@ def ours(mesh, name: str, count: int, mode: str, reuse: Path | None, points, tre
 def _load(path):
     import trimesh
 
-    return trimesh.load(path, force="mesh", process=False)
+    mesh = trimesh.load(path, force="mesh", process=False)
+    if mesh.is_watertight and mesh.volume < 0:  # faces pointing inward (the bunny): trimesh's inside test flips
+        mesh.invert()
+    return mesh
 
 
 def run_models(args) -> None:
