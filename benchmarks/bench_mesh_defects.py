@@ -40,7 +40,7 @@ def cases() -> dict[str, tuple[trimesh.Trimesh, trimesh.Trimesh]]:
         "two spheres (shared vertices)": [trimesh.creation.icosphere(3),
                                           trimesh.creation.icosphere(3).apply_translation([1.0, 0, 0])],
         "sphere in a sphere": [trimesh.creation.icosphere(3, 1.0), trimesh.creation.icosphere(2, 0.5)],
-        "torus through a box": [trimesh.creation.torus(1.0, 0.3, major_sections=48, minor_sections=16),
+        "box through a torus's hole (apart)": [trimesh.creation.torus(1.0, 0.3, major_sections=48, minor_sections=16),
                                 trimesh.creation.box(extents=(0.5, 0.5, 1.5))],
         "pipe tee (two cylinders)": [trimesh.creation.cylinder(0.3, 3.0, sections=48),
                                      _rotated(trimesh.creation.cylinder(0.3, 3.0, sections=48), [1, 0, 0])],

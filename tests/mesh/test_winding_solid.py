@@ -39,7 +39,7 @@ def _parts(name: str) -> list:
         return caps
     if name == "nested":  # a sphere inside a sphere, both outward: the inner one is inside the solid
         return [trimesh.creation.icosphere(3, 1.0), trimesh.creation.icosphere(2, 0.5)]
-    if name == "ring":  # a torus through a box: genus 1 survives the union
+    if name == "ring":  # a box through a torus's hole, touching nothing: two shells, one tunnel
         torus = trimesh.creation.torus(1.0, 0.3, major_sections=32, minor_sections=12)
         return [torus, trimesh.creation.box(extents=(0.5, 0.5, 1.5))]
     raise KeyError(name)
