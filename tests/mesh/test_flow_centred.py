@@ -165,3 +165,13 @@ def test_nodes_of_a_non_round_section_move_onto_its_medial_axis():
     assert np.allclose(moved[inner, 2], z[inner])  # within the plane across the branch
     assert np.array_equal(moved[[0, -1]], nodes[[0, -1]])
     assert radii.shape == (len(z),)
+
+
+def test_a_wide_thin_cad_plate_finishes():
+    """A 10 x 10 x 0.2 box of 8 vertices: refined for its thickness up to a bound (75,000 vertices hung the graph)."""
+    from medialaxis.mesh.refine import MAX_REFINED
+
+    sk = mx.medial_axis(trimesh.creation.box(extents=(10.0, 10.0, 0.2)), method="flow")
+    assert sk.metadata["refined_vertices"] <= MAX_REFINED
+    assert sk.betti[:2] == (1, 0)
+    assert np.abs(sk.points[:, 2]).max() < 0.1  # inside the plate
