@@ -303,8 +303,10 @@ def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0
         raise InvalidInputError(f"the mesh's faces vanish at the accuracy of its size ({size:.3g} across): its details "
                                 "are too small beside its extent to cut it where it passes through itself")
     used, inverse = np.unique(new_faces, return_inverse=True)
-    return SolidSurface(points[used] * size + centre, inverse.reshape(-1, 3).astype(np.int64), len(touched),
-                        dropped, keep_flip)
+    out = points[used] * size + centre
+    given = used < cuts.n_vertices
+    out[given] = np.asarray(vertices, np.float64)[used[given]]  # the mesh's own vertices exactly, not rescaled
+    return SolidSurface(out, inverse.reshape(-1, 3).astype(np.int64), len(touched), dropped, keep_flip)
 
 
 def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray,
