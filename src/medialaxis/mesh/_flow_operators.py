@@ -139,7 +139,8 @@ def vertex_normals(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
 
 
 def medial_poles(
-    points: np.ndarray, normals: np.ndarray, *, max_radius: float, ignore: float = 0.0, iterations: int = 30, k: int = 16
+    points: np.ndarray, normals: np.ndarray, *, max_radius: float | np.ndarray, ignore: float = 0.0, iterations: int = 30,
+    k: int = 16,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Inner medial ball of every vertex by the shrinking-ball iteration.
 
@@ -154,8 +155,8 @@ def medial_poles(
     points : (n, 3) float64 ndarray
     normals : (n, 3) float64 ndarray
         Outward unit normals.
-    max_radius : float
-        Starting (and largest) radius.
+    max_radius : float or (n,) float64 ndarray
+        Starting (and largest) radius, one for all or one per vertex.
     ignore : float
         Vertices closer than this to ``p`` never shrink its ball: on a
         sampled surface they only carry noise, not the opposite side
@@ -173,7 +174,7 @@ def medial_poles(
     """
     tree = cKDTree(points)
     n = len(points)
-    radius = np.full(n, float(max_radius))
+    radius = np.broadcast_to(np.asarray(max_radius, np.float64), n).copy()
     active = np.arange(n)
     for _ in range(iterations):
         if active.size == 0:

@@ -315,36 +315,17 @@ def sample_count(samples: Any, n_vertices: int) -> int:
     return int(samples)
 
 
-def local_thickness(points: np.ndarray, normals: np.ndarray, cap: np.ndarray, rounds: int = 12) -> np.ndarray:
-    """Diameter of the largest ball inside touching each sample point, up to ``cap`` (the shrinking ball of Ma et al.).
+def local_thickness(points: np.ndarray, normals: np.ndarray, cap: np.ndarray) -> np.ndarray:
+    """Diameter of the largest ball inside touching each sample point, up to ``cap``.
 
-    Each ball starts with the diameter ``cap`` and shrinks to pass through
-    the sample point nearest its centre until no sample lies inside it (a
-    ball that starts empty gives ``cap``: the thickness is at least that).
-
-    References
-    ----------
-    Ma, Bae, Choi. 3D medial axis point approximation using nearest neighbors
-    and the normal field. The Visual Computer 28(1), 7-19, 2012.
-    doi:10.1007/s00371-011-0594-7
+    The shrinking ball (:func:`~medialaxis.mesh._flow_operators.medial_poles`)
+    started with the diameter ``cap``: a ball that starts empty gives
+    ``cap`` (the thickness is at least that), and no query is made far out.
     """
-    tree = cKDTree(points)
-    inward = -np.asarray(normals, np.float64)
-    radius = 0.5 * np.broadcast_to(np.asarray(cap, np.float64), len(points)).copy()
-    todo = np.arange(len(points))
-    for _ in range(rounds):
-        if not len(todo):
-            break
-        p, n, r = points[todo], inward[todo], radius[todo]
-        _, near = tree.query(p + r[:, None] * n, k=2, workers=-1)
-        q = points[np.where(near[:, 0] == todo, near[:, 1], near[:, 0])]
-        d = q - p
-        across = np.einsum("ij,ij->i", d, n)
-        new = np.where(across > 0, np.einsum("ij,ij->i", d, d) / (2.0 * np.maximum(across, 1e-300)), r)
-        shrink = new < r * (1.0 - 1e-3)
-        radius[todo[shrink]] = new[shrink]
-        todo = todo[shrink]
-    return 2.0 * radius
+    from medialaxis.mesh._flow_operators import medial_poles
+
+    return 2.0 * medial_poles(np.asarray(points, np.float64), np.asarray(normals, np.float64),
+                              max_radius=0.5 * np.asarray(cap, np.float64))[1]
 
 
 def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoNormals) -> tuple[int, np.ndarray]:
