@@ -60,15 +60,6 @@ def _boxes_apart(t: np.ndarray, u: np.ndarray) -> bool:
 
 
 @njit(cache=True, nogil=True)
-def _shares_vertex(faces: np.ndarray, i: int, j: int) -> bool:
-    for a in range(3):
-        for b in range(3):
-            if faces[i, a] == faces[j, b]:
-                return True
-    return False
-
-
-@njit(cache=True, nogil=True)
 def _shared(faces: np.ndarray, i: int, j: int) -> int:
     """How many vertices faces ``i`` and ``j`` share."""
     count = 0
@@ -172,9 +163,7 @@ def near_pairs(triangles, faces, centre, radius, members, cell, one_apart=True):
                         reach = sr[q] + sr[r]
                         if d2 > reach * reach:
                             continue
-                        if _boxes_apart(triangles[i], triangles[j]) or (
-                            _shares_vertex(faces, i, j) if one_apart else _shared(faces, i, j) >= 2
-                        ):
+                        if _boxes_apart(triangles[i], triangles[j]) or _shared(faces, i, j) >= (1 if one_apart else 2):
                             continue
                         if sweep == 1:
                             pairs[start[q] + found, 0] = min(i, j)

@@ -286,11 +286,11 @@ def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0
     for e in cuts.on_edge:
         touched.update(edge_faces.get(e, ()))
     pieces, parent = [], []
-    for f in sorted(touched):
+    for f in sorted(touched):  # reads only points found so far; appends where constraints cross inside a face
         cut = _triangulate(cuts, f, points)
         pieces += cut
         parent += [f] * len(cut)
-        points = np.array(cuts.points)
+    points = np.array(cuts.points)
     kept_whole = np.setdiff1d(np.arange(len(faces)), np.array(sorted(touched), np.int64))
     new_faces = np.vstack([faces[kept_whole], np.array(pieces, np.int64).reshape(-1, 3)])
     origin = np.concatenate([kept_whole, np.array(parent, np.int64)])
