@@ -1,0 +1,104 @@
+"""Features in parallel: worker processes, threads, Dask (a cluster, a dask GeoDataFrame), progress, Ctrl-C.
+
+The truth is the layer computed feature by feature in this process: where
+a feature runs must not change its line or its widths.
+"""
+
+import _thread
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import medialaxis as mx
+
+gpd = pytest.importorskip("geopandas")
+psutil = pytest.importorskip("psutil")
+
+LAKES = Path(__file__).parent / "data" / "osm_lakes.geojson"
+
+
+@pytest.fixture(scope="module")
+def lakes():
+    layer = gpd.read_file(LAKES).to_crs("EPSG:3857")  # 30 OpenStreetMap lakes
+    return layer.set_index(layer.index * 10 + 5)  # an index that is not 0, 1, ...
+
+
+@pytest.fixture(scope="module")
+def serial(lakes):
+    return mx.centerlines(lakes)
+
+
+def same(out, serial):
+    assert list(out.index) == list(serial.index) and out.crs == serial.crs
+    assert list(out.columns) == list(serial.columns)
+    assert (out["islands"] == serial["islands"]).all()
+    for name in mx.gis.WIDTH_COLUMNS:
+        np.testing.assert_array_equal(out[name].to_numpy(), serial[name].to_numpy())
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(out.geometry, serial.geometry))
+
+
+@pytest.mark.parametrize("scheduler", [None, "threads", "synchronous"])
+def test_the_same_layer_on_processes_threads_and_in_order(lakes, serial, scheduler):
+    same(mx.centerlines(lakes, n_jobs=2, scheduler=scheduler), serial)
+
+
+def test_a_dask_cluster_and_a_dask_geodataframe(lakes, serial):
+    dask_geopandas = pytest.importorskip("dask_geopandas")
+    distributed = pytest.importorskip("distributed")
+    lazy = mx.centerlines(dask_geopandas.from_geopandas(lakes, npartitions=3))
+    assert isinstance(lazy, dask_geopandas.GeoDataFrame) and lazy.npartitions == 3
+    same(lazy.compute(scheduler="synchronous"), serial)
+    with distributed.Client(processes=False, n_workers=2, threads_per_worker=1, dashboard_address=None) as client:
+        same(lazy.compute(), serial)  # on the active cluster
+        same(mx.centerlines(lakes, scheduler=client), serial)  # a layer sent to it in chunks
+    with pytest.raises(mx.InvalidInputError, match="scheduler active when it is computed"):
+        mx.centerlines(dask_geopandas.from_geopandas(lakes, npartitions=2), n_jobs=2)
+
+
+def test_bad_options_name_the_value(lakes):
+    with pytest.raises(mx.InvalidInputError, match="n_jobs must be a positive integer"):
+        mx.centerlines(lakes, n_jobs=0)
+    with pytest.raises(mx.InvalidInputError, match="'forks'"):
+        mx.centerlines(lakes, scheduler="forks")
+
+
+def test_a_progress_bar_counts_the_features(lakes, capsys):
+    mx.centerlines(lakes.iloc[:6], n_jobs=2, show_progress=True)
+    err = capsys.readouterr().err
+    assert "features" in err and "/6 [" in err, err
+    mx.centerlines(lakes.iloc[:6], show_progress=False)
+    assert capsys.readouterr().err == ""
+
+
+def _descendants():
+    return {p.pid for p in psutil.Process().children(recursive=True)}
+
+
+def test_ctrl_c_stops_the_workers_and_raises_cancelled(lakes):
+    mx.centerlines(lakes.iloc[:4], n_jobs=2)  # the worker server is up
+    before = _descendants()
+    many = gpd.GeoDataFrame(geometry=list(lakes.geometry) * 40, crs=lakes.crs)  # far more than a second of work
+    timer = threading.Timer(1.0, _thread.interrupt_main)
+    timer.start()
+    start = time.perf_counter()
+    with pytest.raises(mx.Cancelled):
+        mx.centerlines(many, n_jobs=2)
+    timer.cancel()
+    assert time.perf_counter() - start < 15.0
+    assert _descendants() <= before  # no worker left running
+
+
+def test_cli_jobs_and_scheduler(lakes, serial, tmp_path):
+    from medialaxis.cli import main
+
+    source = tmp_path / "lakes.gpkg"
+    lakes.to_file(source)
+    assert main(["centerlines", str(source), "-o", str(tmp_path / "lines.gpkg"), "--jobs", "2"]) == 0
+    back = gpd.read_file(tmp_path / "lines.gpkg")
+    np.testing.assert_allclose(back["width_mean"], serial["width_mean"])
+    assert main(["centerlines", str(source), "-o", str(tmp_path / "t.gpkg"), "--scheduler", "threads"]) == 0
+    assert main(["centerlines", str(source), "-o", str(tmp_path / "x.gpkg"), "--scheduler", "forks"]) == 2
+    assert main(["centerlines", str(source), "-o", str(tmp_path / "x.gpkg"), "--jobs", "0"]) == 2
