@@ -26,7 +26,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["delaunay_2d", "insertion_order"]
+__all__ = ["delaunay_2d", "insertion_order", "insert_point", "scratch", "corner_square", "drop_corners"]
 
 #: Steps of the visibility walk before the kernel gives up.
 MAX_WALK = 1 << 20
@@ -130,6 +130,124 @@ def insertion_order(x, y, seed=12345):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
+def insert_point(x, y, tv, tn, count, p, t, work, seen):  # type: ignore[no-untyped-def]
+    """Insert point ``p`` into the triangulation ``tv``/``tn`` (``count`` live slots), walking from triangle ``t``.
+
+    ``work`` holds scratch rows (stamp, cavity, free, boundary a/b/out, new
+    triangles, by start, by end) sized to the triangle capacity plus 3, or
+    the point capacity for the last two; ``seen`` (point capacity) must hold
+    no ``p + 1``. Returns ``(count, new)``: ``work[6, :new]`` are the slots of
+    the new triangles; ``new == 0`` where rounding made the insertion
+    inconsistent.
+    """
+    stamp, cavity, free = work[0], work[1], work[2]
+    bnd_a, bnd_b, bnd_out, new_tri = work[3], work[4], work[5], work[6]
+    by_start, by_end = work[7], work[8]
+    n_free = 0
+    # locate: a visibility walk
+    steps = 0
+    while True:
+        moved = False
+        for k in range(3):
+            a = tv[t, (k + 1) % 3]
+            b = tv[t, (k + 2) % 3]
+            if _orient(x, y, a, b, p) < 0.0:
+                u = tn[t, k]
+                if u < 0:
+                    return count, 0
+                t = u
+                moved = True
+                break
+        if not moved:
+            break
+        steps += 1
+        if steps > MAX_WALK:
+            return count, 0
+    # the cavity, grown across edges from the triangle that holds p
+    mark = p + 1
+    stamp[t] = mark
+    cavity[0] = t
+    n_cav = 1
+    n_bnd = 0
+    head = 0
+    while head < n_cav:
+        t = cavity[head]
+        head += 1
+        for k in range(3):
+            u = tn[t, k]
+            if u >= 0 and stamp[u] == mark:
+                continue
+            inside = False
+            if u >= 0 and stamp[u] != -mark:
+                if _in_circle(x, y, tv[u, 0], tv[u, 1], tv[u, 2], p) > 0.0:
+                    inside = True
+                else:
+                    stamp[u] = -mark
+            if inside:
+                stamp[u] = mark
+                cavity[n_cav] = u
+                n_cav += 1
+            else:
+                bnd_a[n_bnd] = tv[t, (k + 1) % 3]
+                bnd_b[n_bnd] = tv[t, (k + 2) % 3]
+                bnd_out[n_bnd] = u
+                n_bnd += 1
+    if n_bnd != n_cav + 2:  # the boundary of a disc of c triangles has c + 2 edges
+        return count, 0
+    # the new triangles (a, b, p), in the cavity's slots first
+    for j in range(n_cav):
+        free[n_free] = cavity[j]
+        n_free += 1
+    for j in range(n_bnd):
+        a, b = bnd_a[j], bnd_b[j]
+        if _orient(x, y, a, b, p) <= 0.0 or seen[a] == mark:
+            return count, 0
+        seen[a] = mark
+        if n_free > 0:
+            n_free -= 1
+            s = free[n_free]
+        else:
+            s = count
+            count += 1
+        tv[s, 0], tv[s, 1], tv[s, 2] = a, b, p
+        tn[s, 2] = bnd_out[j]
+        stamp[s] = 0
+        u = bnd_out[j]
+        if u >= 0:
+            for k in range(3):
+                if tv[u, (k + 1) % 3] == b and tv[u, (k + 2) % 3] == a:
+                    tn[u, k] = s
+        by_start[a] = s
+        by_end[b] = s
+        new_tri[j] = s
+    for j in range(n_bnd):
+        s = new_tri[j]
+        a, b = tv[s, 0], tv[s, 1]
+        if seen[b] != mark:  # the boundary is not one closed loop
+            return count, 0
+        tn[s, 0] = by_start[b]
+        tn[s, 1] = by_end[a]
+    return count, n_bnd
+
+
+@njit(cache=True, nogil=True)
+def scratch(tri_capacity, point_capacity):  # type: ignore[no-untyped-def]
+    """The scratch rows of :func:`_insert` and a zeroed ``seen``."""
+    work = np.empty((9, max(tri_capacity + 3, point_capacity)), np.int64)
+    work[0, :] = 0
+    return work, np.zeros(point_capacity, np.int64)
+
+
+@njit(cache=True, nogil=True)
+def corner_square(tv, tn, c0):  # type: ignore[no-untyped-def]
+    """The two triangles of the four counter-clockwise corners ``c0 .. c0 + 3`` in slots 0 and 1."""
+    tv[0, 0], tv[0, 1], tv[0, 2] = c0, c0 + 1, c0 + 2
+    tv[1, 0], tv[1, 1], tv[1, 2] = c0, c0 + 2, c0 + 3
+    tn[0, 1] = 1  # edge c2-c0
+    tn[1, 2] = 0
+
+
+@njit(cache=True, nogil=True)
 def _triangulate(x, y):  # type: ignore[no-untyped-def]
     """Triangles and neighbours of ``n`` points followed by four counter-clockwise corners around them.
 
@@ -141,121 +259,26 @@ def _triangulate(x, y):  # type: ignore[no-untyped-def]
     cap = 2 * n + 2
     tv = np.empty((cap, 3), np.int64)
     tn = np.full((cap, 3), -1, np.int64)
-    c0, c1, c2, c3 = n, n + 1, n + 2, n + 3
-    tv[0, 0], tv[0, 1], tv[0, 2] = c0, c1, c2
-    tv[1, 0], tv[1, 1], tv[1, 2] = c0, c2, c3
-    tn[0, 1] = 1  # edge c2-c0
-    tn[1, 2] = 0
+    corner_square(tv, tn, n)
     count = 2
-    stamp = np.zeros(cap, np.int64)  # i + 1: in the cavity of point i; -(i + 1): tested, outside it
-    cavity = np.empty(cap, np.int64)
-    free = np.empty(cap, np.int64)
-    n_free = 0
-    bnd_a = np.empty(cap + 3, np.int64)
-    bnd_b = np.empty(cap + 3, np.int64)
-    bnd_out = np.empty(cap + 3, np.int64)
-    new_tri = np.empty(cap + 3, np.int64)
-    by_start = np.empty(n + 4, np.int64)
-    by_end = np.empty(n + 4, np.int64)
-    seen = np.zeros(n + 4, np.int64)
+    work, seen = scratch(cap, n + 4)
     last = 0
     order = insertion_order(x[:n], y[:n])
     for p in order:
-        # locate: a visibility walk from the last new triangle
-        t = last
-        steps = 0
-        while True:
-            moved = False
-            for k in range(3):
-                a = tv[t, (k + 1) % 3]
-                b = tv[t, (k + 2) % 3]
-                if _orient(x, y, a, b, p) < 0.0:
-                    u = tn[t, k]
-                    if u < 0:
-                        return tv, tn, 0, False
-                    t = u
-                    moved = True
-                    break
-            if not moved:
-                break
-            steps += 1
-            if steps > MAX_WALK:
-                return tv, tn, 0, False
-        # the cavity, grown across edges from the triangle that holds p
-        mark = p + 1
-        stamp[t] = mark
-        cavity[0] = t
-        n_cav = 1
-        n_bnd = 0
-        head = 0
-        while head < n_cav:
-            t = cavity[head]
-            head += 1
-            for k in range(3):
-                u = tn[t, k]
-                if u >= 0 and stamp[u] == mark:
-                    continue
-                inside = False
-                if u >= 0 and stamp[u] != -mark:
-                    if _in_circle(x, y, tv[u, 0], tv[u, 1], tv[u, 2], p) > 0.0:
-                        inside = True
-                    else:
-                        stamp[u] = -mark
-                if inside:
-                    stamp[u] = mark
-                    cavity[n_cav] = u
-                    n_cav += 1
-                else:
-                    bnd_a[n_bnd] = tv[t, (k + 1) % 3]
-                    bnd_b[n_bnd] = tv[t, (k + 2) % 3]
-                    bnd_out[n_bnd] = u
-                    n_bnd += 1
-        if n_bnd != n_cav + 2:  # the boundary of a disc of c triangles has c + 2 edges
+        count, new = insert_point(x, y, tv, tn, count, p, last, work, seen)
+        if new == 0:
             return tv, tn, 0, False
-        # the new triangles (a, b, p), in the cavity's slots first
-        for j in range(n_cav):
-            free[n_free] = cavity[j]
-            n_free += 1
-        for j in range(n_bnd):
-            a, b = bnd_a[j], bnd_b[j]
-            if _orient(x, y, a, b, p) <= 0.0 or seen[a] == mark:
-                return tv, tn, 0, False
-            seen[a] = mark
-            if n_free > 0:
-                n_free -= 1
-                s = free[n_free]
-            else:
-                s = count
-                count += 1
-            tv[s, 0], tv[s, 1], tv[s, 2] = a, b, p
-            tn[s, 2] = bnd_out[j]
-            stamp[s] = 0
-            u = bnd_out[j]
-            if u >= 0:
-                for k in range(3):
-                    if tv[u, (k + 1) % 3] == b and tv[u, (k + 2) % 3] == a:
-                        tn[u, k] = s
-            by_start[a] = s
-            by_end[b] = s
-            new_tri[j] = s
-        for j in range(n_bnd):
-            s = new_tri[j]
-            a, b = tv[s, 0], tv[s, 1]
-            if seen[b] != mark:  # the boundary is not one closed loop
-                return tv, tn, 0, False
-            tn[s, 0] = by_start[b]
-            tn[s, 1] = by_end[a]
-        last = new_tri[0]
-    return tv, tn, count, n_free == 0
+        last = work[6, 0]
+    return tv, tn, count, True
 
 
 @njit(cache=True, nogil=True)
-def _drop_corners(tv, tn, count, n):  # type: ignore[no-untyped-def]
-    """The triangles of the ``n`` real points (no corner), renumbered, with their neighbours."""
+def drop_corners(tv, tn, count, lo, hi):  # type: ignore[no-untyped-def]
+    """The triangles of the real points ``lo .. hi - 1`` (no corner), renumbered from 0, with their neighbours."""
     new_index = np.full(count, -1, np.int64)
     m = 0
     for t in range(count):
-        if tv[t, 0] < n and tv[t, 1] < n and tv[t, 2] < n:
+        if min(tv[t, 0], tv[t, 1], tv[t, 2]) >= lo and max(tv[t, 0], tv[t, 1], tv[t, 2]) < hi:
             new_index[t] = m
             m += 1
     simplices = np.empty((m, 3), np.int64)
@@ -265,10 +288,10 @@ def _drop_corners(tv, tn, count, n):  # type: ignore[no-untyped-def]
         if j < 0:
             continue
         for k in range(3):
-            simplices[j, k] = tv[t, k]
+            simplices[j, k] = tv[t, k] - lo
             u = tn[t, k]
             neighbors[j, k] = new_index[u] if u >= 0 else -1
-    return simplices, neighbors
+    return simplices, neighbors, new_index
 
 
 def delaunay_2d(work: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
@@ -296,4 +319,5 @@ def delaunay_2d(work: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
     tv, tn, count, ok = _triangulate(x, y)
     if not ok:
         return None
-    return _drop_corners(tv, tn, count, len(work) - 4)
+    simplices, neighbors, _ = drop_corners(tv, tn, count, 0, len(work) - 4)
+    return simplices, neighbors

@@ -93,32 +93,45 @@ def locate_points(x, y, segments, start, members, y0, height):  # type: ignore[n
 
 
 @njit(cache=True, nogil=True)
+def points_extent(points, lo, hi):  # type: ignore[no-untyped-def]
+    """The larger side of the bounding box of ``points[lo:hi]``."""
+    extent = 0.0
+    for k in range(2):
+        low, high = np.inf, -np.inf
+        for i in range(lo, hi):
+            low = min(low, points[i, k])
+            high = max(high, points[i, k])
+        extent = max(extent, high - low)
+    return extent
+
+
+@njit(cache=True, nogil=True)
+def locate_centroid(points, a, b, c, sliver, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
+    """Where the centroid of the triangle ``abc`` lies (:func:`_locate`; 0 for a sliver), and the centroid."""
+    ux, uy = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1]
+    vx, vy = points[c, 0] - points[a, 0], points[c, 1] - points[a, 1]
+    wx, wy = ux - vx, uy - vy
+    longest = np.sqrt(max(ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy))
+    if abs(ux * vy - uy * vx) <= sliver * longest:
+        return 0, 0.0, 0.0
+    gx = (points[a, 0] + points[b, 0] + points[c, 0]) / 3.0
+    gy = (points[a, 1] + points[b, 1] + points[c, 1]) / 3.0
+    return _locate(gx, gy, segments, start, members, y0, height), gx, gy
+
+
+@njit(cache=True, nogil=True)
 def locate_centroids(points, simplices, sliver_fraction, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
     """Where the centroid of each proper triangle lies (as :func:`locate_points`; 0 for slivers), and the centroids.
 
     A sliver's doubled area is at most ``sliver_fraction`` of the points'
     extent times its longest side (as :func:`medialaxis.planar._kernels.triangle_centroids`).
     """
-    extent = 0.0
-    for k in range(2):
-        lo, hi = np.inf, -np.inf
-        for i in range(len(points)):
-            lo = min(lo, points[i, k])
-            hi = max(hi, points[i, k])
-        extent = max(extent, hi - lo)
-    sliver = sliver_fraction * extent
+    sliver = sliver_fraction * points_extent(points, 0, len(points))
     where = np.zeros(len(simplices), np.int8)
     centroid = np.empty((len(simplices), 2))
     for t in range(len(simplices)):
-        a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
-        ux, uy = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1]
-        vx, vy = points[c, 0] - points[a, 0], points[c, 1] - points[a, 1]
-        wx, wy = ux - vx, uy - vy
-        longest = np.sqrt(max(ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy))
-        if abs(ux * vy - uy * vx) > sliver * longest:
-            centroid[t, 0] = (points[a, 0] + points[b, 0] + points[c, 0]) / 3.0
-            centroid[t, 1] = (points[a, 1] + points[b, 1] + points[c, 1]) / 3.0
-            where[t] = _locate(centroid[t, 0], centroid[t, 1], segments, start, members, y0, height)
+        where[t], centroid[t, 0], centroid[t, 1] = locate_centroid(
+            points, simplices[t, 0], simplices[t, 1], simplices[t, 2], sliver, segments, start, members, y0, height)
     return where, centroid
 
 

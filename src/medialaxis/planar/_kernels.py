@@ -30,7 +30,7 @@ import numpy as np
 from medialaxis._jit import njit
 
 __all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
-           "piece_state_reference", "circumcircles_kernel", "split_pieces",
+           "piece_state_reference", "circumcircles_kernel", "circumcircle", "split_pieces", "split_count",
            "nearest_samples"]
 
 
@@ -156,6 +156,33 @@ def nearest_piece_distance_reference(
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
+def circumcircle(p, i, j, k):  # type: ignore[no-untyped-def]
+    """Circumcentre ``(x, y)`` and radius of the triangle ``p[i], p[j], p[k]`` (see :func:`circumcircles_kernel`)."""
+    ax, ay = p[i, 0], p[i, 1]
+    bx, by = p[j, 0] - ax, p[j, 1] - ay
+    cx, cy = p[k, 0] - ax, p[k, 1] - ay
+    d = 2.0 * (bx * cy - by * cx)
+    b2 = bx * bx + by * by
+    c2 = cx * cx + cy * cy
+    ux = (cy * b2 - by * c2) / d
+    uy = (bx * c2 - cx * b2) / d
+    r = math.hypot(ux, uy)
+    if not np.isfinite(r):
+        corners = (i, j, k)
+        best, longest = 0, -1.0
+        for s in range(3):  # side s is opposite corner s
+            e, f = corners[(s + 1) % 3], corners[(s + 2) % 3]
+            sx, sy = p[e, 0] - p[f, 0], p[e, 1] - p[f, 1]
+            if sx * sx + sy * sy > longest:
+                best, longest = s, sx * sx + sy * sy
+        e, f = corners[(best + 1) % 3], corners[(best + 2) % 3]
+        ux = 0.5 * (p[e, 0] + p[f, 0]) - ax
+        uy = 0.5 * (p[e, 1] + p[f, 1]) - ay
+        r = 0.5 * np.sqrt(longest)
+    return ux + ax, uy + ay, r
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
 def circumcircles_kernel(p, simplices):  # type: ignore[no-untyped-def]
     """Circumcentres (T, 2) and radii (T,), operation for operation as :func:`medialaxis.planar.delaunay.circumcircles`.
 
@@ -165,31 +192,7 @@ def circumcircles_kernel(p, simplices):  # type: ignore[no-untyped-def]
     centre = np.empty((n, 2))
     radius = np.empty(n)
     for t in range(n):
-        i, j, k = simplices[t, 0], simplices[t, 1], simplices[t, 2]
-        ax, ay = p[i, 0], p[i, 1]
-        bx, by = p[j, 0] - ax, p[j, 1] - ay
-        cx, cy = p[k, 0] - ax, p[k, 1] - ay
-        d = 2.0 * (bx * cy - by * cx)
-        b2 = bx * bx + by * by
-        c2 = cx * cx + cy * cy
-        ux = (cy * b2 - by * c2) / d
-        uy = (bx * c2 - cx * b2) / d
-        r = math.hypot(ux, uy)
-        if not np.isfinite(r):
-            corners = (i, j, k)
-            best, longest = 0, -1.0
-            for s in range(3):  # side s is opposite corner s
-                e, f = corners[(s + 1) % 3], corners[(s + 2) % 3]
-                sx, sy = p[e, 0] - p[f, 0], p[e, 1] - p[f, 1]
-                if sx * sx + sy * sy > longest:
-                    best, longest = s, sx * sx + sy * sy
-            e, f = corners[(best + 1) % 3], corners[(best + 2) % 3]
-            ux = 0.5 * (p[e, 0] + p[f, 0]) - ax
-            uy = 0.5 * (p[e, 1] + p[f, 1]) - ay
-            r = 0.5 * np.sqrt(longest)
-        centre[t, 0] = ux + ax
-        centre[t, 1] = uy + ay
-        radius[t] = r
+        centre[t, 0], centre[t, 1], radius[t] = circumcircle(p, simplices[t, 0], simplices[t, 1], simplices[t, 2])
     return centre, radius
 
 
@@ -206,6 +209,18 @@ def _insertion_sort(values, lo, hi):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
+def split_count(points, i, j, radius, conforming, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
+    """Into how many parts the piece from sample ``i`` to ``j`` is cut (0: kept), as :func:`split_pieces` decides."""
+    dx = points[j, 0] - points[i, 0]
+    dy = points[j, 1] - points[i, 1]
+    h = np.sqrt(dx * dx + dy * dy)
+    target = max(min(ratio * radius, np.sqrt(16.0 * radius * tolerance)), min_length)
+    if ((h > target) or not conforming) and h > 2.0 * min_length:
+        return int(min(max(np.ceil(2.0 * h / target), 2.0), 64.0))
+    return 0
+
+
+@njit(cache=True, nogil=True)
 def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, conforming, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
     """The refinement of :func:`medialaxis.planar.sampling.refine_arcs` on concatenated arcs.
 
@@ -215,13 +230,8 @@ def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, confor
     count = np.zeros(n, np.int64)
     any_split = False
     for i in range(n):
-        dx = points[nxt[i], 0] - points[i, 0]
-        dy = points[nxt[i], 1] - points[i, 1]
-        h = np.sqrt(dx * dx + dy * dy)
-        target = max(min(ratio * piece_radius[i], np.sqrt(16.0 * piece_radius[i] * tolerance)), min_length)
-        if ((h > target) or not conforming[i]) and h > 2.0 * min_length:
-            count[i] = min(max(np.ceil(2.0 * h / target), 2.0), 64.0)
-            any_split = True
+        count[i] = split_count(points, i, nxt[i], piece_radius[i], conforming[i], tolerance, min_length, ratio)
+        any_split = any_split or count[i] > 0
     new_offsets = np.zeros(len(a_offsets), np.int64)
     if not any_split:
         new_offsets[0] = -1

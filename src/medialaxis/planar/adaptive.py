@@ -4,6 +4,12 @@ The samples start evenly spaced along the rings and are refined piece by
 piece until every boundary piece is a Delaunay edge (the triangulation
 conforms) and each inner circumcentre lies within the tolerance of the
 axis of the sampled shape (:func:`medialaxis.planar.sampling.refine_arcs`).
+
+Each round inserts only its new samples into the triangulation of the round
+before and tests only the triangles it made (:mod:`medialaxis.planar._refine_kernels`);
+:func:`rounds_from_scratch` is the same refinement triangulating every round
+anew, the reference of the tests and the fallback where rounding stops the
+incremental kernel.
 """
 
 from __future__ import annotations
@@ -11,17 +17,28 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+import shapely
 
 from medialaxis._progress import progress
+from medialaxis.planar._delaunay_kernels import corner_square, drop_corners, insertion_order
 from medialaxis.planar._kernels import piece_state
+from medialaxis.planar._refine_kernels import CORNERS, fresh_triangles, insert_batch, split_linked
 from medialaxis.planar.axis import inner_triangles
-from medialaxis.planar.delaunay import Triangulation, triangulate
+from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
 from medialaxis.planar.sampling import BoundarySample, Rings, initial_arcs, refine_arcs, sample
 
-__all__ = ["sample_and_triangulate", "MAX_REFINEMENTS"]
+__all__ = ["sample_and_triangulate", "rounds_from_scratch", "MAX_REFINEMENTS"]
 
 #: Most rounds of refinement.
 MAX_REFINEMENTS = 12
+#: Fewest new samples, as a share of the sample, for another round after the sample conforms.
+SETTLED_SHARE = 0.05
+
+
+def _start_arcs(rings: Rings, region: Any, min_length: float) -> list[np.ndarray]:
+    """Pieces about ``sqrt(area) / 8`` long (never below ``min_length``), every vertex a sample."""
+    area = max(region.area, 1e-300)
+    return initial_arcs(rings, max(min_length, np.sqrt(area) / 8.0))
 
 
 def sample_and_triangulate(
@@ -33,9 +50,18 @@ def sample_and_triangulate(
     and are split until they conform and are within ``tolerance``, at most
     :data:`MAX_REFINEMENTS` rounds.
     """
-    area = max(region.area, 1e-300)
-    start = max(min_length, np.sqrt(area) / 8.0)
-    arcs: list[np.ndarray] | None = initial_arcs(rings, start)
+    if region is rings.region:
+        found = _incremental(rings, tolerance, min_length)
+        if found is not None:
+            return found
+    return rounds_from_scratch(rings, region, tolerance, min_length)
+
+
+def rounds_from_scratch(
+    rings: Rings, region: Any, tolerance: float, min_length: float
+) -> tuple[BoundarySample, Triangulation, np.ndarray]:
+    """:func:`sample_and_triangulate` with every round's sample triangulated anew."""
+    arcs: list[np.ndarray] | None = _start_arcs(rings, region, min_length)
     settled = False
     locator = rings.locator if region is rings.region else None
     for _ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
@@ -49,5 +75,109 @@ def sample_and_triangulate(
         if arcs is None:
             break
         # Only a handful of pieces near tips were split: triangulate once more and stop.
-        settled = conforming.all() and sum(map(len, arcs)) - len(smp.points) < 0.05 * len(smp.points)
+        settled = conforming.all() and sum(map(len, arcs)) - len(smp.points) < SETTLED_SHARE * len(smp.points)
     return smp, tri, inside
+
+
+def _interpolate(rings: Rings, arc: np.ndarray, ring: np.ndarray) -> np.ndarray:
+    """Points at arc positions ``arc`` of rings ``ring``, as :func:`medialaxis.planar.sampling.sample` places them."""
+    out = np.empty((len(arc), 2))
+    for r in np.unique(ring):
+        v = rings.vertices[r]
+        closed = np.vstack([v, v[:1]])
+        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(closed, axis=0), axis=1))])
+        at = ring == r
+        out[at, 0] = np.interp(arc[at], s, closed[:, 0])
+        out[at, 1] = np.interp(arc[at], s, closed[:, 1])
+    return out
+
+
+def _grow(array: np.ndarray, rows: int, keep: int) -> np.ndarray:
+    """``array`` with at least ``rows`` rows, its first ``keep`` rows kept."""
+    if len(array) >= rows:
+        return array
+    out = np.empty((max(rows, 2 * len(array)),) + array.shape[1:], array.dtype)
+    out[:keep] = array[:keep]
+    return out
+
+
+def _incremental(
+    rings: Rings, tolerance: float, min_length: float
+) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
+    """:func:`rounds_from_scratch`, each round inserting only its new samples; None where the kernel gives up."""
+    region, locator = rings.region, rings.locator
+    first = sample(rings, _start_arcs(rings, region, min_length))
+    n_real = len(first.points)
+    lo = first.points.min(0)
+    extent = float((first.points.max(0) - lo).max())
+    if n_real < 3 or extent <= 0:
+        return None  # the reference raises the error
+    points = np.vstack([np.zeros((CORNERS, 2)), first.points])
+    arc = np.concatenate([np.zeros(CORNERS), first.arc])
+    ring = np.concatenate([np.full(CORNERS, -1), first.ring]).astype(np.int64)
+    nxt = np.concatenate([np.full(CORNERS, -1), first.next + CORNERS]).astype(np.int64)
+    work = np.vstack([FAR_CORNERS, (first.points - lo) / extent + jitter(n_real)])
+    x, y = np.ascontiguousarray(work[:, 0]), np.ascontiguousarray(work[:, 1])
+    near = np.zeros(len(x), np.int64)
+    tv = np.empty((2 * n_real + 2, 3), np.int64)
+    tn = np.full((2 * n_real + 2, 3), -1, np.int64)
+    corner_square(tv, tn, 0)
+    centre, radius, where = np.empty((len(tv), 2)), np.empty(len(tv)), np.zeros(len(tv), np.int8)
+    count, n = 2, len(x)
+    batch = insertion_order(x[CORNERS:], y[CORNERS:]) + CORNERS
+    hint = np.full(len(batch), -1, np.int64)
+    sliver = 1e-7 * extent
+    settled = False
+    for round_ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
+        count, fresh, ok = insert_batch(x, y, tv, tn, count, batch, hint, near)
+        if not ok:
+            return None
+        unsure, gx, gy = fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, locator.segments,
+                                         locator.start, locator.members, locator.y0, locator.height)
+        if len(unsure):
+            shapely.prepare(region)
+            where[unsure] = shapely.contains_xy(region, gx, gy)
+        if settled or round_ == MAX_REFINEMENTS - 1:
+            break
+        conforming, piece_radius = piece_state(tv[:count], where[:count] == 1, radius[:count], nxt)
+        new_arc, new_ring, piece, nxt = split_linked(arc, nxt, ring, points, first.ring_length, piece_radius,
+                                                     conforming, n, float(tolerance), float(min_length), 0.5)
+        m = len(new_arc)
+        if m == 0:
+            break
+        settled = bool(conforming[CORNERS:n].all()) and m < SETTLED_SHARE * (n - CORNERS)
+        new_points = _interpolate(rings, new_arc, new_ring)
+        new_work = (new_points - lo) / extent + jitter(n - CORNERS + m)[n - CORNERS:]
+        points = np.vstack([points, new_points])
+        arc = np.concatenate([arc, new_arc])
+        ring = np.concatenate([ring, new_ring])
+        x = np.concatenate([x, new_work[:, 0]])
+        y = np.concatenate([y, new_work[:, 1]])
+        near = np.concatenate([near, np.zeros(m, np.int64)])
+        order = insertion_order(new_work[:, 0], new_work[:, 1])
+        batch, hint = order + n, piece[order]
+        n += m
+        slots = 2 * (n - CORNERS) + 2
+        tv, tn, centre, radius, where = (_grow(a, slots, count) for a in (tv, tn, centre, radius, where))
+    return _assembled(points[CORNERS:n], arc[CORNERS:n], ring[CORNERS:n], first.ring_length, tv, tn, count,
+                      centre, radius, where)
+
+
+def _assembled(
+    points: np.ndarray, arc: np.ndarray, ring: np.ndarray, ring_length: np.ndarray, tv: np.ndarray, tn: np.ndarray,
+    count: int, centre: np.ndarray, radius: np.ndarray, where: np.ndarray,
+) -> tuple[BoundarySample, Triangulation, np.ndarray]:
+    """The sample in ring and arc order, its triangulation (no corner) and the inner triangles."""
+    order = np.lexsort((arc, ring))
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    simplices, neighbors, row = drop_corners(tv, tn, count, CORNERS, CORNERS + len(points))
+    kept = np.flatnonzero(row >= 0)
+    ring = ring[order]
+    size = np.bincount(ring, minlength=len(ring_length))
+    start = np.repeat(np.cumsum(size) - size, size)
+    following = np.arange(len(ring)) + 1
+    nxt = np.where(following - start >= size[ring], start, following)
+    smp = BoundarySample(points[order], ring, arc[order], ring_length, nxt)
+    tri = Triangulation(smp.points, rank[simplices], neighbors, centre[kept], radius[kept])
+    return smp, tri, where[kept] == 1

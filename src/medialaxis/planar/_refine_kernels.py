@@ -1,0 +1,129 @@
+"""Compiled steps of the incremental adaptive sampling: new samples go into the triangulation already made.
+
+Each round of :mod:`medialaxis.planar.adaptive` splits the boundary pieces
+that are too long (:func:`split_linked`, the rule of
+:func:`medialaxis.planar._kernels.split_count`), inserts only the new samples
+into the Delaunay triangulation of the previous round (:func:`insert_batch`,
+the Bowyer-Watson step of :func:`medialaxis.planar._delaunay_kernels.insert_point`,
+walking from a triangle at the split piece), and computes the circumcircle and the
+inside test of the triangles made in that round only (:func:`fresh_triangles`).
+A round thus costs what it adds, not what the sample holds: the triangles
+that survive keep their circles and sides. The triangulation is the same
+as one made from scratch of the same jittered points (the Delaunay
+triangulation of points in general position is unique); the tests compare
+both.
+
+Vertices ``0 .. 3`` are the four far corners; sample ``i`` is vertex ``4 + i``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis._jit import njit
+from medialaxis.planar._delaunay_kernels import insert_point, scratch
+from medialaxis.planar._inside_kernels import UNSURE, locate_centroid
+from medialaxis.planar._kernels import circumcircle, split_count
+
+__all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked"]
+
+#: Vertices before the first sample: the far corners.
+CORNERS = 4
+
+
+@njit(cache=True, nogil=True)
+def insert_batch(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-untyped-def]
+    """Insert the vertices ``order`` into the triangulation, each walking from ``near[hint[m]]``.
+
+    ``near[v]`` is a live triangle at or close to vertex ``v`` (updated for
+    every inserted vertex). Returns ``(count, fresh, ok)``: ``fresh[t]``
+    marks the slots written by this batch; ``ok`` False where rounding made
+    an insertion inconsistent (the triangulation is then unusable).
+    """
+    work, seen = scratch(len(tv), len(x))
+    fresh = np.zeros(len(tv), np.bool_)
+    last = 0
+    for m in range(len(order)):
+        p = order[m]
+        start = near[hint[m]] if hint[m] >= 0 else last
+        count, new = insert_point(x, y, tv, tn, count, p, start, work, seen)
+        if new == 0:
+            return count, fresh, False
+        for j in range(new):
+            fresh[work[6, j]] = True
+        last = work[6, 0]
+        near[p] = last
+    return count, fresh, True
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
+    """Circumcircle and inside test (:func:`locate_centroid`) of the ``fresh`` slots.
+
+    ``points`` are the unjittered vertices (rows of the corners unused);
+    triangles at a corner are outside. Returns the slots whose answer is
+    ``UNSURE`` and their centroids (the caller asks GEOS).
+    """
+    unsure = np.empty(count, np.int64)
+    gx = np.empty(count)
+    gy = np.empty(count)
+    n_unsure = 0
+    for t in range(count):
+        if not fresh[t]:
+            continue
+        a, b, c = tv[t, 0], tv[t, 1], tv[t, 2]
+        if min(a, b, c) < CORNERS:
+            where[t] = 0
+            radius[t] = np.inf
+            continue
+        centre[t, 0], centre[t, 1], radius[t] = circumcircle(points, a, b, c)
+        where[t], cx, cy = locate_centroid(points, a, b, c, sliver, segments, start, members, y0, height)
+        if where[t] == UNSURE:
+            unsure[n_unsure] = t
+            gx[n_unsure] = cx
+            gy[n_unsure] = cy
+            n_unsure += 1
+    return unsure[:n_unsure], gx[:n_unsure], gy[:n_unsure]
+
+
+@njit(cache=True, nogil=True)
+def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, n, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
+    """Split the pieces ``(i, nxt[i])`` of the vertices ``CORNERS .. n - 1`` that are too long.
+
+    The same pieces and arc positions as :func:`medialaxis.planar._kernels.split_pieces`;
+    the new samples get the vertices ``n, n + 1, ...`` in order of their
+    piece. Returns ``(new_arc, new_ring, piece, nxt)``: the arc position and
+    ring of each new sample, the vertex its piece starts at, and ``nxt`` over
+    all ``n + len(new_arc)`` vertices.
+    """
+    count = np.zeros(n, np.int64)
+    total = 0
+    for i in range(CORNERS, n):
+        count[i] = split_count(points, i, nxt[i], piece_radius[i], conforming[i], tolerance, min_length, ratio)
+        total += max(count[i] - 1, 0)
+    new_arc = np.empty(total)
+    new_ring = np.empty(total, np.int64)
+    piece = np.empty(total, np.int64)
+    out = np.full(n + total, -1, np.int64)
+    out[:n] = nxt[:n]
+    m = 0
+    for i in range(CORNERS, n):
+        k = count[i]
+        if k == 0:
+            continue
+        r = ring[i]
+        length = ring_length[r]
+        start = arc[i]
+        stop = arc[nxt[i]]
+        if stop <= start:
+            stop = stop + length
+        prev = i
+        for j in range(1, k):
+            new_arc[m] = (start + (stop - start) * j / k) % length  # fmod: both are positive
+            new_ring[m] = r
+            piece[m] = i
+            out[prev] = n + m
+            prev = n + m
+            m += 1
+        out[prev] = nxt[i]
+    return new_arc, new_ring, piece, out

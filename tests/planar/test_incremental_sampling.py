@@ -1,0 +1,91 @@
+"""The incremental adaptive sampling against triangulating every round anew, and the Delaunay property by Qhull."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from PIL import Image
+from scipy.spatial import Delaunay, cKDTree
+from shapely.geometry import MultiPolygon, Point, box
+
+from medialaxis.planar import adaptive
+from medialaxis.planar.pipeline import planar_stages
+from medialaxis.planar.sampling import simplify_rings
+
+KIMIA = Path(__file__).resolve().parents[1] / "data" / "kimia99"
+
+
+def _shapes() -> dict[str, tuple[Any, float]]:
+    """Regions with their tolerance: Kimia contours as the pipeline simplifies them (a quarter pixel), polygons."""
+    out = {}
+    for f in sorted(KIMIA.glob("*.png"))[::11]:
+        out[f.stem] = (planar_stages(np.asarray(Image.open(f)).astype(bool)).rings.region, 0.25)
+    disc_with_holes = Point(0, 0).buffer(1.0, 64).difference(Point(0.4, 0).buffer(0.2, 16)).difference(
+        box(-0.6, -0.1, -0.3, 0.1))
+    out["disc with holes"] = (disc_with_holes, 1e-4)
+    out["two pieces"] = (MultiPolygon([box(0, 0, 4, 1), Point(6, 0).buffer(1.0, 5)]), 1e-4)
+    return out
+
+
+SHAPES = _shapes()
+
+
+def _triangles(simplices: np.ndarray) -> set[tuple[int, ...]]:
+    return set(map(tuple, np.sort(simplices, axis=1).tolist()))
+
+
+@pytest.mark.parametrize("name", list(SHAPES))
+def test_incremental_rounds_give_the_sample_and_triangles_of_rounds_from_scratch(name: str) -> None:
+    region, tolerance = SHAPES[name]
+    rings = simplify_rings(region, 0.0)
+    smp, tri, inside = adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
+    ref_smp, ref_tri, ref_inside = adaptive.rounds_from_scratch(rings, rings.region, tolerance, tolerance)
+    for field in ("points", "ring", "arc", "next"):
+        np.testing.assert_array_equal(getattr(smp, field), getattr(ref_smp, field))
+    if name in ("disc with holes", "two pieces"):
+        # co-circular samples (a box, a regular polygon): the jitter picks either diagonal, with the same
+        # circumcentres; collinear samples' slivers lie on the boundary, outside both
+        ours, theirs = (np.c_[t.centers[i], t.radii[i]] for t, i in ((tri, inside), (ref_tri, ref_inside)))
+        for a, b in ((ours, theirs), (theirs, ours)):
+            assert cKDTree(b).query(a)[0].max() < 1e-9 * np.ptp(smp.points)
+        return
+    # the same Delaunay triangles (the jitter of a sample differs, but no four samples here are co-circular)
+    assert _triangles(tri.simplices) == _triangles(ref_tri.simplices)
+    assert _triangles(tri.simplices[inside]) == _triangles(ref_tri.simplices[ref_inside])
+    key = {t: k for k, t in enumerate(map(tuple, np.sort(ref_tri.simplices, axis=1).tolist()))}
+    rows = [key[t] for t in map(tuple, np.sort(tri.simplices, axis=1).tolist())]
+    np.testing.assert_allclose(tri.radii, ref_tri.radii[rows], rtol=1e-9)
+    np.testing.assert_allclose(tri.centers, ref_tri.centers[rows], rtol=0, atol=1e-9 * np.ptp(smp.points))
+
+
+@pytest.mark.parametrize("name", list(SHAPES)[:3])
+def test_incremental_triangulation_is_qhulls(name: str) -> None:
+    """Qhull triangulates the final sample into the same triangles, neighbours across shared edges."""
+    region, tolerance = SHAPES[name]
+    rings = simplify_rings(region, 0.0)
+    smp, tri, _ = adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
+    work = (smp.points - smp.points.min(0)) / np.ptp(smp.points, axis=0).max()
+    qhull = Delaunay(np.vstack([work, adaptive.FAR_CORNERS])).simplices
+    assert _triangles(tri.simplices) == _triangles(qhull[(qhull < len(work)).all(axis=1)])
+    for t, k in zip(*np.nonzero(tri.neighbors >= 0)):
+        assert set(tri.simplices[t]) - {tri.simplices[t, k]} <= set(tri.simplices[tri.neighbors[t, k]])
+
+
+def test_a_failed_insertion_falls_back_to_rounds_from_scratch(monkeypatch: pytest.MonkeyPatch) -> None:
+    region, tolerance = SHAPES["disc with holes"]
+    rings = simplify_rings(region, 0.0)
+    ref = adaptive.rounds_from_scratch(rings, rings.region, tolerance, tolerance)
+    calls = []
+
+    def failing(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-untyped-def]
+        calls.append(len(order))
+        return count, np.zeros(len(tv), bool), False
+
+    monkeypatch.setattr(adaptive, "insert_batch", failing)
+    smp, tri, inside = adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
+    assert calls
+    np.testing.assert_array_equal(smp.points, ref[0].points)
+    assert _triangles(tri.simplices[inside]) == _triangles(ref[1].simplices[ref[2]])
