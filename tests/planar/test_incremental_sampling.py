@@ -80,12 +80,23 @@ def test_a_failed_insertion_falls_back_to_rounds_from_scratch(monkeypatch: pytes
     ref = adaptive.rounds_from_scratch(rings, rings.region, tolerance, tolerance)
     calls = []
 
-    def failing(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-untyped-def]
+    def failing(x, y, tv, tn, count, order, *args):  # type: ignore[no-untyped-def]
         calls.append(len(order))
-        return count, np.zeros(len(tv), bool), False
+        return count, False, np.empty(0, np.int64), np.empty(0), np.empty(0)
 
-    monkeypatch.setattr(adaptive, "insert_batch", failing)
+    monkeypatch.setattr(adaptive, "insert_round", failing)
     smp, tri, inside = adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
     assert calls
     np.testing.assert_array_equal(smp.points, ref[0].points)
     assert _triangles(tri.simplices[inside]) == _triangles(ref[1].simplices[ref[2]])
+
+
+def test_interp_is_numpys_bit_for_bit() -> None:
+    from medialaxis.planar._refine_kernels import interp
+
+    rng = np.random.default_rng(7)
+    xp = np.concatenate([[0.0], np.cumsum(rng.exponential(1.0, 40))])
+    fp = rng.normal(0, 3, len(xp))
+    x = np.concatenate([rng.uniform(-1, xp[-1] + 1, 500), xp, [xp[-1]]])
+    ours = [interp(v, xp, fp, 0)[0] for v in x]
+    np.testing.assert_array_equal(ours, np.interp(x, xp, fp))

@@ -21,11 +21,11 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.planar._delaunay_kernels import insert_point, scratch
+from medialaxis.planar._delaunay_kernels import insert_point, insertion_order, scratch
 from medialaxis.planar._inside_kernels import UNSURE, locate_centroid
-from medialaxis.planar._kernels import circumcircle, split_count
+from medialaxis.planar._kernels import circumcircle, piece_state, split_count
 
-__all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked"]
+__all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp", "insert_round", "refine_round"]
 
 #: Vertices before the first sample: the far corners.
 CORNERS = 4
@@ -127,3 +127,95 @@ def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, 
             m += 1
         out[prev] = nxt[i]
     return new_arc, new_ring, piece, out
+
+
+@njit(cache=True, nogil=True)
+def interp(x, xp, fp, j):  # type: ignore[no-untyped-def]
+    """``(np.interp(x, xp, fp), j)`` as NumPy computes it; ``j`` the segment found (and the guess given)."""
+    if x >= xp[-1]:
+        return fp[-1], j
+    if x < xp[0]:
+        return fp[0], j
+    if not (xp[j] <= x and x < xp[j + 1]):  # the last j with xp[j] <= x, by bisection
+        lo, hi = 0, len(xp)
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if x >= xp[mid]:
+                lo = mid + 1
+            else:
+                hi = mid
+        j = lo - 1
+    if xp[j] == x:
+        return fp[j], j
+    slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j])
+    out = slope * (x - xp[j]) + fp[j]
+    if np.isnan(out):
+        out = slope * (x - xp[j + 1]) + fp[j + 1]
+        if np.isnan(out) and fp[j] == fp[j + 1]:
+            out = fp[j]
+    return out, j
+
+
+@njit(cache=True, nogil=True)
+def insert_round(x, y, tv, tn, count, order, hint, near, points, centre, radius, where, sliver, segments, start,
+                 members, y0, height):  # type: ignore[no-untyped-def]
+    """:func:`insert_batch`, then :func:`fresh_triangles`: ``(count, ok, unsure, gx, gy)``."""
+    count, fresh, ok = insert_batch(x, y, tv, tn, count, order, hint, near)
+    if not ok:
+        return count, False, np.empty(0, np.int64), np.empty(0), np.empty(0)
+    unsure, gx, gy = fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, segments, start,
+                                     members, y0, height)
+    return count, True, unsure, gx, gy
+
+
+@njit(cache=True, nogil=True)
+def refine_round(tv, count, where, radius, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
+                 ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share):  # type: ignore[no-untyped-def]
+    """The pieces' state, their splits and the new samples of one round, over the ``n = len(nxt)`` vertices.
+
+    ``rings_s`` and ``rings_xy`` hold each closed ring's cumulative arc
+    length and vertices, ring ``r`` at ``rings_start[r]:rings_start[r + 1]``.
+    New samples are placed as :func:`medialaxis.planar.sampling.sample`
+    places them and jittered as :func:`medialaxis.planar.delaunay.triangulate`
+    does (``(p - lo) / extent + jitter[i]``). Returns ``(m, settled, points,
+    arc, ring, nxt, x, y, near, order, hint)``: ``m`` new samples (0: none to
+    split; -1: ``jitter`` holds too few rows, nothing done), the arrays
+    extended by them, and their insertion order (BRIO) with the vertex of
+    their piece.
+    """
+    n = len(nxt)
+    conforming, piece_radius = piece_state(tv[:count], where[:count] == 1, radius[:count], nxt)
+    new_arc, new_ring, piece, nxt_out = split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming,
+                                                     n, tolerance, min_length, ratio)
+    m = len(new_arc)
+    settled = m < settled_share * (n - CORNERS)
+    for i in range(CORNERS, n):
+        settled = settled and conforming[i]
+    empty = np.empty(0, np.int64)
+    if m == 0 or n - CORNERS + m > len(jitter):
+        return (m if m == 0 else -1), settled, points, arc, ring, nxt, x, y, near, empty, empty
+    points_out = np.empty((n + m, 2))
+    points_out[:n] = points
+    arc_out = np.empty(n + m)
+    arc_out[:n] = arc
+    arc_out[n:] = new_arc
+    ring_out = np.empty(n + m, np.int64)
+    ring_out[:n] = ring
+    ring_out[n:] = new_ring
+    x_out = np.empty(n + m)
+    x_out[:n] = x
+    y_out = np.empty(n + m)
+    y_out[:n] = y
+    near_out = np.zeros(n + m, np.int64)
+    near_out[:n] = near
+    for i in range(m):
+        r = new_ring[i]
+        s = rings_s[rings_start[r] : rings_start[r + 1]]
+        j = 0
+        for k in range(2):
+            value, j = interp(new_arc[i], s, rings_xy[rings_start[r] : rings_start[r + 1], k], j)
+            points_out[n + i, k] = value
+        x_out[n + i] = (points_out[n + i, 0] - lo[0]) / extent + jitter[n - CORNERS + i, 0]
+        y_out[n + i] = (points_out[n + i, 1] - lo[1]) / extent + jitter[n - CORNERS + i, 1]
+    order = insertion_order(x_out[n:], y_out[n:])
+    return m, settled, points_out, arc_out, ring_out, nxt_out, x_out, y_out, near_out, order + n, piece[order]

@@ -22,7 +22,7 @@ import shapely
 from medialaxis._progress import progress
 from medialaxis.planar._delaunay_kernels import corner_square, drop_corners, insertion_order
 from medialaxis.planar._kernels import piece_state
-from medialaxis.planar._refine_kernels import CORNERS, fresh_triangles, insert_batch, split_linked
+from medialaxis.planar._refine_kernels import CORNERS, insert_round, refine_round
 from medialaxis.planar.axis import inner_triangles
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
 from medialaxis.planar.sampling import BoundarySample, Rings, initial_arcs, refine_arcs, sample
@@ -79,28 +79,6 @@ def rounds_from_scratch(
     return smp, tri, inside
 
 
-def _interpolate(rings: Rings, arc: np.ndarray, ring: np.ndarray) -> np.ndarray:
-    """Points at arc positions ``arc`` of rings ``ring``, as :func:`medialaxis.planar.sampling.sample` places them."""
-    out = np.empty((len(arc), 2))
-    for r in np.unique(ring):
-        v = rings.vertices[r]
-        closed = np.vstack([v, v[:1]])
-        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(closed, axis=0), axis=1))])
-        at = ring == r
-        out[at, 0] = np.interp(arc[at], s, closed[:, 0])
-        out[at, 1] = np.interp(arc[at], s, closed[:, 1])
-    return out
-
-
-def _grow(array: np.ndarray, rows: int, keep: int) -> np.ndarray:
-    """``array`` with at least ``rows`` rows, its first ``keep`` rows kept."""
-    if len(array) >= rows:
-        return array
-    out = np.empty((max(rows, 2 * len(array)),) + array.shape[1:], array.dtype)
-    out[:keep] = array[:keep]
-    return out
-
-
 def _incremental(
     rings: Rings, tolerance: float, min_length: float
 ) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
@@ -112,55 +90,61 @@ def _incremental(
     extent = float((first.points.max(0) - lo).max())
     if n_real < 3 or extent <= 0:
         return None  # the reference raises the error
+    closed = [np.vstack([v, v[:1]]) for v in rings.vertices]
+    rings_xy = np.ascontiguousarray(np.concatenate(closed))
+    rings_s = np.concatenate([np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(c, axis=0), axis=1))])
+                              for c in closed])
+    rings_start = np.concatenate([[0], np.cumsum([len(c) for c in closed])]).astype(np.int64)
     points = np.vstack([np.zeros((CORNERS, 2)), first.points])
     arc = np.concatenate([np.zeros(CORNERS), first.arc])
     ring = np.concatenate([np.full(CORNERS, -1), first.ring]).astype(np.int64)
     nxt = np.concatenate([np.full(CORNERS, -1), first.next + CORNERS]).astype(np.int64)
-    work = np.vstack([FAR_CORNERS, (first.points - lo) / extent + jitter(n_real)])
+    shaken = jitter(max(4 * n_real, 4096))
+    work = np.vstack([FAR_CORNERS, (first.points - lo) / extent + shaken[:n_real]])
     x, y = np.ascontiguousarray(work[:, 0]), np.ascontiguousarray(work[:, 1])
     near = np.zeros(len(x), np.int64)
     tv = np.empty((2 * n_real + 2, 3), np.int64)
     tn = np.full((2 * n_real + 2, 3), -1, np.int64)
     corner_square(tv, tn, 0)
     centre, radius, where = np.empty((len(tv), 2)), np.empty(len(tv)), np.zeros(len(tv), np.int8)
-    count, n = 2, len(x)
+    count = 2
     batch = insertion_order(x[CORNERS:], y[CORNERS:]) + CORNERS
     hint = np.full(len(batch), -1, np.int64)
-    sliver = 1e-7 * extent
     settled = False
     for round_ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
-        count, fresh, ok = insert_batch(x, y, tv, tn, count, batch, hint, near)
+        count, ok, unsure, gx, gy = insert_round(
+            x, y, tv, tn, count, batch, hint, near, points, centre, radius, where, 1e-7 * extent, locator.segments,
+            locator.start, locator.members, locator.y0, locator.height)
         if not ok:
             return None
-        unsure, gx, gy = fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, locator.segments,
-                                         locator.start, locator.members, locator.y0, locator.height)
         if len(unsure):
             shapely.prepare(region)
             where[unsure] = shapely.contains_xy(region, gx, gy)
         if settled or round_ == MAX_REFINEMENTS - 1:
             break
-        conforming, piece_radius = piece_state(tv[:count], where[:count] == 1, radius[:count], nxt)
-        new_arc, new_ring, piece, nxt = split_linked(arc, nxt, ring, points, first.ring_length, piece_radius,
-                                                     conforming, n, float(tolerance), float(min_length), 0.5)
-        m = len(new_arc)
+        while True:
+            m, settled, points, arc, ring, nxt, x, y, near, batch, hint = refine_round(
+                tv, count, where, radius, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
+                first.ring_length, lo, extent, shaken, float(tolerance), float(min_length), 0.5, SETTLED_SHARE)
+            if m >= 0:
+                break
+            shaken = jitter(2 * len(shaken))
         if m == 0:
             break
-        settled = bool(conforming[CORNERS:n].all()) and m < SETTLED_SHARE * (n - CORNERS)
-        new_points = _interpolate(rings, new_arc, new_ring)
-        new_work = (new_points - lo) / extent + jitter(n - CORNERS + m)[n - CORNERS:]
-        points = np.vstack([points, new_points])
-        arc = np.concatenate([arc, new_arc])
-        ring = np.concatenate([ring, new_ring])
-        x = np.concatenate([x, new_work[:, 0]])
-        y = np.concatenate([y, new_work[:, 1]])
-        near = np.concatenate([near, np.zeros(m, np.int64)])
-        order = insertion_order(new_work[:, 0], new_work[:, 1])
-        batch, hint = order + n, piece[order]
-        n += m
-        slots = 2 * (n - CORNERS) + 2
+        slots = 2 * (len(x) - CORNERS) + 2
         tv, tn, centre, radius, where = (_grow(a, slots, count) for a in (tv, tn, centre, radius, where))
+    n = len(x)
     return _assembled(points[CORNERS:n], arc[CORNERS:n], ring[CORNERS:n], first.ring_length, tv, tn, count,
                       centre, radius, where)
+
+
+def _grow(array: np.ndarray, rows: int, keep: int) -> np.ndarray:
+    """``array`` with at least ``rows`` rows, its first ``keep`` rows kept."""
+    if len(array) >= rows:
+        return array
+    out = np.empty((max(rows, 2 * len(array)),) + array.shape[1:], array.dtype)
+    out[:keep] = array[:keep]
+    return out
 
 
 def _assembled(
