@@ -1,7 +1,8 @@
 """Compiled kernels of the Voronoi medial complex: tetrahedron geometry, Delaunay edge rings, star groups.
 
 :func:`tet_geometry` gives the circumspheres, longest edges and volumes of
-the Delaunay tetrahedra, :func:`tet_centroids` their centroids;
+the Delaunay tetrahedra, :func:`tet_centroids` their centroids and
+:func:`nearest_other_sample` the sample nearest to each centroid;
 :func:`all_edge_rings` walks the tetrahedra around every Delaunay edge (the
 Voronoi facets); :func:`minor_star_groups` finds the tetrahedra that pinch
 the union of the inner ones at a sample point (:func:`~medialaxis.mesh.voronoi_complex.unpinch`);
@@ -16,7 +17,7 @@ import numpy as np
 from medialaxis._jit import njit, prange
 from medialaxis.core._kernels import find_root
 
-__all__ = ["all_edge_rings", "minor_star_groups", "tet_centroids", "tet_geometry"]
+__all__ = ["all_edge_rings", "minor_star_groups", "nearest_other_sample", "tet_centroids", "tet_geometry"]
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -76,6 +77,62 @@ def tet_centroids(points, simplices):  # type: ignore[no-untyped-def]
         a, b, c, d = simplices[t, 0], simplices[t, 1], simplices[t, 2], simplices[t, 3]
         for k in range(3):
             out[t, k] = (((points[a, k] + points[b, k]) + points[c, k]) + points[d, k]) / 4.0
+    return out
+
+
+def nearest_other_sample(
+    queries: np.ndarray, points: np.ndarray, simplices: np.ndarray, centres: np.ndarray, radii: np.ndarray
+) -> np.ndarray:
+    """For a point per tetrahedron, the nearest sample when it is not one of the tetrahedron's, else -1.
+
+    A greedy walk over the Delaunay graph from the tetrahedron's nearest
+    vertex: a vertex with no Delaunay neighbour nearer to the query is its
+    nearest sample. (If the query ``x`` is outside the Voronoi cell of
+    ``v``, the segment from ``v`` to ``x`` leaves the cell through a facet
+    shared with a Delaunay neighbour ``u``, and ``x`` lies on ``u``'s side of
+    their bisector plane: ``|x - u| < |x - v|``.) No walk where the
+    tetrahedron's empty circumsphere (``centres``, ``radii``) keeps every
+    other sample farther than its nearest vertex.
+    """
+    n = len(points)
+    order = np.argsort(simplices.ravel(), kind="stable")
+    vptr = np.searchsorted(simplices.ravel()[order], np.arange(n + 1)).astype(np.int64)
+    return _greedy_nearest(
+        np.ascontiguousarray(queries), points, simplices, centres, radii, vptr, (order // 4).astype(np.int64)
+    )
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets):  # type: ignore[no-untyped-def]
+    out = np.full(queries.shape[0], -1, np.int64)
+    for q in prange(queries.shape[0]):
+        best, best_d = -1, np.inf
+        for k in range(4):
+            v = simplices[q, k]
+            d = 0.0
+            for c in range(3):
+                d += (queries[q, c] - points[v, c]) ** 2
+            if d < best_d:
+                best, best_d = v, d
+        own = best
+        inset = 0.0  # how far inside the circumsphere the query lies: other samples are at least that far
+        for c in range(3):
+            inset += (queries[q, c] - centres[q, c]) ** 2
+        inset = radii[q] - np.sqrt(inset)
+        moved = not (inset > 0.0 and best_d <= inset * inset)
+        while moved:
+            moved = False
+            for j in range(vptr[best], vptr[best + 1]):
+                t = vtets[j]
+                for k in range(4):
+                    v = simplices[t, k]
+                    d = 0.0
+                    for c in range(3):
+                        d += (queries[q, c] - points[v, c]) ** 2
+                    if d < best_d:
+                        best, best_d, moved = v, d, True
+        if best != own:
+            out[q] = best
     return out
 
 

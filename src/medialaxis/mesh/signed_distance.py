@@ -69,6 +69,38 @@ class SignedDistance:
         points = np.ascontiguousarray(points, np.float64)
         return self._signed(points, *self._closest(points, near_faces, rings))
 
+    def recheck_sides(
+        self, points: np.ndarray, signed: np.ndarray, nearest: np.ndarray, sample_points: np.ndarray,
+        sample_faces: np.ndarray,
+    ) -> None:
+        """Correct in place the sides :meth:`query` gave, against each point's nearest sample.
+
+        :meth:`query` searches the faces at a point's own samples. A point
+        that lies nearer another part of the surface (the centroid of a large
+        Delaunay tetrahedron spanning a concave fold, whose four samples lie
+        on one side of it) can get the wrong side there: 91 tetrahedra
+        holding 1.8 % of a scanned figure's volume were taken as inside. A
+        point whose nearest sample is not one of its own and lies on the
+        other side of that sample's face is measured exactly (:meth:`exact`).
+
+        Parameters
+        ----------
+        points : (q, 3) float64 ndarray
+        signed : (q,) float64 ndarray
+            Signed distances from :meth:`query`; overwritten where wrong.
+        nearest : (q,) int64 ndarray
+            The sample nearest to each point where it is not one of its own, else -1.
+        sample_points : (p, 3) float64 ndarray
+        sample_faces : (p,) int64 ndarray
+            Face of each sample.
+        """
+        other = np.flatnonzero(nearest >= 0)
+        site = nearest[other]
+        facing = np.einsum("ij,ij->i", points[other] - sample_points[site], self.normals.face[sample_faces[site]])
+        doubt = other[(facing > 0) != (signed[other] > 0)]
+        if len(doubt):
+            signed[doubt] = self.exact(points[doubt])[0]
+
     def _closest(self, points: np.ndarray, near_faces: np.ndarray, rings: bool) -> tuple[np.ndarray, ...]:
         """Distance, closest point, face and region (:func:`closest_on_candidates`) of each point."""
         return closest_on_candidates(  # type: ignore[no-any-return]

@@ -35,7 +35,7 @@ from medialaxis.errors import (
     MedialAxisError,
     MedialAxisWarning,
 )
-from medialaxis.mesh._voronoi_kernels import tet_centroids
+from medialaxis.mesh._voronoi_kernels import nearest_other_sample, tet_centroids
 from medialaxis.mesh.crossings import crossing_pairs, shell_labels
 from medialaxis.mesh.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
 from medialaxis.mesh.sampling import (
@@ -80,9 +80,14 @@ def _inner_tets(dt: Any, smp: Any, sd: SignedDistance, tolerance: float) -> np.n
     them with three nearly collinear samples are a hair inside, cover
     samples of the cap (every tetrahedron around such a sample is inner, its
     Voronoi cell is closed and the medial complex gains a void: 57 on a
-    224 x 224 uv ellipsoid) and bring circumcentres from far away.
+    224 x 224 uv ellipsoid) and bring circumcentres from far away. The
+    side found among the faces at a tetrahedron's samples is checked against
+    the sample nearest to its centroid (:meth:`SignedDistance.recheck_sides`).
     """
-    centroid_signed, _ = sd.query(tet_centroids(dt.points, dt.simplices), smp.face[dt.simplices])
+    centroids = tet_centroids(dt.points, dt.simplices)
+    centroid_signed, _ = sd.query(centroids, smp.face[dt.simplices])
+    nearest = nearest_other_sample(centroids, dt.points, dt.simplices, dt.centres, dt.radii)
+    sd.recheck_sides(centroids, centroid_signed, nearest, dt.points, smp.face)
     return centroid_signed < -np.maximum(tolerance, FLAT_DEPTH * dt.longest)
 
 

@@ -27,6 +27,7 @@ from typing import Literal
 
 import numpy as np
 
+from medialaxis.core._kernels import find_root
 from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh._collapse_kernels import collapse_facets, collapse_free_sides
@@ -44,7 +45,7 @@ from medialaxis.mesh._ring_kernels import (
 from medialaxis.mesh._voronoi_kernels import minor_star_groups
 from medialaxis.mesh.voronoi_diagram import Tetrahedralisation, edge_rings
 
-__all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "euler_characteristic", "TOPOLOGY_MODES"]
+__all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "open_cells", "euler_characteristic", "TOPOLOGY_MODES"]
 
 TOPOLOGY_MODES = ("preserve", "lambda")
 #: A facet narrower than lambda spans a thin part when its contact points
@@ -190,6 +191,64 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
     return inner
 
 
+def open_cells(
+    dt: Tetrahedralisation, inner: np.ndarray, edge_ij: np.ndarray, facet: np.ndarray, length: np.ndarray
+) -> np.ndarray:
+    """Facets to drop so that the Voronoi cells of samples buried in the inner set are open.
+
+    The dual complex holds the 0-, 1- and 2-cells dual to the inner
+    tetrahedra, the triangles and the edges inside their union. A sample
+    point inside the union (every triangle at it is shared by two inner
+    tetrahedra: a flat stack on the surface, or a thin part sampled too
+    coarsely, covered its sample) is dual to a 3-cell, its Voronoi cell,
+    which the complex lacks: the cell's facets then bound a void that the
+    solid does not have. Collapsing each such 3-cell through one facet puts
+    it back, keeping the union's homotopy type: a spanning forest over the
+    buried points, grown from the points on the union's boundary along the
+    facets, shortest Delaunay edge first (Kruskal); the facet of each tree
+    edge is dropped.
+
+    Parameters
+    ----------
+    dt : Tetrahedralisation
+    inner : (t,) bool ndarray
+    edge_ij : (e, 2) int64 ndarray
+        Delaunay edge of each facet.
+    facet : (e,) bool ndarray
+        Facets of the complex (every tetrahedron around the edge inner).
+    length : (e,) float64 ndarray
+        Delaunay edge lengths.
+
+    Returns
+    -------
+    (e,) bool ndarray
+        The facets to drop.
+    """
+    n = len(dt.points)
+    simplices, neighbors = dt.simplices, dt.neighbors
+    on_border = np.zeros(n, bool)
+    covered = np.zeros(n, bool)
+    covered[simplices[inner].ravel()] = True
+    for k in range(4):
+        opposite = neighbors[:, k]
+        open_side = inner & ((opposite < 0) | ~inner[np.maximum(opposite, 0)])
+        on_border[simplices[open_side][:, [j for j in range(4) if j != k]].ravel()] = True
+    drop = np.zeros(len(edge_ij), bool)
+    buried = covered & ~on_border
+    if not buried.any():
+        return drop
+    candidates = np.flatnonzero(facet & (buried[edge_ij[:, 0]] | buried[edge_ij[:, 1]]))
+    candidates = candidates[np.argsort(length[candidates], kind="stable")]
+    parent = np.where(buried, np.arange(n), n)  # n: the border, one set
+    parent = np.append(parent, n)
+    for k in candidates:
+        a, b = find_root(parent, edge_ij[k, 0]), find_root(parent, edge_ij[k, 1])
+        if a != b:
+            drop[k] = True
+            parent[min(a, b)] = max(a, b)  # the border (n) stays a root
+    return drop
+
+
 def _gaps(flag: np.ndarray) -> list[np.ndarray]:
     """Maximal cyclic runs of False in ``flag`` (which holds some True), as row arrays."""
     n = len(flag)
@@ -268,6 +327,8 @@ def medial_complex(
         inner = unpinch(dt, ring_ptr, ring_tets, inner)
     member = medial if topology == "lambda" else inner
     keep = ring_all(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
+    if topology != "lambda":
+        keep &= ~open_cells(dt, inner, edge_ij, keep, length)
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, keep)
     length = length[keep]
     wide = length >= lam
