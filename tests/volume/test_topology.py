@@ -52,7 +52,7 @@ def test_t_is_contractible_with_shared_junction_edges_for_every_seed(noise_seed,
     assert np.mean(dist[near_truth] <= 1.0) >= 0.97  # no slit along the junction
 
 
-@pytest.mark.parametrize("noise_seed,rng", [(0, 0), (1, 0), (2, 0), (0, 1)])
+@pytest.mark.parametrize("noise_seed,rng", [(0, 0), (1, 0), (2, 0), (0, 5)])
 def test_member_is_a_tube_with_a_flange(noise_seed, rng):
     ph = member_phantom(rng=noise_seed)
     ma = mx.medial_axis(ph.volume, method="midsurface", iso=0.5, rng=rng)

@@ -48,41 +48,21 @@ from medialaxis._progress import check_cancel
 from medialaxis.core.parallel import check_jobs, check_scheduler, run_tasks
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.scene3d import Surface
-from medialaxis.core.validate import check_finite, check_number
+from medialaxis.core.validate import check_number
 from medialaxis.errors import EmptyShapeError, InvalidInputError
-from medialaxis.volume.blocks import (
-    Block,
-    BlockSampler,
-    block_grid,
-    finish_block,
-    halo_voxels,
-    medial_block,
-    scan_block,
-)
+from medialaxis.volume.block_iso import block_iso
+from medialaxis.volume.blocks import block_grid, finish_block, halo_voxels, medial_block, scan_block
 from medialaxis.volume.distance import Grid
-from medialaxis.volume.inputs import (
-    HISTOGRAM_BINS,
-    VolumeInput,
-    check_spacing,
-    counted,
-    iso50_counts,
-    iso50_histogram,
-    value_counts,
-)
+from medialaxis.volume.inputs import VolumeInput, check_spacing
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels
 from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness, nominal_thicknesses, plate_summary
+from medialaxis.volume.polygonize import JUNCTION_SPACING, pick_seed
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
-from medialaxis.volume.stages import (
-    assemble,
-    check_range,
-    dents_stage,
-    dropped_report,
-    extension_stage,
-    polygonize_stage,
-    stage_metadata,
-)
+from medialaxis.volume.stages import check_range, dropped_report, mesh_result, stage_metadata
+from medialaxis.volume.stitch import STREAMED_SUFFIXES, join_pieces, stream_ply
+from medialaxis.volume.tiles import MeshPlan, SheetPart, load_sheet, mesh_block, mesh_plan_halo, store_sheet
 
-__all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "chunked_medial_voxels", "chunked_midsurface",
+__all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "check_out", "chunked_medial_voxels", "chunked_midsurface",
            "chunked_voxels", "use_chunks"]
 
 #: Block edge (voxels) when the chunked route is taken by size.
@@ -138,57 +118,6 @@ def use_chunks(volume: Any, chunks: Any, scheduler: Any, raw_shape: Any = None, 
     return None
 
 
-def _value_counts(block: Block, source: Source) -> np.ndarray:
-    values, counts = value_counts(source.read(block.region))
-    return np.stack([values, counts.astype(np.float64)])
-
-
-def _range(block: Block, source: Source) -> tuple[float, float]:
-    grey = np.asarray(source.read(block.region), np.float32)
-    if not np.all(np.isfinite(grey)):
-        raise InvalidInputError(f"the volume contains NaN or infinite values (in the block at {block.lo} of {source.name})")
-    return float(grey.min()), float(grey.max())
-
-
-def _histogram(block: Block, source: Source, lo: float, hi: float) -> np.ndarray:
-    grey = np.asarray(source.read(block.region), np.float32)
-    return np.histogram(grey, bins=HISTOGRAM_BINS, range=(lo, hi))[0]
-
-
-def _class_sums(block: Block, source: Source, t: float) -> np.ndarray:
-    grey = np.asarray(source.read(block.region), np.float32)
-    low = grey <= t
-    return np.array([grey[low].sum(dtype=np.float64), low.sum(), grey[~low].sum(dtype=np.float64), (~low).sum()])
-
-
-def _iso(source: Source, blocks: list[Block], iso: Any, run: Callable[..., list[Any]]) -> tuple[float, float, str]:
-    """The iso value (ISO-50 when not given), the smallest grey value (NaN when not read), ``threshold_method``."""
-    if iso is not None:
-        return check_finite(iso, "iso"), math.nan, "given"
-    if source.dtype == bool:
-        return 0.5, 0.0, "mask"
-    if counted(source.dtype):
-        tables = run(_value_counts, blocks, source, desc="grey values")
-        values, inverse = np.unique(np.concatenate([t[0] for t in tables]), return_inverse=True)
-        counts = np.bincount(inverse, np.concatenate([t[1] for t in tables]))
-        if len(values) == 1:
-            raise EmptyShapeError(f"the volume is constant ({values[0]:g}); nothing to threshold")
-        found = iso50_counts(values, counts)
-        return found.value, float(values[0]), found.method
-    ranges = run(_range, blocks, source, desc="grey range")
-    lo, hi = min(r[0] for r in ranges), max(r[1] for r in ranges)
-    if lo == hi:
-        raise EmptyShapeError(f"the volume is constant ({lo}); nothing to threshold")
-    hist = np.sum(run(_histogram, blocks, source, lo, hi, desc="grey histogram"), axis=0)
-
-    def class_means(t: float) -> tuple[float, float] | None:  # Otsu's fallback only: one more pass
-        sums = np.sum(run(_class_sums, blocks, source, t, desc="grey classes"), axis=0)
-        return None if sums[1] == 0 or sums[3] == 0 else (sums[0] / sums[1], sums[2] / sums[3])
-
-    found = iso50_histogram(hist, lo, hi, class_means)
-    return found.value, lo, found.method
-
-
 def _plates(scans: list[Any], thickness: Any, lam: Any, spacing: np.ndarray) -> tuple[PlateThickness, float | None, np.ndarray | None]:
     """Part-wide plate thickness, ``lam`` and the nominal thicknesses (None: one thickness) from the first pass."""
     unit = float(spacing.min())
@@ -205,49 +134,44 @@ def _plates(scans: list[Any], thickness: Any, lam: Any, spacing: np.ndarray) -> 
     return plates, (DEFAULT_LAM_RATIO * plates.value if lam_value is None else lam_value), None
 
 
-def _gather(parts: list[Any]) -> tuple[MedialVoxels, Grid | None, int]:
-    """The blocks' medial voxels in the in-memory route's order, on the crop grid of the whole foreground."""
+def _stored(item: tuple[Any, tuple[int, int, int]], folder: str, fn: Callable[..., Any], *args: Any) -> SheetPart:
+    """``fn(item[0], *args)``'s medial voxels written to ``folder`` (a worker's task): the sheet stays out of the client."""
+    return store_sheet(fn(item[0], *args), item[1], folder)
+
+
+def _sheet(parts: list[SheetPart]) -> tuple[MedialVoxels, Grid | None, int]:
+    """The counts of the blocks' medial voxels and the crop grid of the whole foreground (spacing set by the caller)."""
     boxes = [(p.lo, p.hi) for p in parts if p.lo is not None]
     foreground = sum(p.foreground for p in parts)
-    if not boxes:
-        return parts[0].medial, None, foreground
+    counts = MedialVoxels(np.zeros((0, 3), np.int64), np.zeros((0, 3)), np.zeros(0), np.zeros((0, 3)), np.zeros(0),
+                          np.zeros(0), sum(p.sheet_pairs for p in parts), np.concatenate([p.dropped_gaps for p in parts]))
+    if not boxes or sum(p.count for p in parts) == 0:
+        return counts, None, foreground
     lo = np.min([b[0] for b in boxes], axis=0) - 1
     hi = np.max([b[1] for b in boxes], axis=0) + 1
-    m = [p.medial for p in parts]
-    voxels = np.concatenate([x.voxels for x in m])
-    order = np.lexsort((voxels[:, 2], voxels[:, 1], voxels[:, 0]))
-    medial = MedialVoxels(
-        voxels=voxels[order] - lo,
-        position=np.concatenate([x.position for x in m])[order],
-        radius=np.concatenate([x.radius for x in m])[order],
-        normal=np.concatenate([x.normal for x in m])[order],
-        distance=np.concatenate([x.distance for x in m])[order],
-        coherence=np.concatenate([x.coherence for x in m])[order],
-        sheet_pairs=sum(x.sheet_pairs for x in m),
-        dropped_gaps=np.concatenate([x.dropped_gaps for x in m]),
-    )
-    return medial, Grid(lo, tuple(int(s) for s in hi - lo), np.zeros(3)), foreground  # spacing set by the caller
+    return counts, Grid(lo, tuple(int(s) for s in hi - lo), np.zeros(3)), foreground
 
 
 def chunked_medial_voxels(
     volume: Any, *, chunks: tuple[int, int, int], iso: Any = None, thickness: Any = None, lam: Any = None,
     spacing: Any = None, raw_shape: Any = None, raw_dtype: Any = None, scheduler: Any = None, n_jobs: int | None = None,
-    callback: Callable[[str], Any] | None = None, show_progress: bool | None = None,
+    callback: Callable[[str], Any] | None = None, show_progress: bool | None = None, folder: str,
 ) -> dict[str, Any]:
-    """Passes 1-3: the medial voxels of a volume, block by block.
+    """Passes 1-3: the medial voxels of a volume, block by block, each block's written to ``folder``.
 
     Returns a state dict with ``source``, ``iso``, ``threshold_method``, ``minimum``, ``spacing``,
-    ``grid``, ``medial``, ``plates``, ``thickness``, ``lam``, ``chunks`` and ``halo``.
+    ``grid``, ``medial`` (the counts only), ``parts`` (:class:`~medialaxis.volume.tiles.SheetPart`),
+    ``plates``, ``thickness``, ``lam``, ``chunks``, ``halo`` and ``run`` (runs tasks where the blocks ran).
     """
     check_scheduler(scheduler)
     check_jobs(n_jobs)
     source = open_source(volume, raw_shape=raw_shape, raw_dtype=raw_dtype)
-    folders: list[str | None] = []
     try:
         spacing = check_spacing(spacing, source.spacing)
         chunks = tuple(min(int(c), int(s)) for c, s in zip(chunks, source.shape))
         limit = int(max(chunks))
         blocks = block_grid(source.shape, chunks)  # type: ignore[arg-type]
+        items = [(b, tuple(int(lo) // int(c) for lo, c in zip(b.lo, chunks))) for b in blocks]
 
         jobs = _local_jobs(n_jobs, chunks)
 
@@ -256,7 +180,7 @@ def chunked_medial_voxels(
             return run_tasks(fn, items, *args, scheduler=scheduler, n_jobs=jobs, desc=desc,
                              show_progress=show_progress, callback=callback)
 
-        iso_value, minimum, threshold_method = _iso(source, blocks, iso, run)
+        iso_value, minimum, threshold_method = block_iso(source, blocks, iso, run)
         unit = float(spacing.min())
         if thickness is not None and not isinstance(thickness, (tuple, list, np.ndarray)):
             value = check_number(thickness, "thickness", positive=True)
@@ -268,31 +192,30 @@ def chunked_medial_voxels(
             plates, nominal = PlateThickness(value, lam_value, np.inf), None
             halo = halo_voxels(0.5 * value + float(spacing.max()), spacing, False)
             _check_halo(halo, chunks, source.shape)
-            parts = run(medial_block, blocks, source, iso_value, spacing, halo, lam_value, plates, None, limit,
-                        desc="medial voxels")
+            parts = run(_stored, items, folder, medial_block, source, iso_value, spacing, halo, lam_value, plates, None,
+                        limit, desc="medial voxels")
         else:
             first = np.full(3, min(FIRST_HALO, limit), np.int64)
             lower = DEFAULT_MIN_THICKNESS * unit if thickness is None else float(thickness[0])
             shortest = 1.5 * unit if lam is None else min(check_number(lam, "lam", positive=True), 1.5 * unit)
-            # local runs keep the first pass's pairs in a temporary folder, cluster runs in memory
-            spill = tempfile.mkdtemp(prefix="medialaxis-pairs-") if scheduler in (None, "threads", "synchronous") else None
-            folders.append(spill)
-            scans = run(scan_block, blocks, source, iso_value, spacing, first, lower, shortest, limit, spill,
+            # the first pass's pairs wait in the folder, not in the client
+            scans = run(scan_block, blocks, source, iso_value, spacing, first, lower, shortest, limit, folder,
                         desc="medial voxels")
             _check_foreground(sum(s.foreground for s in scans), source, iso_value)
             plates, lam_value, nominal = _plates(scans, thickness, lam, spacing)
             depth = max(s.depth for s in scans)
             halo = halo_voxels(depth, spacing, nominal is not None)
             if nominal is None:  # one thickness: the first pass's pairs give the medial voxels
-                parts = [finish_block(scan, lam_value, plates, unit) for scan in scans]
+                parts = run(_stored, [(scan, i) for scan, (_, i) in zip(scans, items)], folder, finish_block,
+                            lam_value, plates, unit, desc="medial voxels")
             else:  # several: each block labels its plates, reading itself again
                 del scans
                 _check_halo(halo, chunks, source.shape)
-                parts = run(medial_block, blocks, source, iso_value, spacing, halo, lam_value, plates, nominal, limit,
-                            depth, desc="plate labels")
-        medial, grid, foreground = _gather(parts)
+                parts = run(_stored, items, folder, medial_block, source, iso_value, spacing, halo, lam_value, plates,
+                            nominal, limit, depth, desc="plate labels")
+        medial, grid, foreground = _sheet(parts)
         _check_foreground(foreground, source, iso_value)
-        if grid is None or len(medial.voxels) == 0:
+        if grid is None:
             what = f"lam={lam_value:g}" if lam_value is not None else f"plates {plates.lower:g} to {plates.upper:g} thick"
             raise EmptyShapeError(f"no medial voxel for {what}: the thickness or lam is larger than the part allows")
         grid = Grid(grid.offset, grid.shape, spacing)
@@ -300,14 +223,10 @@ def chunked_medial_voxels(
             plates = PlateThickness(plates.value, plates.lower, plates.upper, np.zeros(0), ranged=True)
         return {"source": source, "iso": iso_value, "threshold_method": threshold_method, "minimum": minimum,
                 "spacing": spacing, "grid": grid, "medial": medial, "plates": plates, "thickness": plates.value,
-                "lam": lam_value, "chunks": chunks, "halo": halo}
+                "lam": lam_value, "chunks": chunks, "halo": halo, "parts": parts, "items": items, "run": run}
     except BaseException:
         _cleanup(source)
         raise
-    finally:
-        for folder in folders:
-            if folder:
-                shutil.rmtree(folder, ignore_errors=True)
 
 
 #: Bytes per voxel of a block's read box at its peak (grey, mask, index, the
@@ -364,45 +283,88 @@ def shell_of_source(source: Source, iso: float, spacing: np.ndarray, cells: int 
     return isosurface_shell(VolumeInput(grey, mask, iso, spacing * step), cells=max(grey.shape))
 
 
-def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: bool = True, remove_dents: bool = True,
-                       density: float = 1.0, rng: Any = 0, **options: Any) -> MedialAxis:
-    """The mid-surface of a volume by blocks (options of :func:`chunked_medial_voxels`)."""
+def check_out(out: Any) -> None:
+    """``out`` is None or a ``.ply`` path (the format the mesh streams to)."""
+    if out is not None and Path(out).suffix.lower() not in STREAMED_SUFFIXES:
+        raise InvalidInputError(f"out= writes the mesh to a {' or '.join(STREAMED_SUFFIXES)} file, got {str(out)!r}")
 
+
+def _sheet_folder(spill: Any) -> str:
+    """A new folder for the blocks' sheets and meshes, in ``spill`` (a folder every worker sees) or the temp folder."""
+    if spill is not None and not Path(spill).is_dir():
+        raise InvalidInputError(f"spill must be an existing folder (that every worker sees), got {str(spill)!r}")
+    return tempfile.mkdtemp(prefix="medialaxis-sheet-", dir=None if spill is None else str(spill))
+
+
+def _mesh_plan(state: dict[str, Any], folder: str, density: float, rng: Any, extend: bool, remove_dents: bool) -> MeshPlan:
+    spacing, plates, grid = state["spacing"], state["plates"], state["grid"]
+    largest = max(p.largest_radius for p in state["parts"])
+    reach = max(density * largest, 1.5 * float(spacing.max())) * JUNCTION_SPACING
+    plate = 2.0 * largest if plates.local else float(state["thickness"])
+    extend_reach = 1.5 * plate + 2.0 * density * (largest if plates.local else 0.5 * float(state["thickness"]))
+    halo, exact = mesh_plan_halo(reach, spacing, extend_reach)
+    minimum = state["minimum"] if np.isfinite(state["minimum"]) else state["iso"] - 1.0
+    return MeshPlan(folder, tuple(state["chunks"]), tuple(state["source"].shape), grid.offset,
+                    grid.offset + np.array(grid.shape), spacing, density, pick_seed(rng),
+                    plates, float(state["thickness"]), state["lam"], float(state["iso"]), float(minimum), bool(extend),
+                    bool(remove_dents), float(reach), int(halo), int(exact))
+
+
+def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: bool = True, remove_dents: bool = True,
+                       density: float = 1.0, rng: Any = 0, out: Any = None, spill: Any = None,
+                       **options: Any) -> MedialAxis:
+    """The mid-surface of a volume by blocks (options of :func:`chunked_medial_voxels`).
+
+    Each block meshes a window of the sheet on the workers
+    (:func:`~medialaxis.volume.tiles.mesh_block`); the pieces are joined by
+    their vertex names (:mod:`~medialaxis.volume.stitch`), or with ``out``
+    (a ``.ply`` path) streamed to that file block by block, and the result
+    then holds no mesh (``metadata["written"]``, ``["vertices"]``, ``["faces"]``).
+    """
     density = check_number(density, "density", positive=True)
-    state = chunked_medial_voxels(volume, chunks=chunks, **options)
-    source = state["source"]
+    check_out(out)
+    folder = _sheet_folder(spill)
+    source = None
     try:
+        state = chunked_medial_voxels(volume, chunks=chunks, folder=folder, **options)
+        source = state["source"]
         state["dropped"] = dropped_report(state["medial"], state["plates"], state["lam"])
-        callback = options.get("callback")
-        check_cancel(callback, "polygonize")
-        polygonize_stage(state, density, rng)
-        check_cancel(callback, "dents")
-        dents_stage(state, remove_dents)
-        if extend:
-            check_cancel(callback, "extension")
-            minimum = state["minimum"] if np.isfinite(state["minimum"]) else state["iso"] - 1.0
-            sampler = BlockSampler(source, state["chunks"], minimum)
-            extension_stage(state, sampler, state["iso"], state["spacing"], density)
+        plan = _mesh_plan(state, folder, density, rng, extend, remove_dents)
+        items = [item for item, part in zip(state["items"], state["parts"]) if part.count]
+        counts = state["run"](mesh_block, items, plan, source, desc="mesh")
         metadata = stage_metadata("midsurface", state["iso"], state["plates"], state["lam"], state["dropped"],
                                   state["spacing"], source.shape, threshold_method=state["threshold_method"])
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
-                         "chunks": list(state["chunks"]), "halo": state["halo"].tolist()})
+                         "chunks": list(state["chunks"]), "halo": state["halo"].tolist(),
+                         "mesh_halo": max(c["halo"] for c in counts)})
         shell = shell_of_source(source, state["iso"], state["spacing"])
-        return assemble(state, metadata, shell)[0]
+        if out is not None:
+            vertices, faces = stream_ply(folder, counts, state["chunks"], out)
+            metadata.update({"written": str(out), "vertices": vertices, "faces": faces})
+            return MedialAxis(np.zeros((0, 3)), np.zeros(0), metadata=metadata, shape=shell)
+        points, radii, kind, faces = join_pieces(folder, [c["index"] for c in counts if c["vertices"] or c["faces"]])
+        return mesh_result(points, radii, kind, faces, metadata, shell)
     finally:
-        _cleanup(source)
+        if source is not None:
+            _cleanup(source)
+        shutil.rmtree(folder, ignore_errors=True)
 
 
-def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], **options: Any) -> MedialAxis:
+def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], spill: Any = None, **options: Any) -> MedialAxis:
     """The medial voxels of a volume by blocks (``method="voxels"``)."""
     from medialaxis.volume.polygonize import classify_voxels
     from medialaxis.volume.voxel_table import voxel_table
 
-    state = chunked_medial_voxels(volume, chunks=chunks, **options)
-    source = state["source"]
+    folder = _sheet_folder(spill)
+    source = None
     try:
-        medial, grid, plates = state["medial"], state["grid"], state["plates"]
-        dropped = dropped_report(medial, plates, state["lam"])
+        state = chunked_medial_voxels(volume, chunks=chunks, folder=folder, **options)
+        source = state["source"]
+        grid, plates = state["grid"], state["plates"]
+        medial = load_sheet(folder, [i for _, i in state["items"]])
+        medial = MedialVoxels(medial.voxels - grid.offset, medial.position, medial.radius, medial.normal,
+                              medial.distance, medial.coherence)
+        dropped = dropped_report(state["medial"], plates, state["lam"])
         kind = classify_voxels(voxel_table(medial.voxels, grid.shape), medial.voxels)
         metadata = stage_metadata("voxels", state["iso"], plates, state["lam"], dropped, state["spacing"], source.shape,
                                   threshold_method=state["threshold_method"])
@@ -413,4 +375,6 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], **options: Any)
             metadata=metadata, shape=shell_of_source(source, state["iso"], state["spacing"]),
         )
     finally:
-        _cleanup(source)
+        if source is not None:
+            _cleanup(source)
+        shutil.rmtree(folder, ignore_errors=True)

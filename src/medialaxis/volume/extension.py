@@ -179,14 +179,15 @@ LINE_AGREEMENT = 0.3
 
 
 def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.ndarray, vertices: np.ndarray,
-                          directions: np.ndarray, tolerance: float = 0.0, reach: float = 0.0,
+                          directions: np.ndarray, tolerance: float = 0.0, reach: float | np.ndarray = 0.0,
                           outward: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Directions of junction-line ends: away from their one junction neighbour.
 
     The faces at a line's end belong to several sheets, and the outward
     directions of their boundary edges do not agree; the line's own direction
     does. Free-boundary vertices on the line beyond its end (within
-    ``tolerance`` of it and ``reach`` of the end: the corners of the sheets
+    ``tolerance`` of it and ``reach`` of the end, one value or the end's own
+    longest extension: the corners of the sheets
     there) take the line's direction too, instead of a diagonal into the
     other sheet. With ``outward`` (the boundary edges' own directions), a
     vertex keeps its direction where the line's points back into the mesh
@@ -211,11 +212,12 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
     d /= np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
     if tolerance > 0 and len(one):
         candidates = vertices[~junction[vertices]]
+        reach = np.broadcast_to(np.asarray(reach, np.float64), (len(points),))
         for end, t in zip(one[:, 0], d):
             rel = points[candidates] - points[end]
             along = rel @ t
             across = np.linalg.norm(rel - along[:, None] * t, axis=1)
-            on_line = slot[candidates[(along > -tolerance) & (along <= reach) & (across <= tolerance)]]
+            on_line = slot[candidates[(along > -tolerance) & (along <= reach[end]) & (across <= tolerance)]]
             if outward is not None:
                 on_line = on_line[outward[on_line] @ t > -LINE_AGREEMENT]
             out[on_line] = t
@@ -279,7 +281,6 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         return points, faces, np.empty(0, np.int64)
     limit = np.broadcast_to(np.asarray(max_length, np.float64), (len(points),))
     probes = np.broadcast_to(np.asarray(probe, np.float64), (len(points),))
-    max_length = float(limit.max())
     vertices, outward = outward_directions(points, edges, opposite)
     directions, eigen, is_normal = _in_sheet_planes(points, faces, vertices, outward)
     in_plane = np.linalg.norm(directions, axis=1)
@@ -287,7 +288,7 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     along_line = np.zeros(len(vertices), bool)
     if junction is not None:
         directions, along_line = _along_junction_lines(points, faces, np.asarray(junction, bool), vertices, directions,
-                                           tolerance=1.5 * float(spacing.max()), reach=max_length, outward=outward)
+                                           tolerance=1.5 * float(spacing.max()), reach=limit, outward=outward)
     good = np.linalg.norm(directions, axis=1) > 0.5
     if free is not None:
         free = np.asarray(free, bool)

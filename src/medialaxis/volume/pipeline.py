@@ -28,7 +28,7 @@ from medialaxis._progress import check_cancel, progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
-from medialaxis.volume.chunked import chunked_midsurface, chunked_voxels, use_chunks
+from medialaxis.volume.chunked import check_out, chunked_midsurface, chunked_voxels, use_chunks
 from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
@@ -193,6 +193,8 @@ def midsurface_medial_axis(
     n_jobs: int | None = None,
     callback: Callable[[str], Any] | None = None,
     show_progress: bool | None = None,
+    out: Any = None,
+    spill: Any = None,
 ) -> MedialAxis:
     """Mid-surface of a thin-plate volume as a triangle mesh with thickness.
 
@@ -274,6 +276,15 @@ def midsurface_medial_axis(
         Called with each stage name; returning ``False`` cancels.
     show_progress : bool, optional
         Progress bar on stderr (default: when stderr is a terminal).
+    out : str or path, optional
+        A ``.ply`` file for the mesh. The chunked route streams it there
+        block by block (the mesh is never whole in one process) and returns
+        a result without the mesh: ``metadata["written"]``, ``["vertices"]``
+        and ``["faces"]``; in memory the result is written and returned.
+    spill : str or path, optional
+        Folder for the blocks' medial voxels and mesh pieces of the chunked
+        route (default: the temporary folder; on a cluster of several
+        machines, a folder every worker sees).
 
     Returns
     -------
@@ -317,13 +328,17 @@ def midsurface_medial_axis(
         return chunked_midsurface(
             volume, chunks=sizes, iso=_iso(iso, threshold), thickness=thickness, lam=lam, spacing=spacing, extend=extend,
             remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype,
-            scheduler=scheduler, n_jobs=n_jobs, callback=callback, show_progress=show_progress,
+            scheduler=scheduler, n_jobs=n_jobs, callback=callback, show_progress=show_progress, out=out, spill=spill,
         )
-    return volume_stages(
+    check_out(out)
+    result = volume_stages(
         volume, iso=iso, threshold=threshold, thickness=thickness, lam=lam, spacing=spacing, extend=extend,
         remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype, callback=callback,
         show_progress=show_progress,
     ).result
+    if out is not None:
+        result.save(out)
+    return result
 
 
 def medial_voxel_axis(

@@ -36,7 +36,7 @@ from medialaxis.volume.repair import repair_faces
 from medialaxis.volume.triangles import region_triangles
 from medialaxis.volume.voxel_table import voxel_table
 
-__all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "Polygonization", "classify_voxels", "polygonize"]
+__all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "Polygonization", "classify_voxels", "pick_hash", "pick_seed", "polygonize"]
 
 #: Junction picks are this many local radii apart (sparser than the sheets:
 #: larger junction regions keep the regions of different sheets apart).
@@ -59,6 +59,11 @@ class Polygonization:
         Class of every medial voxel.
     voxel_label : (n,) int64 ndarray
         Voronoi region (vertex index) of every medial voxel.
+    certain : (n,) bool ndarray or None
+        With a ``band``: whether each voxel's pick decision is the whole sheet's.
+    order_key : (v, 2) uint64 ndarray
+        Class priority and hash of each vertex: the vertices are in the order
+        of these rows (then of their voxels), whole or by blocks.
     """
 
     picks: np.ndarray
@@ -68,6 +73,8 @@ class Polygonization:
     faces: np.ndarray
     voxel_kind: np.ndarray
     voxel_label: np.ndarray
+    certain: np.ndarray | None = None
+    order_key: np.ndarray | None = None
 
 
 #: Surface voxels whose pair directions disagree this much (mean direction
@@ -75,7 +82,32 @@ class Polygonization:
 CREASE_COHERENCE = 0.9
 
 
-def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0) -> Polygonization:
+def pick_seed(rng: Any) -> int:
+    """The one number :func:`pick_hash` draws from ``rng`` (a seed or a numpy Generator)."""
+    return int(np.random.default_rng(rng).integers(0, 2**63))
+
+
+def pick_hash(voxels: np.ndarray, seed: int) -> np.ndarray:
+    """(n,) uint64: the order of the voxels within a class, drawn by each voxel's index from ``seed``.
+
+    The order of two voxels depends on them alone (a hash of their indices
+    and one seed), not on which other voxels are listed: a window of the
+    sheet orders its voxels as the whole sheet does (ties, which need equal
+    hashes, go by row: the volume's C order).
+    """
+    v = np.asarray(voxels, np.int64).astype(np.uint64)
+    with np.errstate(over="ignore"):
+        h = np.uint64(seed) ^ (v[:, 0] * np.uint64(0x9E3779B97F4A7C15)) ^ (v[:, 1] * np.uint64(0xC2B2AE3D27D4EB4F)) \
+            ^ (v[:, 2] * np.uint64(0x165667B19E3779F9))
+        # splitmix64's finaliser
+        h = (h ^ (h >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        h = (h ^ (h >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        h ^= h >> np.uint64(31)
+    return h
+
+
+def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0,
+               band: np.ndarray | None = None, shift: Any = 0, seed: int | None = None) -> Polygonization:
     """Triangle mesh of the medial voxels by sub-sampling.
 
     Parameters
@@ -88,6 +120,10 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
         gives more vertices. The radius is at least 1.5 voxels.
     rng : seed or numpy Generator
         Order of the picks within a class (results are reproducible for a seed).
+    band : (n,) bool ndarray, optional
+        For a window of a larger sheet: the voxels whose class may be wrong
+        there or that voxels outside may remove (near the sides that cut the
+        sheet). ``certain`` then says which picks are the whole sheet's.
 
     Returns
     -------
@@ -103,10 +139,17 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
     priority = np.select([kind == JUNCTION, crease, kind == BOUNDARY], [0, 1, 2], 3)
     # a random order within each class avoids grid-aligned picks, whose Voronoi
     # regions meet four at a time (degenerate vertices)
-    order = np.lexsort((np.random.default_rng(rng).permutation(n), priority))
+    hashed = pick_hash(voxels + np.asarray(shift, np.int64), pick_seed(rng) if seed is None else seed)
+    order = np.lexsort((np.arange(n), hashed, priority))
     radius = np.maximum(density * medial.radius, 1.5 * float(features.spacing.max()))
     radius[kind == JUNCTION] *= JUNCTION_SPACING
+    # vertices are numbered in pick order, which depends on the voxels alone:
+    # the same relative order in a window of the sheet as in the whole
     picks = _kernels.greedy_subsample(*table, voxels, order, radius, features.spacing)
+    certain = None
+    if band is not None:
+        certain = _kernels.subsample_certainty(*table, voxels, order, radius, features.spacing,
+                                               np.asarray(band, bool), float(radius.max(initial=0.0)))
     junction = kind == JUNCTION
     sheet = sheet_ids(table, voxels, junction, features.spacing)
     label = region_labels(table, voxels, picks, junction, sheet, features.spacing)
@@ -115,4 +158,5 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
     faces = region_triangles(table, voxels, label, points, sheet)
     faces = faces[~vertex_junction[faces].all(axis=1)]  # junction lines carry no faces of their own
     faces = repair_faces(faces, vertex_junction, points, free=kind[picks] == BOUNDARY)
-    return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label)
+    return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label, certain,
+                          np.stack([priority[picks].astype(np.uint64), hashed[picks]], axis=1))

@@ -96,7 +96,8 @@ def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spaci
     grow = np.where(junction, -1, 0).astype(np.int64)
     out = _kernels.sheet_labels(*table, voxels, seeds, sheet.astype(np.int64), grow, _kernels.OFFSETS_26, spacing)
     out[junction] = -1
-    out[(out < 0) & ~junction] = 0 if len(seeds) else -1  # cut off from every sheet: rare specks
+    # cut off from every sheet (rare specks): one sheet of their own, numbered past the others
+    out[(out < 0) & ~junction] = int(sheet.max(initial=-1)) + 1
     return out
 
 

@@ -47,6 +47,10 @@ def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = S
         verts, deg = np.unique(edges, return_counts=True)
         if np.all(deg == 2):  # a cycle
             cycle = _walk(edges, int(verts[0]))
+        elif np.all(deg % 2 == 0):  # cycles touching at a vertex (a pinched hole): each closed
+            for loop in _loops(edges):
+                new += _ear_triangles(loop, points)
+            continue
         elif (deg == 1).sum() == 2 and np.all(deg <= 2):  # a path
             a, b = verts[deg == 1]
             if (min(a, b), max(a, b)) not in existing:
@@ -58,6 +62,28 @@ def _close_small_holes(faces: np.ndarray, points: np.ndarray, max_edges: int = S
     if not new:
         return faces
     return np.unique(np.concatenate([faces, np.sort(np.array(new, np.int64), axis=1)]), axis=0)
+
+
+def _loops(edges: np.ndarray) -> list[list[int]]:
+    """Simple cycles of an edge set whose vertices all have even degree (cut where a walk comes back)."""
+    nbrs: dict[int, list[int]] = {}
+    for a, b in edges.tolist():
+        nbrs.setdefault(a, []).append(b)
+        nbrs.setdefault(b, []).append(a)
+    out: list[list[int]] = []
+    for start in sorted(nbrs):
+        path = [start]
+        while nbrs[path[-1]]:
+            cur = path[-1]
+            nxt = nbrs[cur].pop(0)
+            nbrs[nxt].remove(cur)
+            if nxt in path:  # a cycle closes: cut it off the path
+                k = path.index(nxt)
+                out.append(path[k:])
+                del path[k + 1:]
+            else:
+                path.append(nxt)
+    return [loop for loop in out if len(loop) >= 3]
 
 
 def _walk(edges: np.ndarray, start: int) -> list[int]:

@@ -25,7 +25,7 @@ from medialaxis.volume.medial import MedialVoxels
 from medialaxis.volume.plates import PlateThickness
 from medialaxis.volume.polygonize import BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, polygonize
 
-__all__ = ["polygonize_stage", "dents_stage", "extension_stage", "assemble", "stage_metadata", "dropped_report",
+__all__ = ["polygonize_stage", "dents_stage", "extension_stage", "assemble", "mesh_result", "stage_metadata", "dropped_report",
            "thickness_range", "check_range"]
 
 
@@ -138,19 +138,28 @@ def extension_stage(state: dict[str, Any], grey: Any, iso: float, spacing: np.nd
         plate = 2.0 * state["radii"]
     else:
         plate = state["thickness"]
-    if state["plates"].local:
-        sample_radius = density * state["radii"]
-    else:
-        sample_radius = density * float(np.median(state["mesh"].radii)) if len(state["mesh"].radii) else 0.0
+    # the sampling radius: each vertex's own, or half the part's plate thickness (known before the mesh,
+    # so that a block of the mesh extends its edges as the whole mesh does)
+    sample_radius = density * (state["radii"] if state["plates"].local else 0.5 * state["thickness"])
     points, faces, source = extend_mesh(
         state["points"], state["faces"], grey, iso, spacing,
         max_length=1.5 * plate + 2.0 * sample_radius,
         free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
         probe=0.5 * plate + 2.0 * float(spacing.max()),
     )
-    state["points"], state["faces"] = points, faces
+    state["points"], state["faces"], state["extended_from"] = points, faces, source
     state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
     state["kind"] = np.concatenate([state["kind"], np.full(len(source), EXTENSION, np.int8)])
+
+
+def mesh_result(points: np.ndarray, radii: np.ndarray, kind: np.ndarray, faces: np.ndarray, metadata: dict[str, Any],
+                shell: Any) -> MedialAxis:
+    """The mid-surface result; faces in the order of their rows (vertices are in pick order), so that
+    the order does not depend on how the mesh was built, whole or by blocks."""
+    faces = faces[np.lexsort(faces.T[::-1])]
+    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
+    return MedialAxis(points, radii, edges, faces, extras={"thickness": 2.0 * radii, "vertex_kind": kind},
+                      metadata=metadata, shape=shell)
 
 
 def assemble(state: dict[str, Any], metadata: dict[str, Any], shell: Any) -> tuple[MedialAxis, dict[str, MedialAxis]]:
@@ -164,13 +173,7 @@ def assemble(state: dict[str, Any], metadata: dict[str, Any], shell: Any) -> tup
             state["faces"] = new_index[state["faces"]]
             for key in ("points", "radii", "kind"):
                 state[key] = state[key][used]
-    faces = state["faces"]
-    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
-    result = MedialAxis(
-        state["points"], state["radii"], edges, faces,
-        extras={"thickness": 2.0 * state["radii"], "vertex_kind": state["kind"]},
-        metadata=metadata, shape=shell,
-    )
+    result = mesh_result(state["points"], state["radii"], state["kind"], state["faces"], metadata, shell)
     mesh, medial, grid = state["mesh"], state["medial"], state["grid"]
     voxel_meta = dict(metadata, method="voxels")
     steps = {

@@ -1,0 +1,109 @@
+"""The mid-surface meshed block by block on the workers is the whole sheet's mesh, bit for bit.
+
+Truth: the in-memory route on the same array (the whole sheet polygonized,
+dented and extended at once); the greedy sub-sampling of the whole sheet for
+the certainty of a window's picks; trimesh's PLY reader for the streamed file.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import medialaxis as mx
+from medialaxis.volume import _kernels as K
+from medialaxis.volume.phantoms import ribbed_panel_slab, ribbed_panel_truth
+from medialaxis.volume.validation import distance_to_rects, mesh_topology
+from medialaxis.volume.voxel_table import voxel_table
+
+#: A panel wide enough that the blocks' windows (core plus mesh halo) do not hold the whole sheet.
+WIDE = (40, 160, 160)
+CHUNK = 48
+
+
+@pytest.fixture(scope="module")
+def wide():
+    return ribbed_panel_slab(WIDE, 0, WIDE[0], thickness=4, margin=8, levels=(1000, 3000), dtype=np.uint16)
+
+
+def test_blocks_mesh_windows_and_the_stitched_mesh_is_the_whole_one(wide):
+    whole = mx.medial_axis(wide, method="midsurface", chunks=0)
+    blocks = mx.medial_axis(wide, method="midsurface", chunks=CHUNK, n_jobs=2)
+    # the windows are smaller than the sheet: the seams are real
+    assert CHUNK + 2 * blocks.metadata["mesh_halo"] < max(WIDE)
+    assert np.array_equal(blocks.points, whole.points)
+    assert np.array_equal(blocks.faces, whole.faces)
+    assert np.array_equal(blocks.radii, whole.radii) and np.array_equal(blocks.vertex_kind, whole.vertex_kind)
+    a, b = mesh_topology(whole.faces), mesh_topology(blocks.faces)
+    assert (b.components, b.euler, b.boundary_edges) == (a.components, a.euler, a.boundary_edges) == (1, a.euler, a.boundary_edges)
+    truth = ribbed_panel_truth(WIDE, thickness=4, margin=8)
+    assert np.percentile(distance_to_rects(blocks.points, truth), 99) <= 1.0
+
+
+def test_the_mesh_streams_to_a_ply_file(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    small = ribbed_panel_slab((40, 96, 96), 0, 40, thickness=4, margin=8, levels=(1000, 3000), dtype=np.uint16)
+    whole = mx.medial_axis(small, method="midsurface", chunks=0)
+    out = tmp_path / "mid.ply"
+    np.save(tmp_path / "scan.npy", small)
+    written = mx.medial_axis(tmp_path / "scan.npy", method="midsurface", chunks=CHUNK, n_jobs=2, out=out)
+    assert written.metadata["written"] == str(out) and len(written.points) == 0
+    assert (written.metadata["vertices"], written.metadata["faces"]) == (len(whole.points), len(whole.faces))
+    got = trimesh.load(out, process=False)
+    # the same vertices (bit for bit) and the same triangles over them, in the blocks' order
+    order = np.lexsort(np.asarray(got.vertices).T)
+    ref = np.lexsort(whole.points.T)
+    assert np.array_equal(np.asarray(got.vertices)[order], whole.points[ref])
+    rank = np.empty(len(order), np.int64)
+    rank[order] = np.arange(len(order))
+    ref_rank = np.empty(len(ref), np.int64)
+    ref_rank[ref] = np.arange(len(ref))
+    faces = np.sort(rank[np.asarray(got.faces)], axis=1)
+    expected = np.sort(ref_rank[whole.faces], axis=1)
+    assert np.array_equal(np.unique(faces, axis=0), np.unique(expected, axis=0)) and len(faces) == len(expected)
+    radius = got.metadata["_ply_raw"]["vertex"]["data"]["radius"]
+    assert np.array_equal(np.asarray(radius)[order], whole.radii[ref])
+
+
+def test_out_refuses_other_formats(tmp_path, wide):
+    with pytest.raises(mx.MedialAxisError, match=".ply"):
+        mx.medial_axis(wide[:, :64, :64], method="midsurface", chunks=CHUNK, out=tmp_path / "mid.obj")
+    assert not (tmp_path / "mid.obj").exists()
+
+
+def _sheet(seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    occ = np.zeros((6, 40, 40), bool)
+    occ[2] = rng.random((40, 40)) < 0.9
+    occ[3] = rng.random((40, 40)) < 0.2
+    return np.argwhere(occ)
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(0, 10_000), st.integers(8, 30), st.floats(1.0, 3.5))
+def test_certain_picks_of_a_window_are_the_whole_sheets(seed, cut, reach):
+    voxels = _sheet(seed)
+    rng = np.random.default_rng(seed)
+    radius = rng.uniform(1.0, reach, len(voxels))
+    order = rng.permutation(len(voxels))
+    spacing = np.ones(3)
+    table = voxel_table(voxels, (6, 40, 40))
+    picked = np.zeros(len(voxels), bool)
+    picked[K.greedy_subsample(*table, voxels, order, radius, spacing)] = True
+    # the window: the voxels with x < cut, in the whole sheet's relative order
+    inside = voxels[:, 2] < cut
+    rows = np.flatnonzero(inside)
+    local = np.full(len(voxels), -1)
+    local[rows] = np.arange(len(rows))
+    w_order = local[order[inside[order]]]
+    w_vox, w_radius = voxels[rows], radius[rows]
+    band = w_vox[:, 2] >= cut - int(np.ceil(reach)) - 1
+    w_table = voxel_table(w_vox, (6, 40, 40))
+    w_picked = np.zeros(len(rows), bool)
+    w_picked[K.greedy_subsample(*w_table, w_vox, w_order, w_radius, spacing)] = True
+    certain = K.subsample_certainty(*w_table, w_vox, w_order, w_radius, spacing, band, float(reach))
+    assert np.array_equal(w_picked[certain], picked[rows][certain])
+    assert certain[w_vox[:, 2] < cut - 4 * reach - 2].mean() > 0.5 if (w_vox[:, 2] < cut - 4 * reach - 2).any() else True
+    assert np.array_equal(certain, K.subsample_certainty_reference(w_vox, w_order, w_radius, spacing, band, float(reach)))
