@@ -35,8 +35,9 @@ from medialaxis.errors import (
     MedialAxisError,
     MedialAxisWarning,
 )
-from medialaxis.mesh._voronoi_kernels import nearest_other_sample, tet_centroids
+from medialaxis.mesh._voronoi_kernels import tet_centroids
 from medialaxis.mesh.crossings import crossing_pairs, shell_labels
+from medialaxis.mesh.inner_set import inner_tets
 from medialaxis.mesh.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
 from medialaxis.mesh.sampling import (
     adaptive_spacing,
@@ -60,35 +61,11 @@ __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM
 LAM_FACTOR = 0.65
 #: Largest relative gap between the inner Delaunay tetrahedra's volume and the mesh's.
 VOLUME_TOLERANCE = 2e-3
-#: A tetrahedron is inner when its centroid is deeper than this fraction of
-#: its longest edge (see :func:`_classify_tets`). Surface slivers on a sphere
-#: of radius R sampled at spacing s lie about s / (8 R) deep: 1e-5 keeps them
-#: up to R = 12,500 s; 1e-3 leaves samples covered on the uv ellipsoid again.
-FLAT_DEPTH = 1e-5
 #: A circumcentre inside is a medial point when its distance to the mesh is
 #: at least its circumradius minus this many epsilons (the surface cannot
 #: reach further into a ball empty of samples; 2 allows for epsilon being
 #: measured on random points, from below).
 EMPTY_BALL_SLACK = 2.0
-
-
-def _inner_tets(dt: Any, smp: Any, sd: SignedDistance, tolerance: float) -> np.ndarray:
-    """Inner tetrahedra: centroid deeper than ``tolerance`` and than ``FLAT_DEPTH`` times the longest edge.
-
-    Flat tetrahedra lying on a face of the mesh are not inner, nor those
-    lying on a nearly flat part of it: on the cap of a uv sphere, stacks of
-    them with three nearly collinear samples are a hair inside, cover
-    samples of the cap (every tetrahedron around such a sample is inner, its
-    Voronoi cell is closed and the medial complex gains a void: 57 on a
-    224 x 224 uv ellipsoid) and bring circumcentres from far away. The
-    side found among the faces at a tetrahedron's samples is checked against
-    the sample nearest to its centroid (:meth:`SignedDistance.recheck_sides`).
-    """
-    centroids = tet_centroids(dt.points, dt.simplices)
-    centroid_signed, _ = sd.query(centroids, smp.face[dt.simplices])
-    nearest = nearest_other_sample(centroids, dt.points, dt.simplices, dt.centres, dt.radii)
-    sd.recheck_sides(centroids, centroid_signed, nearest, dt.points, smp.face)
-    return centroid_signed < -np.maximum(tolerance, FLAT_DEPTH * dt.longest)
 
 
 def _beside_delaunay(
@@ -300,7 +277,7 @@ def voronoi_medial_axis(
         timings["epsilon"] = time.perf_counter() - t0
         if not len(pairs):
             t0 = time.perf_counter()
-            inner = _inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
+            inner = inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
             union_volume = float(dt.volume[inner].sum())
             timings["inside"] = time.perf_counter() - t0
             if abs(union_volume - src.volume) <= VOLUME_TOLERANCE * src.volume or src.found:
