@@ -118,6 +118,8 @@ def add_compute(sub: Any) -> None:
     p.add_argument("--boundary", choices=["contour", "canny"], default=None, help="planar boundary extraction")
     p.add_argument("--simplify", type=int, default=None, metavar="N",
                    help="meshes (voronoi): simplify the medial mesh to N spheres (Q-MAT)")
+    p.add_argument("--simplify-mode", choices=("medial", "packing"), default=None,
+                   help="meshes (voronoi): spheres of the medial axis (medial, default) or anywhere inside (packing)")
     p.add_argument("--simplify-error", type=float, default=None, metavar="E",
                    help="meshes (voronoi): simplify to the fewest spheres whose two-sided error is at most "
                         "E times the bounding-box diagonal")
@@ -154,7 +156,8 @@ def add_compute(sub: Any) -> None:
 def compute_options(args: argparse.Namespace) -> tuple[dict[str, Any], Any]:
     """Method options and spacing from the command line."""
     options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
-    for name in ("tolerance", "detour", "boundary", "foreground", "simplify", "simplify_error", "raw_shape", "raw_dtype"):
+    for name in ("tolerance", "detour", "boundary", "foreground", "simplify", "simplify_error", "simplify_mode",
+                 "raw_shape", "raw_dtype"):
         value = getattr(args, name)
         if value is not None:
             options[name] = value

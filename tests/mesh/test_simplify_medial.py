@@ -81,3 +81,16 @@ def test_packing_is_an_option_and_fills_the_torus_with_patches(torus):
     assert _medial_share(mesh, packed.points, packed.radii) < 0.8 <= _medial_share(mesh, medial.points, medial.radii)
     with pytest.raises(InvalidInputError, match="mode"):
         simplify_medial_mesh(ma, 40, mode="pack")
+
+
+def test_the_method_takes_the_mode_by_keyword(torus):
+    import medialaxis as mx
+
+    mesh, _ = torus
+    packed = mx.medial_axis(mesh, method="voronoi", simplify=40, simplify_mode="packing")
+    medial = mx.medial_axis(mesh, method="voronoi", simplify=40)
+    assert _medial_share(mesh, packed.points, packed.radii) < 0.8 <= _medial_share(mesh, medial.points, medial.radii)
+    with pytest.raises(InvalidInputError, match="simplify_mode"):
+        mx.medial_axis(mesh, method="voronoi", simplify=40, simplify_mode="pack")
+    with pytest.raises(InvalidInputError, match="simplify_mode needs"):
+        mx.medial_axis(mesh, method="voronoi", simplify_mode="packing")

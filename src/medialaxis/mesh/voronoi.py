@@ -93,6 +93,7 @@ def voronoi_medial_axis(
     samples: int | None = None,
     simplify: int | float | None = None,
     simplify_error: float | None = None,
+    simplify_mode: Literal["medial", "packing"] = "medial",
     topology: Literal["preserve", "lambda"] = "preserve",
     repair: bool = False,
     rng: Any = 0,
@@ -139,6 +140,11 @@ def voronoi_medial_axis(
         two-sided error (``metadata["hausdorff"]``, exact envelope of the
         interpolated spheres against the input surface) is at most this
         fraction of the bounding-box diagonal. Not with ``simplify``.
+    simplify_mode : {"medial", "packing"}
+        ``"medial"`` (default): every sphere kept is a sphere of the medial
+        complex whose contacts span a wide angle (it touches two sides);
+        ``"packing"``: spheres anywhere inside, for the smallest two-sided
+        error (a sphere packing rather than a medial mesh).
     topology : {"preserve", "lambda"}
         ``"preserve"`` (default): keep every facet of at least ``lam`` plus
         the narrower facets and curve pieces needed for the complex to have
@@ -238,9 +244,13 @@ def voronoi_medial_axis(
         if not isinstance(simplify_error, (float, np.floating)) or not 0.0 < simplify_error < 1.0:
             raise InvalidInputError(f"simplify_error must be a float in (0, 1) of the diagonal, got {simplify_error!r}")
         simplify = simplify_error
-    if simplify is not None:
-        from medialaxis.mesh.qmat import check_simplify
+    if simplify is not None or simplify_mode != "medial":
+        from medialaxis.mesh.qmat import MODES, check_simplify
 
+        if simplify_mode not in MODES:
+            raise InvalidInputError(f"simplify_mode must be one of {', '.join(MODES)}, got {simplify_mode!r}")
+        if simplify is None:
+            raise InvalidInputError("simplify_mode needs simplify or simplify_error")
         check_simplify(simplify)
     while True:  # once more on the surface of the solid if the mesh passes through itself
         diag = float(np.linalg.norm(np.ptp(np.asarray(work.vertices), axis=0)))
@@ -387,4 +397,4 @@ def voronoi_medial_axis(
         return result
     from medialaxis.mesh.qmat import simplify_medial_mesh
 
-    return simplify_medial_mesh(result, simplify, surface=src.mesh, signed=sd)
+    return simplify_medial_mesh(result, simplify, surface=src.mesh, signed=sd, mode=simplify_mode)
