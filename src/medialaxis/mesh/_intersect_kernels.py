@@ -14,7 +14,7 @@ import numpy as np
 from medialaxis._jit import njit, prange
 
 __all__ = ["first_crossing", "first_crossing_reference", "crossing_mask", "segment_crosses_triangle", "near_pairs",
-           "planes_meet"]
+           "planes_meet", "may_meet"]
 
 
 @njit(cache=True, nogil=True)
@@ -250,3 +250,48 @@ def first_crossing_reference(triangles: np.ndarray, faces: np.ndarray, pairs: np
             if seg(t[(a + 1) % 3], t[(a + 2) % 3], *u) or seg(u[(b + 1) % 3], u[(b + 2) % 3], *t):
                 return k
     return -1
+
+
+@njit(cache=True, nogil=True)
+def _edge_may_meet(p: np.ndarray, q: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray, tol: float) -> bool:
+    """Whether segment pq may meet triangle abc: :func:`segment_crosses_triangle` with ``tol`` to spare."""
+    sp = _orient(a, b, c, p)
+    sq = _orient(a, b, c, q)
+    if (sp > tol and sq > tol) or (sp < -tol and sq < -tol):
+        return False
+    s1 = _orient(p, q, a, b)
+    s2 = _orient(p, q, b, c)
+    s3 = _orient(p, q, c, a)
+    return (s1 >= -tol and s2 >= -tol and s3 >= -tol) or (s1 <= tol and s2 <= tol and s3 <= tol)
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def may_meet(triangles: np.ndarray, faces: np.ndarray, pairs: np.ndarray, rel: float) -> np.ndarray:
+    """Whether each pair's triangles may meet (a superset of those that do, in exact arithmetic).
+
+    Triangles that share no vertex meet where an edge of one meets the
+    other; each orientation is trusted beyond ``rel`` times the cube of the
+    pair's extent (floating-point error is ~1e-16 of it). Pairs that share a
+    vertex as :func:`planes_meet` takes them (folded through one another).
+    """
+    out = np.zeros(len(pairs), np.bool_)
+    for k in prange(len(pairs)):
+        i, j = pairs[k, 0], pairs[k, 1]
+        t, u = triangles[i], triangles[j]
+        if _boxes_apart(t, u):
+            continue
+        if _shared(faces, i, j):
+            out[k] = _pair_crosses(triangles, faces, i, j, 0.0)
+            continue
+        extent = 0.0
+        for a in range(3):
+            lo = min(t[0, a], t[1, a], t[2, a], u[0, a], u[1, a], u[2, a])
+            hi = max(t[0, a], t[1, a], t[2, a], u[0, a], u[1, a], u[2, a])
+            extent = max(extent, hi - lo)
+        tol = rel * extent * extent * extent
+        for e in range(3):
+            if _edge_may_meet(t[e], t[(e + 1) % 3], u[0], u[1], u[2], tol) or \
+                    _edge_may_meet(u[e], u[(e + 1) % 3], t[0], t[1], t[2], tol):
+                out[k] = True
+                break
+    return out

@@ -23,7 +23,27 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["winding_numbers", "winding_numbers_reference"]
+__all__ = ["winding_numbers", "winding_numbers_reference", "winding_numbers_without"]
+
+
+@njit(cache=True, nogil=True)
+def _at(x, y, z, triangles, skip):  # type: ignore[no-untyped-def]
+    """Sum of the solid angles of the triangles but ``skip`` at ``(x, y, z)``, over 4 pi."""
+    total = 0.0
+    for t in range(triangles.shape[0]):
+        if t == skip:
+            continue
+        ax, ay, az = triangles[t, 0, 0] - x, triangles[t, 0, 1] - y, triangles[t, 0, 2] - z
+        bx, by, bz = triangles[t, 1, 0] - x, triangles[t, 1, 1] - y, triangles[t, 1, 2] - z
+        cx, cy, cz = triangles[t, 2, 0] - x, triangles[t, 2, 1] - y, triangles[t, 2, 2] - z
+        la = np.sqrt(ax * ax + ay * ay + az * az)
+        lb = np.sqrt(bx * bx + by * by + bz * bz)
+        lc = np.sqrt(cx * cx + cy * cy + cz * cz)
+        det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+        den = (la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (ax * cx + ay * cy + az * cz) * lb
+               + (bx * cx + by * cy + bz * cz) * la)
+        total += 2.0 * np.arctan2(det, den)
+    return total / (4.0 * np.pi)
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -31,20 +51,16 @@ def winding_numbers(points, triangles):  # type: ignore[no-untyped-def]
     """Winding number of the triangles ``(T, 3, 3)`` at each of ``points`` ``(P, 3)``."""
     out = np.empty(points.shape[0])
     for p in prange(points.shape[0]):
-        x, y, z = points[p, 0], points[p, 1], points[p, 2]
-        total = 0.0
-        for t in range(triangles.shape[0]):
-            ax, ay, az = triangles[t, 0, 0] - x, triangles[t, 0, 1] - y, triangles[t, 0, 2] - z
-            bx, by, bz = triangles[t, 1, 0] - x, triangles[t, 1, 1] - y, triangles[t, 1, 2] - z
-            cx, cy, cz = triangles[t, 2, 0] - x, triangles[t, 2, 1] - y, triangles[t, 2, 2] - z
-            la = np.sqrt(ax * ax + ay * ay + az * az)
-            lb = np.sqrt(bx * bx + by * by + bz * bz)
-            lc = np.sqrt(cx * cx + cy * cy + cz * cz)
-            det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
-            den = (la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (ax * cx + ay * cy + az * cz) * lb
-                   + (bx * cx + by * cy + bz * cz) * la)
-            total += 2.0 * np.arctan2(det, den)
-        out[p] = total / (4.0 * np.pi)
+        out[p] = _at(points[p, 0], points[p, 1], points[p, 2], triangles, -1)
+    return out
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def winding_numbers_without(points, triangles, skip):  # type: ignore[no-untyped-def]
+    """Winding number at each point of all the triangles but the point's own (``skip[p]``): on a face, its mean over both sides."""
+    out = np.empty(points.shape[0])
+    for p in prange(points.shape[0]):
+        out[p] = _at(points[p, 0], points[p, 1], points[p, 2], triangles, skip[p])
     return out
 
 

@@ -4,12 +4,16 @@ A closed mesh whose faces cross, or whose shells overlap or nest, still
 defines a solid: the points where its winding number is at least 1/2
 (Jacobson et al. 2013). Its surface is made of pieces of the mesh: each face
 that meets another is cut along the intersection segments (the mesh
-arrangement of Zhou et al. 2016, in floating point with a tolerance), and
-each piece is kept when the winding number is at least 1/2 behind it and
-below 1/2 in front of it (turned over when it is the other way round), or
-dropped (faces inside the solid or outside it). Pieces of coplanar faces
-that overlap with the same orientation are kept once. The pieces are welded
-into one closed surface; faces no other face meets keep their vertices.
+arrangement of Zhou et al. 2016, in exact rational arithmetic as theirs:
+:mod:`medialaxis.mesh._exact_cut`, so that a point found from several pairs
+of faces is one point and the pieces close up), and each piece is kept when
+the winding number is at least 1/2 behind it and below 1/2 in front of it
+(turned over when it is the other way round), or dropped (faces inside the
+solid or outside it). Pieces of coplanar faces that overlap with the same
+orientation are kept once, coincident faces of opposite orientation (parts
+touching face to face) cancel. Faces no other face meets keep their
+vertices; pieces that round to zero area are flipped or collapsed away
+(:mod:`medialaxis.mesh.degenerate`).
 
 References
 ----------
@@ -25,7 +29,6 @@ doi:10.1145/2897824.2925901
 from __future__ import annotations
 
 import dataclasses
-from collections import defaultdict
 
 import numpy as np
 import shapely
@@ -34,15 +37,17 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from medialaxis.errors import InvalidInputError
+from medialaxis.mesh._exact_cut import ExactCut
 from medialaxis.mesh.crossings import candidate_pairs, unit_triangles, winding_numbers
+from medialaxis.mesh.degenerate import coordinate_accuracy, remove_degenerate_faces
 
 __all__ = ["SolidSurface", "solid_surface"]
 
-#: Tolerance of the cut (points merged, points on edges, coplanarity), in
-#: units of the mesh's size; raised to the accuracy of its coordinates.
+#: Vertices closer than this (in units of the mesh's size, raised to the
+#: accuracy of its coordinates) are one vertex before the exact cut.
 TOLERANCE = 1e-9
-#: The winding number is taken this fraction of a piece's inradius in front
-#: of and behind its centroid.
+#: Where the winding number on a piece is ambiguous (a coplanar face over
+#: it), it is taken this fraction of the piece's inradius in front and behind.
 OFFSET = 0.05
 
 
@@ -69,57 +74,6 @@ class SolidSurface:
     flipped_faces: int
 
 
-class _Cuts:
-    """Points, edge insertions and constraint segments of the cut, in the unit box."""
-
-    def __init__(self, tri: np.ndarray, faces: np.ndarray, points: np.ndarray, tol: float) -> None:
-        self.tri, self.faces, self.tol = tri, faces, tol
-        self.points = [p for p in points]  # vertices first (their ids are the mesh's)
-        self.n_vertices = len(points)
-        self.segments: dict[int, list[tuple[int, int]]] = defaultdict(list)
-        self.on_edge: dict[tuple[int, int], set[int]] = defaultdict(set)
-        self.covered: dict[int, list[int]] = defaultdict(list)
-
-    def point(self, x: np.ndarray, faces: tuple[int, ...]) -> int:
-        """Id of point ``x`` lying on ``faces``: a corner of theirs if it is one, noted on the edges it lies on."""
-        for f in faces:
-            for k in range(3):
-                if np.linalg.norm(self.tri[f, k] - x) <= self.tol:
-                    return int(self.faces[f, k])
-        pid = len(self.points)
-        self.points.append(np.asarray(x, np.float64))
-        for f in faces:
-            for k in range(3):
-                a, b = self.tri[f, k], self.tri[f, (k + 1) % 3]
-                d = b - a
-                t = float(np.dot(x - a, d) / np.dot(d, d))
-                if 0.0 < t < 1.0 and np.linalg.norm(a + t * d - x) <= self.tol:
-                    u, v = int(self.faces[f, k]), int(self.faces[f, (k + 1) % 3])
-                    self.on_edge[(min(u, v), max(u, v))].add(pid)
-        return pid
-
-    def segment(self, p: np.ndarray, q: np.ndarray, into: tuple[int, ...], on: tuple[int, ...]) -> None:
-        """A constraint from ``p`` to ``q`` in each face of ``into``; both points lie on the faces ``on``."""
-        if np.linalg.norm(p - q) <= self.tol:
-            return
-        a, b = self.point(p, on), self.point(q, on)
-        if a != b:
-            for f in into:
-                self.segments[f].append((a, b))
-
-
-def _plane_section(t: np.ndarray, origin: np.ndarray, normal: np.ndarray, tol: float) -> np.ndarray:
-    """Points of triangle ``t`` on the plane (its corners on it, its edges across it): 0 to 2 of them."""
-    s = (t - origin) @ normal
-    s[np.abs(s) <= tol] = 0.0
-    out = [t[k] for k in range(3) if s[k] == 0.0]
-    for k in range(3):
-        m = (k + 1) % 3
-        if s[k] * s[m] < 0.0:
-            out.append(t[k] + (t[m] - t[k]) * (s[k] / (s[k] - s[m])))
-    return np.array(out).reshape(-1, 3)
-
-
 def _unit_normal(t: np.ndarray) -> np.ndarray:
     n = np.cross(t[1] - t[0], t[2] - t[0])
     return n / (np.linalg.norm(n) or 1.0)
@@ -131,89 +85,6 @@ def _frame(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     u = u / np.linalg.norm(u)
     v = np.cross(_unit_normal(t), u)
     return t[0], np.stack([u, v])
-
-
-def _cut_pair(cuts: _Cuts, i: int, j: int) -> None:
-    """Record where faces ``i`` and ``j`` meet: a segment, or for coplanar faces each one's edges within the other."""
-    ti, tj = cuts.tri[i], cuts.tri[j]
-    ni, nj = _unit_normal(ti), _unit_normal(tj)
-    tol = cuts.tol
-    if np.all(np.abs((tj - ti[0]) @ ni) <= tol) and np.all(np.abs((ti - tj[0]) @ nj) <= tol):
-        _cut_coplanar(cuts, i, j)
-        return
-    si, sj = _plane_section(ti, tj[0], nj, tol), _plane_section(tj, ti[0], ni, tol)
-    if len(si) < 2 or len(sj) < 2:
-        return
-    line = np.cross(ni, nj)
-    line /= np.linalg.norm(line)
-    pi, pj = si @ line, sj @ line
-    lo = max(pi.min(), pj.min())
-    hi = min(pi.max(), pj.max())
-    if hi - lo <= tol:
-        return
-    ends = np.vstack([si, sj])
-    params = np.concatenate([pi, pj])
-    p, q = ends[np.argmin(np.abs(params - lo))], ends[np.argmin(np.abs(params - hi))]
-    cuts.segment(p, q, (i, j), (i, j))
-
-
-def _cut_coplanar(cuts: _Cuts, i: int, j: int) -> None:
-    ti, tj = cuts.tri[i], cuts.tri[j]
-    origin, axes = _frame(ti)
-    flat_i, flat_j = shapely.Polygon((ti - origin) @ axes.T), shapely.Polygon((tj - origin) @ axes.T)
-    if flat_i.intersection(flat_j).area <= cuts.tol * max(flat_i.length, flat_j.length):
-        return  # they touch only
-    for own, other, f in ((tj, flat_i, i), (ti, flat_j, j)):
-        for k in range(3):
-            a, b = own[k], own[(k + 1) % 3]
-            flat = shapely.LineString([(a - origin) @ axes.T, (b - origin) @ axes.T])
-            inside = flat.intersection(other)
-            for piece in getattr(inside, "geoms", [inside]):
-                if not isinstance(piece, shapely.LineString) or piece.length <= cuts.tol:
-                    continue
-                ends = np.asarray(piece.coords)[[0, -1]]
-                d = (b - a) @ axes.T
-                t = (ends - (a - origin) @ axes.T) @ d / float(d @ d)
-                p, q = a + np.clip(t[0], 0, 1) * (b - a), a + np.clip(t[1], 0, 1) * (b - a)
-                cuts.segment(p, q, (f,), (i, j))
-    if float(np.dot(_unit_normal(ti), _unit_normal(tj))) > 0:
-        cuts.covered[max(i, j)].append(min(i, j))  # the same surface twice: the lower face's pieces stay
-
-
-def _triangulate(cuts: _Cuts, f: int, points: np.ndarray) -> list[tuple[int, int, int]]:
-    """Face ``f`` cut along its constraints: triangles of point ids, oriented as the face."""
-    corners = [int(x) for x in cuts.faces[f]]
-    t = points[corners]
-    origin, axes = _frame(t)
-    ring: list[int] = []
-    for k in range(3):
-        u, v = corners[k], corners[(k + 1) % 3]
-        extra = sorted(cuts.on_edge.get((min(u, v), max(u, v)), ()),
-                       key=lambda p: float(np.dot(points[p] - points[u], points[v] - points[u])))
-        ring += [u] + extra
-    ids = list(dict.fromkeys(ring + [p for s in cuts.segments.get(f, ()) for p in s]))
-    flat = {p: tuple((points[p] - origin) @ axes.T) for p in ids}
-    lines = [shapely.LineString([flat[p] for p in ring + ring[:1]])]
-    lines += [shapely.LineString([flat[a], flat[b]]) for a, b in cuts.segments.get(f, ())]
-    noded = shapely.node(shapely.MultiLineString(lines))
-    lookup = cKDTree(np.array([flat[p] for p in ids]))
-    out = []
-    for poly in shapely.get_parts(shapely.polygonize(shapely.get_parts(noded))):
-        for tri in shapely.get_parts(shapely.constrained_delaunay_triangles(poly)):
-            xy = np.asarray(tri.exterior.coords)[:3]
-            tri_ids = []
-            for pt in xy:
-                dist, k = lookup.query(pt)
-                if dist <= cuts.tol:
-                    tri_ids.append(ids[k])
-                else:  # two constraints cross inside the face (three faces meet there)
-                    tri_ids.append(len(cuts.points))
-                    cuts.points.append(origin + pt @ axes)
-            area = (xy[1, 0] - xy[0, 0]) * (xy[2, 1] - xy[0, 1]) - (xy[1, 1] - xy[0, 1]) * (xy[2, 0] - xy[0, 0])
-            if area < 0:
-                tri_ids.reverse()
-            out.append(tuple(tri_ids))
-    return out
 
 
 def _weld(points: np.ndarray, first_new: int, tol: float) -> np.ndarray:
@@ -230,16 +101,32 @@ def _weld(points: np.ndarray, first_new: int, tol: float) -> np.ndarray:
     return label
 
 
-def _sides(tri: np.ndarray, all_tri: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Winding numbers just behind and in front of each triangle's centroid."""
-    e = np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)
-    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    twice_area = np.linalg.norm(n, axis=1)
-    n = n / np.maximum(twice_area, 1e-300)[:, None]
-    step = OFFSET * twice_area / e.sum(axis=1)  # a fraction of the inradius
+def _sides(tri: np.ndarray, parent: np.ndarray, all_tri: np.ndarray, beside: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Winding numbers just behind and in front of each triangle (a piece of input face ``parent``).
+
+    At the centroid itself, the other faces' winding number is their mean
+    over both sides, a half-integer where the mesh is closed: behind is
+    half more, in front half less, however close another sheet passes (a
+    fold through a neighbour at a small angle). Where it is not a
+    half-integer (a coplanar face over the piece, a gap), the winding
+    number is taken a fraction of the inradius behind and in front.
+    """
+    from medialaxis.mesh._winding_kernels import winding_numbers_without
+
     c = tri.mean(axis=1)
-    w = winding_numbers(np.vstack([c - step[:, None] * n, c + step[:, None] * n]), all_tri)
-    return w[: len(tri)], w[len(tri) :]
+    mean = winding_numbers_without(c, np.ascontiguousarray(all_tri), np.ascontiguousarray(parent, np.int64))
+    behind, front = mean + 0.5, mean - 0.5
+    off = (np.abs(mean - np.floor(mean) - 0.5) > 0.25) | beside
+    if off.any():
+        t = tri[off]
+        e = np.linalg.norm(t - np.roll(t, 1, axis=1), axis=2)
+        n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+        twice_area = np.linalg.norm(n, axis=1)
+        n = n / np.maximum(twice_area, 1e-300)[:, None]
+        step = OFFSET * twice_area / e.sum(axis=1)  # a fraction of the inradius
+        w = winding_numbers(np.vstack([c[off] - step[:, None] * n, c[off] + step[:, None] * n]), all_tri)
+        behind[off], front[off] = w[: len(t)], w[len(t) :]
+    return behind, front
 
 
 def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0) -> SolidSurface:
@@ -255,9 +142,7 @@ def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0
     Raises
     ------
     InvalidInputError
-        No solid (the winding number is below 1/2 everywhere), or the cut
-        pieces do not close up (crossings too degenerate for a floating-point
-        cut).
+        No solid (the winding number is below 1/2 everywhere).
     """
     tri, centre, size = unit_triangles(vertices, faces)
     unit_vertices = (np.asarray(vertices, np.float64) - centre) / size
@@ -266,51 +151,47 @@ def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0
     faces = np.ascontiguousarray(_weld(unit_vertices, 0, tol)[np.asarray(faces, np.int64)])
     pairs = candidate_pairs(tri, faces)
     if len(pairs):
-        from medialaxis.mesh._intersect_kernels import planes_meet
+        from medialaxis.mesh._intersect_kernels import may_meet
 
-        pairs = pairs[planes_meet(tri, faces, pairs, tol)]
-    cuts = _Cuts(tri, faces, unit_vertices, tol)
+        pairs = pairs[may_meet(tri, faces, pairs, 1e-12)]
+    involved = np.unique(pairs)
+    cuts = ExactCut(np.asarray(vertices, np.float64), faces, np.unique(faces[involved]))
     for i, j in pairs:
-        _cut_pair(cuts, int(i), int(j))
-    # points found twice (from two pairs) become one before the faces are cut
-    points = np.array(cuts.points)
-    label = _weld(points, cuts.n_vertices, tol)
-    cuts.segments = defaultdict(list, {f: [(int(label[a]), int(label[b])) for a, b in s if label[a] != label[b]]
-                                       for f, s in cuts.segments.items()})
-    cuts.on_edge = defaultdict(set, {e: {int(label[p]) for p in s} for e, s in cuts.on_edge.items()})
-    touched = set(cuts.segments)
-    edge_faces = defaultdict(list)
-    for f, (a, b, c) in enumerate(faces):
-        for u, v in ((a, b), (b, c), (c, a)):
-            edge_faces[(min(u, v), max(u, v))].append(f)
-    for e in cuts.on_edge:
-        touched.update(edge_faces.get(e, ()))
+        cuts.cut_pair(int(i), int(j))
+    touched = {f for f, s in cuts.segments.items() if s}
+    if cuts.on_edge:  # the faces on each side of an edge with points of the cut on it
+        n = len(unit_vertices)
+        edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+        split = np.array([u * n + v for u, v in cuts.on_edge], np.int64)
+        touched.update((np.flatnonzero(np.isin(edges[:, 0] * n + edges[:, 1], split)) % len(faces)).tolist())
     pieces, parent = [], []
-    for f in sorted(touched):  # reads only points found so far; appends where constraints cross inside a face
-        cut = _triangulate(cuts, f, points)
+    for f in sorted(touched):
+        cut = cuts.triangulate(f)
         pieces += cut
         parent += [f] * len(cut)
-    points = np.array(cuts.points)
+    n_vertices = len(unit_vertices)
+    found = np.array([cuts.coordinates(p) for p in range(n_vertices, cuts.next_id)]).reshape(-1, 3)
+    points = np.vstack([unit_vertices, (found - centre) / size])
     kept_whole = np.setdiff1d(np.arange(len(faces)), np.array(sorted(touched), np.int64))
     new_faces = np.vstack([faces[kept_whole], np.array(pieces, np.int64).reshape(-1, 3)])
     origin = np.concatenate([kept_whole, np.array(parent, np.int64)])
-    label = _weld(points, cuts.n_vertices, tol)
-    new_faces = label[new_faces]
-    new_faces, keep_flip, dropped = _select(points, new_faces, origin, cuts.covered, tri)
+    new_faces, keep_flip, dropped = _select(points, new_faces, origin, cuts.covered, cuts.coplanar, tri)
     if not len(new_faces):
         if dropped:
             raise InvalidInputError("the mesh bounds no solid: its winding number is below 1/2 everywhere")
         raise InvalidInputError(f"the mesh's faces vanish at the accuracy of its size ({size:.3g} across): its details "
                                 "are too small beside its extent to cut it where it passes through itself")
+    out = points * size + centre
+    out[:n_vertices] = np.asarray(vertices, np.float64)  # the mesh's own vertices exactly, not rescaled
+    # points of the cut apart by less than the coordinates' resolution (where curves of the cut
+    # nearly meet) make faces of zero area once rounded: flipped or collapsed away, the surface closed
+    new_faces, _, _, _ = remove_degenerate_faces(out, new_faces, coordinate_accuracy(out))
     used, inverse = np.unique(new_faces, return_inverse=True)
-    out = points[used] * size + centre
-    given = used < cuts.n_vertices
-    out[given] = np.asarray(vertices, np.float64)[used[given]]  # the mesh's own vertices exactly, not rescaled
-    return SolidSurface(out, inverse.reshape(-1, 3).astype(np.int64), len(touched), dropped, keep_flip)
+    return SolidSurface(out[used], inverse.reshape(-1, 3).astype(np.int64), len(touched), dropped, keep_flip)
 
 
-def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray,
-            covered: dict[int, list[int]], all_tri: np.ndarray) -> tuple[np.ndarray, int, int]:
+def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray, covered: dict[int, list[int]],
+            coplanar: set[int], all_tri: np.ndarray) -> tuple[np.ndarray, int, int]:
     """The faces on the solid's boundary, outward; how many input faces were turned over and left out.
 
     Faces are judged by patch: faces joined by an edge of exactly two faces
@@ -319,9 +200,10 @@ def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray,
     """
     valid = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 0] != faces[:, 2])
     faces, origin = faces[valid], origin[valid]
-    n = len(faces)
-    if not n:  # every face welded flat (coordinates far apart in scale)
+    if not len(faces):  # every face welded flat (coordinates far apart in scale)
         return faces, 0, len(np.unique(origin))
+    faces, origin, doubled = _coincident(faces, origin)
+    n = len(faces)
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     owner = np.tile(np.arange(n), 3)
     _, inverse, counts = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
@@ -338,7 +220,8 @@ def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray,
     # each patch judged at its largest face
     order = np.lexsort((-area, patch))
     heads = order[np.r_[True, patch[order][1:] != patch[order][:-1]]]
-    behind, front = _sides(tri[heads], all_tri)
+    beside = doubled[heads] | np.isin(origin[heads], np.array(sorted(coplanar), np.int64))
+    behind, front = _sides(tri[heads], origin[heads], all_tri, beside)
     status = np.zeros(patch.max() + 1, np.int8)  # 1 keep, -1 turn over, 0 leave out
     status[patch[heads]] = np.where((behind >= 0.5) & (front < 0.5), 1, np.where((front >= 0.5) & (behind < 0.5), -1, 0))
     state = status[patch]
@@ -349,6 +232,28 @@ def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray,
     kept = np.unique(origin[state != 0])
     flipped = len(np.unique(origin[state == -1]))
     return out, flipped, len(parents) - len(kept)
+
+
+def _coincident(faces: np.ndarray, origin: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Faces on the same three points (parts touching face to face) counted once: opposite ones cancel.
+
+    Returns the faces left, their input faces, and which of them stood for
+    several (the others' winding numbers are ambiguous on them).
+    """
+    _, group, size = np.unique(np.sort(faces, axis=1), axis=0, return_inverse=True, return_counts=True)
+    group = group.ravel()
+    doubled = size[group] > 1
+    if not doubled.any():
+        return faces, origin, doubled
+    a, b, c = faces.T
+    sign = np.where((a < b).astype(int) + (b < c) + (c < a) == 2, 1, -1)  # a rotation of the sorted order, or not
+    net = np.zeros(len(size), np.int64)
+    np.add.at(net, group, sign)
+    candidate = np.flatnonzero(doubled & (sign == np.sign(net[group])))
+    _, first = np.unique(group[candidate], return_index=True)
+    keep = ~doubled
+    keep[candidate[first]] = True
+    return faces[keep], origin[keep], doubled[keep]
 
 
 def _inside_any(tri: np.ndarray, origin: np.ndarray, f: int, lower: list[int], all_tri: np.ndarray) -> np.ndarray:

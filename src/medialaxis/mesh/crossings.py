@@ -90,9 +90,9 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
     vertex are kept (a face folded through a neighbour of its corner).
     Triangles up to twice the median size are binned on a grid
     (:func:`~medialaxis.mesh._intersect_kernels.near_pairs`, which also
-    drops the pairs with apart bounding boxes); the
-    larger ones (slivers, long CAD faces) are matched against every
-    triangle within their own reach.
+    drops the pairs with apart bounding boxes); each
+    larger one (slivers, long CAD faces, caps of holes) is matched against
+    the triangles no larger than itself within twice its radius.
     """
     from scipy.spatial import cKDTree
 
@@ -108,7 +108,8 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
         pairs.append(near_pairs(tri, faces, centre, radius, idx, cell, False))
     big = np.flatnonzero(~small)
     if len(big):
-        tree, reach = cKDTree(centre), radius[big] + float(radius.max())
+        # each pair once, from its larger face: the smaller one's centre is within twice the larger's radius
+        tree, reach = cKDTree(centre), 2.0 * radius[big]
         count = tree.query_ball_point(centre[big], reach, return_length=True)
         lo, hi = tri.min(axis=1), tri.max(axis=1)
         start = 0
@@ -117,7 +118,7 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
             near = tree.query_ball_point(centre[big[start:stop]], reach[start:stop], return_sorted=False)
             js = np.concatenate([np.asarray(j, np.int64) for j in near])
             bs = np.repeat(big[start:stop], count[start:stop])
-            keep = (js != bs) & (small[js] | (js > bs))  # big-big pairs once
+            keep = (radius[js] < radius[bs]) | ((radius[js] == radius[bs]) & (js > bs))
             keep &= np.all((lo[js] <= hi[bs]) & (hi[js] >= lo[bs]), axis=1)
             keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
             keep &= (faces[bs][:, :, None] == faces[js][:, None, :]).sum(axis=(1, 2)) < 2  # not an edge apart

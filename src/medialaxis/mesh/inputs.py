@@ -151,10 +151,11 @@ def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: n
         return work
     solid = type(work)(surface.vertices, surface.faces, process=False)
     if not _closed(solid) or not solid.is_winding_consistent:
+        crowded, open_edges = _edge_defects(solid)
         raise InvalidInputError(
-            f"the surface passes through itself ({len(pairs)} pairs of crossing faces) in a way its cut along the "
-            "crossings does not close up (coplanar or touching faces at the accuracy of the coordinates); fix it "
-            "(e.g. a mesh boolean union or a remesher) first"
+            f"the surface passes through itself ({len(pairs)} pairs of crossing faces) and the surface of the solid its "
+            f"winding number defines is not a closed manifold ({open_edges} open edges, {crowded} edges of more than "
+            "two faces: sheets within the accuracy of the coordinates); fix it (e.g. a mesh boolean union) first"
         )
     what = (f"the surface passes through itself ({len(pairs)} pairs of faces cross)" if len(pairs)
             else f"shell {nested} lies inside another shell's solid (nested or overlapping shells)" if nested is not None
