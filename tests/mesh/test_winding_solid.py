@@ -177,3 +177,27 @@ def test_a_triangle_soup_with_a_hole_is_welded_before_its_hole_is_capped():
         ma = mx.medial_axis(soup, method="flow")
     assert ma.betti[:2] == (1, 0)
     assert any("welded" in r for r in ma.metadata["repairs"])
+
+
+def test_solids_touching_along_an_edge_are_kept_apart_as_manifold3d_keeps_them():
+    from medialaxis.mesh.inputs import load_mesh
+
+    parts = [_box([0, 0, 0], [1, 1, 1]), _box([1, 1, 0], [2, 2, 1])]
+    mesh = trimesh.util.concatenate(parts)
+    mesh.merge_vertices()  # one edge of four faces
+    union = trimesh.boolean.union(parts, engine="manifold")
+    with pytest.warns(mx.MedialAxisWarning, match="1 edges of more than two faces"):
+        solid = load_mesh(mesh).mesh
+    assert solid.is_watertight and solid.is_winding_consistent
+    assert solid.volume == pytest.approx(union.volume, rel=1e-9)
+    assert solid.euler_number == union.euler_number == 4
+    assert len(solid.split(only_watertight=False)) == len(union.split(only_watertight=False)) == 2
+
+
+def test_a_fin_on_an_edge_bounds_no_solid_and_is_refused_with_the_reason():
+    box = _box([0, 0, 0], [1, 1, 1])
+    u, v = box.edges_unique[0]
+    fin = trimesh.Trimesh(np.vstack([box.vertices, [[2.0, 2.0, 2.0]]]),
+                          np.vstack([box.faces, [[u, v, len(box.vertices)]]]), process=False)
+    with pytest.raises(mx.MedialAxisError, match="do not pair up in opposite directions"):
+        mx.medial_axis(fin, method="flow")

@@ -187,7 +187,81 @@ def solid_surface(vertices: np.ndarray, faces: np.ndarray, accuracy: float = 0.0
     # nearly meet) make faces of zero area once rounded: flipped or collapsed away, the surface closed
     new_faces, _, _, _ = remove_degenerate_faces(out, new_faces, coordinate_accuracy(out))
     used, inverse = np.unique(new_faces, return_inverse=True)
-    return SolidSurface(out[used], inverse.reshape(-1, 3).astype(np.int64), len(touched), dropped, keep_flip)
+    new_faces = inverse.reshape(-1, 3).astype(np.int64)
+    out, new_faces = _split_pinched(out[used], new_faces)
+    return SolidSurface(out, new_faces, len(touched), dropped, keep_flip)
+
+
+def _split_pinched(points: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where the solid touches itself (at a vertex, along an edge) its surface made a 2-manifold.
+
+    Each directed edge is paired with a reverse one (:func:`_twins`); the
+    faces around a vertex that follow each other across paired edges are one
+    fan, and a vertex of several fans becomes one vertex per fan, as a
+    boolean union leaves the two sides of a touching edge apart. Faces whose
+    edges do not pair up are left as they are.
+    """
+    twin = _twins(points, faces)
+    if twin is None:
+        return points, faces
+    n = len(faces)
+    start = faces.ravel()  # corner 3 f + k, at vertex faces[f, k], starts the edge to faces[f, k + 1]
+    # corner (f, k) and the corner at the same vertex in the face across its outgoing edge
+    across = (twin // 3) * 3 + (twin % 3 + 1) % 3
+    graph = sparse.coo_matrix((np.ones(3 * n), (np.arange(3 * n), across)), shape=(3 * n, 3 * n))
+    _, fan = connected_components(graph, directed=False)
+    fans_of = np.unique(np.column_stack([start, fan]), axis=0)
+    first = np.unique(fans_of[:, 0], return_index=True)[1]
+    extra = np.setdiff1d(np.arange(len(fans_of)), first)  # a second, third ... fan at a vertex
+    if not len(extra):
+        return points, faces
+    new_id = np.full(fan.max() + 1, -1)
+    new_id[fans_of[extra, 1]] = len(points) + np.arange(len(extra))
+    corners = new_id[fan]
+    out = np.where(corners >= 0, corners, start)
+    return np.vstack([points, points[fans_of[extra, 0]]]), out.reshape(-1, 3)
+
+
+def _twins(points: np.ndarray, faces: np.ndarray) -> np.ndarray | None:
+    """For each directed edge (corner ``3 f + k``), the reverse edge across which the solid continues.
+
+    An edge of two faces pairs them; around an edge of more faces (solids
+    touching along it), each face is paired with the reverse one next to it
+    on its inner side, by the angle of the faces about the edge. ``None``
+    where edges do not pair up so.
+    """
+    start = faces.ravel()
+    end = np.roll(faces, -1, axis=1).ravel()
+    m = len(points)
+    key, back = start * m + end, end * m + start
+    order = np.argsort(key, kind="stable")
+    lo, hi = np.searchsorted(key[order], back, "left"), np.searchsorted(key[order], back, "right")
+    if np.any(hi - lo != np.searchsorted(key[order], key, "right") - np.searchsorted(key[order], key, "left")):
+        return None  # as many faces one way along each edge as the other
+    twin = order[np.minimum(lo, len(key) - 1)]
+    for e in np.flatnonzero(hi - lo > 1):
+        if start[e] > end[e]:
+            continue  # each edge once, from its lower vertex
+        forward = order[np.searchsorted(key[order], key[e]):np.searchsorted(key[order], key[e], "right")]
+        reverse = order[lo[e]:hi[e]]
+        u, v = points[start[e]], points[end[e]]
+        axis = (v - u) / np.linalg.norm(v - u)
+        ref = None
+        angles = []
+        for c in np.concatenate([forward, reverse]):
+            w = points[faces[c // 3, (c % 3 + 2) % 3]] - u
+            w = w - axis * float(w @ axis)
+            ref = w if ref is None else ref
+            angles.append(np.arctan2(float(np.cross(ref, w) @ axis), float(ref @ w)))
+        ring = np.concatenate([forward, reverse])[np.argsort(angles)]
+        is_forward = np.isin(ring, forward)
+        if np.any(is_forward == np.roll(is_forward, 1)):
+            return None  # not alternating: no solid on one side of each face
+        # a face u -> v has its solid on the side of smaller angle, a face v -> u on the larger
+        for k in np.flatnonzero(is_forward):
+            other = ring[k - 1]
+            twin[ring[k]], twin[other] = other, ring[k]
+    return twin
 
 
 def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray, covered: dict[int, list[int]],

@@ -232,6 +232,33 @@ def _take_out_degenerate(work: Any, repairs: list[str]) -> Any:
 SMALL_HOLE = 0.1
 
 
+def _paired(faces: np.ndarray) -> bool:
+    """Whether each edge has as many faces along it one way as the other (a closed surface, touching solids included)."""
+    directed = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    _, inverse = np.unique(np.sort(directed, axis=1), axis=0, return_inverse=True)
+    balance = np.zeros(inverse.max() + 1, np.int64)
+    np.add.at(balance, inverse.ravel(), np.where(directed[:, 0] < directed[:, 1], 1, -1))
+    return not balance.any()
+
+
+def _touching_solids(work: Any, crowded: int, repairs: list[str], found: dict[str, int]) -> Any:
+    """The closed ``work`` whose solids touch along edges of four or more faces, as a 2-manifold (its solid's surface)."""
+    from medialaxis.mesh.arrangement import solid_surface
+    from medialaxis.mesh.degenerate import coordinate_accuracy
+
+    vertices = np.asarray(work.vertices)
+    surface = solid_surface(vertices, np.asarray(work.faces), coordinate_accuracy(vertices))
+    solid = type(work)(surface.vertices, surface.faces, process=False)
+    if not _closed(solid):
+        raise InvalidInputError(f"the mesh has {crowded} edges of more than two faces around which the surface of "
+                                "its solid (by winding number) is not a closed manifold; split them first")
+    found["shared_edges"] = crowded
+    done = f"{crowded} edges of more than two faces (solids touching along them) kept apart, one side per solid"
+    repairs.append(done)
+    warnings.warn(f"the mesh is not a 2-manifold: {done}", MedialAxisWarning, stacklevel=5)
+    return solid
+
+
 def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, int]) -> Any:
     """The open ``work`` with its holes capped (:mod:`medialaxis.mesh.holes`): small ones always, any with ``repair``."""
     from medialaxis.mesh.holes import boundary_loops, cap_holes
@@ -240,7 +267,10 @@ def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, i
     refusal = (f"the mesh is not watertight ({open_edges} open edges, {crowded} edges shared by more than two "
                "faces); close it first")
     if crowded:
-        raise InvalidInputError(refusal)
+        if open_edges or not _paired(np.asarray(work.faces)):
+            raise InvalidInputError(refusal + ": its edges of more than two faces do not pair up in opposite directions, "
+                                    "so no solid is defined there")
+        return _touching_solids(work, crowded, repairs, found)
     if not work.is_winding_consistent:  # trimesh's fix_winding works on open surfaces too
         require("trimesh", "medialaxis[mesh]").repair.fix_winding(work)
     loops = boundary_loops(np.asarray(work.faces))
