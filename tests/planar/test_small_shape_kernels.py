@@ -256,3 +256,16 @@ def test_nearest_samples_are_the_kd_trees() -> None:
     grid = np.stack(np.meshgrid(np.arange(10.0), np.arange(10.0)), -1).reshape(-1, 2)
     _, sure = nearest_samples(grid + 0.5, grid, 8)  # ties at the 8th: unsure, left to the tree
     assert not sure.all()
+
+
+def test_ties_with_the_kth_are_all_taken() -> None:
+    from medialaxis.planar._kernels import nearest_with_ties
+
+    grid = np.stack(np.meshgrid(np.arange(10.0), np.arange(10.0)), -1).reshape(-1, 2)
+    query = np.array([[4.5, 4.5], [0.0, 0.0], [3.2, 7.9]])
+    near = nearest_with_ties(query, grid, 8)
+    for q, row in zip(query, near):
+        d2 = ((grid - q) ** 2).sum(1)
+        kth = np.sort(d2)[7]
+        assert set(row.tolist()) == set(np.flatnonzero(d2 <= kth * (1 + 2e-9)).tolist())
+    assert len(set(near[0].tolist())) == 12  # the 4 + 8 grid points at the two nearest distances from a cell centre

@@ -31,7 +31,7 @@ from medialaxis._jit import njit
 
 __all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
            "piece_state_reference", "circumcircles_kernel", "circumcircle", "split_pieces", "split_count",
-           "nearest_samples"]
+           "nearest_samples", "nearest_with_ties"]
 
 
 @njit(cache=True, nogil=True)
@@ -268,8 +268,9 @@ def nearest_samples(query, points, k):  # type: ignore[no-untyped-def]
 
     Returns ``(near, sure)``: ``near`` (q, k) indices; ``sure[i]`` is False
     where the k-th and the next distance agree to 1e-9, so which ``k`` are
-    nearest depends on rounding (the caller asks the k-d tree there). Where
-    sure, ``near[i]`` holds the same set as ``cKDTree.query(..., k)``.
+    nearest depends on rounding (the caller takes every tied one there,
+    :func:`nearest_with_ties`). Where sure, ``near[i]`` holds the same set as
+    ``cKDTree.query(..., k)``.
     """
     n = len(points)
     x0, y0, x1, y1 = np.inf, np.inf, -np.inf, -np.inf
@@ -331,3 +332,52 @@ def nearest_samples(query, points, k):  # type: ignore[no-untyped-def]
             near[q, j] = best_i[j]
         sure[q] = best_d[k] - best_d[k - 1] > 1e-9 * best_d[k]
     return near, sure
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _d2(points, p, qx, qy):  # type: ignore[no-untyped-def]
+    return (points[p, 0] - qx) ** 2 + (points[p, 1] - qy) ** 2
+
+
+@njit(cache=True, nogil=True)
+def nearest_with_ties(query, points, k):  # type: ignore[no-untyped-def]
+    """The ``k`` nearest ``points`` of each query and every point tied with the ``k``-th (to 2e-9), by brute force.
+
+    Returns ``near`` (q, w): each row's points first, then its nearest one
+    repeated. Where the ``k``-th and the next distance agree to rounding,
+    which ``k`` a search returns depends on the rounding; all of them do not.
+    For the few queries :func:`nearest_samples` is unsure of.
+    """
+    n = len(points)
+    kth = np.empty(len(query))
+    closest = np.zeros(len(query), np.int64)
+    taken = np.zeros(len(query), np.int64)
+    best = np.empty(k)
+    for q in range(len(query)):
+        qx, qy = query[q, 0], query[q, 1]
+        found = 0
+        for p in range(n):
+            d = _d2(points, p, qx, qy)
+            if d < _d2(points, closest[q], qx, qy):
+                closest[q] = p
+            if found < k or d < best[k - 1]:  # the k smallest so far, sorted
+                j = min(found, k - 1)
+                while j > 0 and best[j - 1] > d:
+                    best[j] = best[j - 1]
+                    j -= 1
+                best[j] = d
+                found = min(found + 1, k)
+        kth[q] = best[k - 1] * (1.0 + 2e-9)
+        for p in range(n):
+            taken[q] += _d2(points, p, qx, qy) <= kth[q]
+    width = taken.max() if len(query) else 0
+    near = np.empty((len(query), width), np.int64)
+    for q in range(len(query)):
+        m = 0
+        for p in range(n):
+            if _d2(points, p, query[q, 0], query[q, 1]) <= kth[q]:
+                near[q, m] = p
+                m += 1
+        for j in range(m, width):
+            near[q, j] = closest[q]
+    return near
