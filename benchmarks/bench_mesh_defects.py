@@ -28,6 +28,10 @@ def _rotated(mesh: trimesh.Trimesh, axis: list[float]) -> trimesh.Trimesh:
     return mesh
 
 
+def _box(lo: list[float], hi: list[float]) -> trimesh.Trimesh:
+    return trimesh.creation.box(bounds=np.array([lo, hi], float))
+
+
 def cases() -> dict[str, tuple[trimesh.Trimesh, trimesh.Trimesh]]:
     """name -> (the mesh as given, the union that is its solid)."""
     out = {}
@@ -42,11 +46,19 @@ def cases() -> dict[str, tuple[trimesh.Trimesh, trimesh.Trimesh]]:
         "sphere in a sphere": [trimesh.creation.icosphere(3, 1.0), trimesh.creation.icosphere(2, 0.5)],
         "box through a torus's hole (apart)": [trimesh.creation.torus(1.0, 0.3, major_sections=48, minor_sections=16),
                                 trimesh.creation.box(extents=(0.5, 0.5, 1.5))],
+        "three boxes on one grid (touching, curves meet)": [_box([0, 0, 0], [2, 2, 2]), _box([1, 1, 1], [3, 3, 3]),
+                                                            _box([1, -1, 1], [3, 1, 3])],
+        "stacked boxes (faces in two planes)": [_box([0, 0, 0], [3, 1, 1]), _box([1, 0, 0], [2, 1, 3]),
+                                                _box([1, -1, 0], [2, 2, 1])],
         "pipe tee (two cylinders)": [trimesh.creation.cylinder(0.3, 3.0, sections=48),
                                      _rotated(trimesh.creation.cylinder(0.3, 3.0, sections=48), [1, 0, 0])],
     }
     for name, pieces in parts.items():
         out[name] = (trimesh.util.concatenate(pieces), trimesh.boolean.union(pieces, engine="manifold"))
+    touching = trimesh.util.concatenate([_box([0, 0, 0], [1, 1, 1]), _box([1, 1, 0], [2, 2, 1])])
+    touching.merge_vertices()  # one edge of four faces
+    out["two boxes sharing an edge"] = (touching, trimesh.boolean.union(
+        [_box([0, 0, 0], [1, 1, 1]), _box([1, 1, 0], [2, 2, 1])], engine="manifold"))
     sphere = trimesh.creation.icosphere(4)
     gone = np.random.default_rng(0).choice(len(sphere.faces), 6, replace=False)
     out["sphere with 6 one-face holes"] = (

@@ -201,3 +201,19 @@ def test_a_fin_on_an_edge_bounds_no_solid_and_is_refused_with_the_reason():
                           np.vstack([box.faces, [[u, v, len(box.vertices)]]]), process=False)
     with pytest.raises(mx.MedialAxisError, match="do not pair up in opposite directions"):
         mx.medial_axis(fin, method="flow")
+
+
+def test_holes_touching_at_a_vertex_are_capped_each_on_its_own():
+    from medialaxis.mesh.inputs import load_mesh
+
+    sphere = trimesh.creation.icosphere(3)
+    v = sphere.faces[0, 0]
+    around = np.flatnonzero((sphere.faces == v).any(axis=1))
+    # two faces at v that share no edge: two one-face holes meeting at v
+    second = next(g for g in around[1:] if len(set(sphere.faces[g]) & set(sphere.faces[around[0]])) == 1)
+    gone = [around[0], second]
+    holed = trimesh.Trimesh(sphere.vertices, np.delete(sphere.faces, gone, axis=0), process=False)
+    with pytest.warns(mx.MedialAxisWarning, match="closed 2 holes"):
+        solid = load_mesh(holed).mesh
+    assert solid.is_watertight and solid.is_winding_consistent and solid.euler_number == 2
+    assert solid.volume == pytest.approx(sphere.volume, rel=1e-12)

@@ -21,34 +21,51 @@ def boundary_loops(faces: np.ndarray) -> list[np.ndarray] | None:
     """Loops of vertices around the holes of a consistently oriented surface, or ``None`` if they do not chain.
 
     A boundary edge is a directed face edge ``u -> v`` whose reverse no face
-    has; around a hole they chain head to tail. ``None`` where a vertex
-    starts two boundary edges (two holes touching at a vertex) or an edge
-    is used twice in the same direction.
+    has; around a hole they chain head to tail. Where two holes touch at a
+    vertex (it starts two boundary edges), ``u -> v`` is followed by the
+    boundary edge that is not on its own fan of faces about ``v`` (that one
+    borders the other hole), so each hole gets its own loop and cap and the
+    vertex becomes a manifold one. ``None`` where an edge is used twice in
+    the same direction or three holes or more meet at a vertex.
     """
     f = np.asarray(faces, np.int64)
     directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    keys = {(int(u), int(v)) for u, v in directed}
-    if len(keys) < len(directed):
+    third = np.concatenate([f[:, 2], f[:, 0], f[:, 1]])  # the corner opposite each directed edge
+    face_of = {(int(u), int(v)): int(w) for (u, v), w in zip(directed, third)}
+    if len(face_of) < len(directed):
         return None
-    nxt: dict[int, int] = {}
-    for u, v in directed:
-        if (int(v), int(u)) not in keys:
-            if int(u) in nxt:
-                return None
-            nxt[int(u)] = int(v)
-    loops, seen = [], set()
-    for start in nxt:
-        if start in seen:
+    boundary = [(u, v) for (u, v) in face_of if (v, u) not in face_of]
+    leaving: dict[int, list[int]] = {}
+    for u, v in boundary:
+        leaving.setdefault(u, []).append(v)
+    nxt: dict[tuple[int, int], tuple[int, int]] = {}
+    for u, v in boundary:
+        heads = leaving.get(v, [])
+        if len(heads) == 1:
+            nxt[(u, v)] = (v, heads[0])
             continue
-        loop, v = [], start
-        while v not in seen:
-            seen.add(v)
-            loop.append(v)
-            if v not in nxt:
-                return None
-            v = nxt[v]
-        if v != start:
+        if len(heads) != 2:
+            return None  # three holes or more at a vertex: their order about it is not known
+        # two holes at v: turning about v through the faces from the one of u -> v (v -> w, across it the
+        # next face, ...) reaches the boundary edge on the same fan, of the other hole; u -> v's hole goes on
+        # along the other fan's edge
+        w, guard = face_of[(u, v)], 0
+        while (w, v) in face_of and guard < len(face_of):
+            w, guard = face_of[(w, v)], guard + 1
+        if w not in heads:
             return None
+        nxt[(u, v)] = (v, heads[1 - heads.index(w)])
+    if len(set(nxt.values())) < len(nxt):
+        return None
+    loops, seen = [], set()
+    for edge in boundary:
+        if edge in seen:
+            continue
+        loop = []
+        while edge not in seen:
+            seen.add(edge)
+            loop.append(edge[0])
+            edge = nxt[edge]
         loops.append(np.array(loop, np.int64))
     return loops
 
