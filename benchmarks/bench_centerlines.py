@@ -25,9 +25,17 @@ three on their output, with shapely only:
   is missing from it, so pruning cannot look good by cutting real arms;
 - failures: an error or an empty line.
 
+``medialaxis`` is timed by its default call on the whole layer,
+``mx.centerlines(lakes)`` (one process; ``--call feature`` times one call
+per feature on a one-row GeoSeries instead, which adds geopandas' per-call
+cost); the peers are called feature by feature, their only way. Speed work
+was tuned on ``--half tune`` (the even positions of the picked lakes) and is
+checked on ``--half check`` (the odd ones).
+
 Usage::
 
-    python benchmarks/bench_centerlines.py [--count 3000] [--min-vertices 12]
+    python benchmarks/bench_centerlines.py [--count 3000] [--min-vertices 12] [--half all|tune|check]
+                                           [--call layer|feature]
 
 pygeoops (BSD-3) and centerline (MIT) come with the ``bench`` extra.
 """
@@ -141,10 +149,13 @@ def branch_figures(line, polygon) -> tuple[int, int, bool]:
     return terminal, spurious, inside
 
 
-def run_tool(name, compute, lakes) -> dict:
+def run_tool(name, compute, lakes, layer=None) -> dict:
+    """Figures of one tool; ``layer``: a function of the whole layer giving every feature's line, timed instead."""
     lines, failures = [], 0
     t0 = time.perf_counter()
-    for poly in lakes:
+    if layer is not None:
+        lines = list(layer(lakes))
+    for poly in lakes if layer is None else ():
         try:
             line = compute(poly)
         except Exception:  # noqa: BLE001 - a peer's failure is a figure, not a crash
@@ -169,12 +180,19 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--count", type=int, default=3000)
     ap.add_argument("--min-vertices", type=int, default=12)
+    ap.add_argument("--half", choices=("all", "tune", "check"), default="all",
+                    help="all lakes, the even positions (tuning half) or the odd ones (check half)")
+    ap.add_argument("--call", choices=("layer", "feature"), default="layer",
+                    help="time medialaxis on the whole layer (default call) or one call per feature")
     args = ap.parse_args(argv)
     lakes = lake_polygons(args.count, args.min_vertices)
+    if args.half != "all":
+        lakes = lakes.iloc[0 if args.half == "tune" else 1 :: 2].reset_index(drop=True)
     n_vertices = shapely.get_num_coordinates(lakes.values)
     print(f"{len(lakes)} OSM lakes (1 km generalization, >= {args.min_vertices} vertices; "
           f"median {int(np.median(n_vertices))}, max {int(n_vertices.max())} vertices; "
-          f"{int((shapely.get_num_interior_rings(lakes.values) > 0).sum())} with islands), EPSG:3857")
+          f"{int((shapely.get_num_interior_rings(lakes.values) > 0).sum())} with islands), EPSG:3857; "
+          f"half: {args.half}; medialaxis timed per {args.call}")
 
     import geopandas as gpd
 
@@ -186,11 +204,14 @@ def main(argv=None) -> None:
         out = mx.centerlines(gpd.GeoSeries([poly], crs=lakes.crs), show_progress=False)
         return out.geometry.iloc[0]
 
-    tools.append(("medialaxis", ours))
+    def ours_layer(layer):
+        return mx.centerlines(layer, show_progress=False).geometry
+
+    tools.append(("medialaxis", ours, ours_layer if args.call == "layer" else None))
     try:
         import pygeoops
 
-        tools.append(("pygeoops.centerline", pygeoops.centerline))
+        tools.append(("pygeoops.centerline", pygeoops.centerline, None))
     except ImportError:
         print("pygeoops not installed (pip install 'medialaxis[bench]'): row left out")
     try:
@@ -200,14 +221,15 @@ def main(argv=None) -> None:
             width = 2.0 * poly.area / poly.length  # pygeoops' automatic densify distance
             return Centerline(poly, interpolation_distance=width).geometry
 
-        tools.append(("centerline", peer))
+        tools.append(("centerline", peer, None))
     except ImportError:
         print("centerline not installed (pip install 'medialaxis[bench]'): row left out")
     rows = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        for name, compute in tools:
-            rows.append(run_tool(name, compute, lakes))
+        mx.medial_axis(lakes.iloc[0], detour=1.0)  # compiled kernels loaded before any clock runs
+        for name, compute, layer in tools:
+            rows.append(run_tool(name, compute, lakes, layer))
     print(f"{'tool':22s} {'seconds':>8s} {'ms/feat':>8s} {'fail':>5s} {'terminal/feat':>14s} "
           f"{'spurious/feat':>14s} {'with spurious':>14s} {'inside':>8s} {'coverage':>9s}")
     base = rows[0]["seconds"]
@@ -218,6 +240,9 @@ def main(argv=None) -> None:
               f"{100 * (r['spurious'] > 0).mean() if n else np.nan:13.1f}% "
               f"{100 * r['inside'].mean() if n else np.nan:7.1f}% "
               f"{100 * np.median(r['coverage']) if n else np.nan:8.1f}%   (time x{r['seconds'] / base:.2f})")
+    peer = [r for r in rows if r["tool"] == "pygeoops.centerline"]
+    if peer:
+        print(f"medialaxis takes {base / peer[0]['seconds']:.2f} times pygeoops.centerline's time")
 
 
 if __name__ == "__main__":
