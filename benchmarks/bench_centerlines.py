@@ -11,7 +11,7 @@ shapes are kept locally).
 Every tool runs with its defaults, per feature. Measured the same way for all
 three on their output, with shapely only:
 
-- seconds for the whole layer;
+- CPU seconds for the whole layer;
 - terminal branches per feature, and spurious ones. A terminal branch runs from
   an end (degree 1) to a junction; with d( ) the distance to the shore, its
   reach is how far the disc at its end gets beyond the disc at its junction,
@@ -25,17 +25,19 @@ three on their output, with shapely only:
   is missing from it, so pruning cannot look good by cutting real arms;
 - failures: an error or an empty line.
 
-``medialaxis`` is timed by its default call on the whole layer,
+``medialaxis`` is timed by its default call on the layer,
 ``mx.centerlines(lakes)`` (one process; ``--call feature`` times one call
 per feature on a one-row GeoSeries instead, which adds geopandas' per-call
-cost); the peers are called feature by feature, their only way. Speed work
+cost); the peers are called feature by feature, their only way. The tools
+take turns on chunks of ``--chunk`` lakes and their seconds are the CPU time
+of this process, so the load of a shared machine moves all of them alike. Speed work
 was tuned on ``--half tune`` (the even positions of the picked lakes) and is
 checked on ``--half check`` (the odd ones).
 
 Usage::
 
     python benchmarks/bench_centerlines.py [--count 3000] [--min-vertices 12] [--half all|tune|check]
-                                           [--call layer|feature]
+                                           [--call layer|feature] [--chunk 50]
 
 pygeoops (BSD-3) and centerline (MIT) come with the ``bench`` extra.
 """
@@ -149,19 +151,35 @@ def branch_figures(line, polygon) -> tuple[int, int, bool]:
     return terminal, spurious, inside
 
 
-def run_tool(name, compute, lakes, layer=None) -> dict:
-    """Figures of one tool; ``layer``: a function of the whole layer giving every feature's line, timed instead."""
-    lines, failures = [], 0
-    t0 = time.perf_counter()
+def _lines(compute, layer, chunk):
+    """Every feature's line of one chunk: ``layer`` on the whole chunk, else ``compute`` feature by feature."""
     if layer is not None:
-        lines = list(layer(lakes))
-    for poly in lakes if layer is None else ():
+        return list(layer(chunk))
+    lines = []
+    for poly in chunk:
         try:
-            line = compute(poly)
+            lines.append(compute(poly))
         except Exception:  # noqa: BLE001 - a peer's failure is a figure, not a crash
-            line = None
-        lines.append(line)
-    seconds = time.perf_counter() - t0
+            lines.append(None)
+    return lines
+
+
+def run_tools(tools, lakes, chunk: int) -> list[dict]:
+    """Lines and CPU seconds of every tool, the tools taking turns chunk by chunk (load drift hits all alike)."""
+    lines = {name: [] for name, _, _ in tools}
+    seconds = dict.fromkeys(lines, 0.0)
+    for start in range(0, len(lakes), chunk):
+        part = lakes.iloc[start : start + chunk]
+        for name, compute, layer in tools:
+            t0 = time.process_time()
+            lines[name] += _lines(compute, layer, part)
+            seconds[name] += time.process_time() - t0
+    return [figures(name, lines[name], seconds[name], lakes) for name in lines]
+
+
+def figures(name, lines, seconds, lakes) -> dict:
+    """Quality figures of one tool's lines."""
+    failures = 0
     terminal, spurious, inside, covered = [], [], [], []
     for line, poly in zip(lines, lakes):
         if line is None or line.is_empty:
@@ -184,6 +202,7 @@ def main(argv=None) -> None:
                     help="all lakes, the even positions (tuning half) or the odd ones (check half)")
     ap.add_argument("--call", choices=("layer", "feature"), default="layer",
                     help="time medialaxis on the whole layer (default call) or one call per feature")
+    ap.add_argument("--chunk", type=int, default=50, help="features per turn of each tool (default %(default)s)")
     args = ap.parse_args(argv)
     lakes = lake_polygons(args.count, args.min_vertices)
     if args.half != "all":
@@ -224,12 +243,10 @@ def main(argv=None) -> None:
         tools.append(("centerline", peer, None))
     except ImportError:
         print("centerline not installed (pip install 'medialaxis[bench]'): row left out")
-    rows = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         mx.medial_axis(lakes.iloc[0], detour=1.0)  # compiled kernels loaded before any clock runs
-        for name, compute, layer in tools:
-            rows.append(run_tool(name, compute, lakes, layer))
+        rows = run_tools(tools, lakes, args.chunk)
     print(f"{'tool':22s} {'seconds':>8s} {'ms/feat':>8s} {'fail':>5s} {'terminal/feat':>14s} "
           f"{'spurious/feat':>14s} {'with spurious':>14s} {'inside':>8s} {'coverage':>9s}")
     base = rows[0]["seconds"]
