@@ -32,6 +32,10 @@ def test_nearest_other_sample_is_the_kd_tree_nearest():
     np.testing.assert_array_equal(got[~own], truth[~own])
     assert (got[own] == -1).all()
     assert (~own).sum() > 100  # the walk was exercised
+    # where the four tangent planes agree with the side already found there is nothing to walk for
+    flat = np.zeros_like(points)
+    skipped = nearest_other_sample(queries, dt.points, dt.simplices, dt.centres, dt.radii, flat, -np.ones(len(queries)))
+    assert (skipped == -1).all()
 
 
 def test_a_point_beside_the_wrong_faces_gets_its_side_from_the_nearest_sample():

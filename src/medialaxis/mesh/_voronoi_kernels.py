@@ -81,7 +81,8 @@ def tet_centroids(points, simplices):  # type: ignore[no-untyped-def]
 
 
 def nearest_other_sample(
-    queries: np.ndarray, points: np.ndarray, simplices: np.ndarray, centres: np.ndarray, radii: np.ndarray
+    queries: np.ndarray, points: np.ndarray, simplices: np.ndarray, centres: np.ndarray, radii: np.ndarray,
+    normals: np.ndarray | None = None, signed: np.ndarray | None = None,
 ) -> np.ndarray:
     """For a point per tetrahedron, the nearest sample when it is not one of the tetrahedron's, else -1.
 
@@ -92,18 +93,28 @@ def nearest_other_sample(
     shared with a Delaunay neighbour ``u``, and ``x`` lies on ``u``'s side of
     their bisector plane: ``|x - u| < |x - v|``.) No walk where the
     tetrahedron's empty circumsphere (``centres``, ``radii``) keeps every
-    other sample farther than its nearest vertex.
+    other sample farther than its nearest vertex, nor, given the samples'
+    ``normals`` and the queries' ``signed`` distances, where the query lies
+    on that side of all four of its samples' tangent planes (a point deep in
+    a tube, the most costly to walk from: every sample around is nearly as
+    near).
     """
+    if normals is None or signed is None:
+        normals, signed = np.zeros((1, 3)), np.zeros(1)
+        check = False
+    else:
+        check = True
     n = len(points)
     order = np.argsort(simplices.ravel(), kind="stable")
     vptr = np.searchsorted(simplices.ravel()[order], np.arange(n + 1)).astype(np.int64)
     return _greedy_nearest(
-        np.ascontiguousarray(queries), points, simplices, centres, radii, vptr, (order // 4).astype(np.int64)
+        np.ascontiguousarray(queries), points, simplices, centres, radii, vptr, (order // 4).astype(np.int64),
+        np.ascontiguousarray(normals, np.float64), np.ascontiguousarray(signed, np.float64), check,
     )
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets):  # type: ignore[no-untyped-def]
+def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets, normals, signed, check):  # type: ignore[no-untyped-def]
     out = np.full(queries.shape[0], -1, np.int64)
     for q in prange(queries.shape[0]):
         best, best_d = -1, np.inf
@@ -120,6 +131,16 @@ def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets):  #
             inset += (queries[q, c] - centres[q, c]) ** 2
         inset = radii[q] - np.sqrt(inset)
         moved = not (inset > 0.0 and best_d <= inset * inset)
+        if moved and check:  # the four tangent planes agree with the side found: nothing to check
+            agree = True
+            for k in range(4):
+                v = simplices[q, k]
+                facing = 0.0
+                for c in range(3):
+                    facing += (queries[q, c] - points[v, c]) * normals[v, c]
+                if (facing > 0.0) != (signed[q] > 0.0):
+                    agree = False
+            moved = not agree
         while moved:
             moved = False
             for j in range(vptr[best], vptr[best + 1]):

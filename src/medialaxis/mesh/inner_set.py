@@ -61,6 +61,7 @@ def inner_tets(dt: Any, smp: Any, sd: SignedDistance, tolerance: float) -> np.nd
     """
     centroids = tet_centroids(dt.points, dt.simplices)
     signed, _ = sd.query(centroids, smp.face[dt.simplices])
-    nearest = nearest_other_sample(centroids, dt.points, dt.simplices, dt.centres, dt.radii)
+    normals = sd.normals.face[smp.face]
+    nearest = nearest_other_sample(centroids, dt.points, dt.simplices, dt.centres, dt.radii, normals, signed)
     sd.recheck_sides(centroids, signed, nearest, dt.points, smp.face)
     return signed < -np.maximum(tolerance, FLAT_DEPTH * dt.longest)
