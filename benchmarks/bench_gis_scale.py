@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import subprocess
 import sys
@@ -70,7 +71,7 @@ class PeakMemory:
     def __enter__(self) -> PeakMemory:
         import psutil
 
-        self.peak, self._stop = 0, threading.Event()
+        self.peak, self._stop, self._cpu = 0, threading.Event(), {}
 
         def sample() -> None:
             me = psutil.Process()
@@ -78,7 +79,10 @@ class PeakMemory:
                 total = 0
                 for proc in [me, *me.children(recursive=True)]:
                     try:
-                        total += proc.memory_info().rss
+                        with proc.oneshot():
+                            total += proc.memory_info().rss
+                            times = proc.cpu_times()
+                        self._cpu[proc.pid] = times.user + times.system
                     except psutil.Error:
                         pass
                 self.peak = max(self.peak, total)
@@ -91,19 +95,26 @@ class PeakMemory:
         self._stop.set()
         self._thread.join()
 
+    @property
+    def cpu_seconds(self) -> float:
+        """CPU seconds of the process and its workers, as last sampled (a worker's last 0.2 s may be missed)."""
+        return float(sum(self._cpu.values()))
+
 
 def run_one(config: str, count: int) -> dict:
     """One configuration in this process: seconds, features, lines and peak memory."""
     with PeakMemory() as memory:
-        out = _run(config, count)
-    return {**out, "peak_mb": memory.peak / 2**20}
+        out = _run(config, count, memory)
+    return {**out, "peak_mb": memory.peak / 2**20, "load": os.getloadavg()[0]}
 
 
-def _run(config: str, count: int) -> dict:
+def _run(config: str, count: int, memory: PeakMemory) -> dict:
     layer = tiled_lakes(count)
     import medialaxis as mx
 
     mx.centerlines(layer.iloc[:30])  # compiled kernels loaded, as in any session after the first call
+    time.sleep(0.3)
+    cpu = memory.cpu_seconds
     start = time.perf_counter()
     if config == "pygeoops":
         import pygeoops
@@ -122,8 +133,10 @@ def _run(config: str, count: int) -> dict:
         scheduler = "threads" if config.startswith("threads") else None
         lines = mx.centerlines(layer, n_jobs=jobs, scheduler=scheduler, show_progress=False).geometry
     seconds = time.perf_counter() - start
+    time.sleep(0.3)
+    cpu = memory.cpu_seconds - cpu
     lines = np.asarray(lines)
-    return {"config": config, "count": count, "seconds": seconds,
+    return {"config": config, "count": count, "seconds": seconds, "cpu_s": cpu,
             "lines": int(np.count_nonzero(~shapely.is_empty(lines) & ~shapely.is_missing(lines))),
             "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
 
@@ -152,13 +165,14 @@ def main(argv: list[str] | None = None) -> None:
     peer = next((r for r in rows if r["config"] == "pygeoops"), None)
     one = next((r for r in rows if r["config"] == "medialaxis-1"), None)
     print(f"{'config':14} {'features':>9} {'lines':>9} {'seconds':>9} {'ms/feature':>11} {'x pygeoops':>11} "
-          f"{'x 1 worker':>11} {'peak MB':>8} {'main MB':>8}")
+          f"{'x 1 worker':>11} {'CPU s':>8} {'cores':>6} {'peak MB':>8} {'main MB':>8} {'load':>5}")
     for r in rows:
         ms = 1e3 * r["seconds"] / r["count"]
         ratio = f"{ms / (1e3 * peer['seconds'] / peer['count']):.2f}" if peer else "-"
         speedup = f"{(1e3 * one['seconds'] / one['count']) / ms:.2f}" if one else "-"
         print(f"{r['config']:14} {r['count']:9d} {r['lines']:9d} {r['seconds']:9.1f} {ms:11.2f} {ratio:>11} "
-              f"{speedup:>11} {r['peak_mb']:8.0f} {r['rss_mb']:8.0f}")
+              f"{speedup:>11} {r['cpu_s']:8.1f} {r['cpu_s'] / r['seconds']:6.2f} {r['peak_mb']:8.0f} {r['rss_mb']:8.0f} "
+              f"{r['load']:5.1f}")
 
 
 if __name__ == "__main__":

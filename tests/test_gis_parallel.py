@@ -22,7 +22,7 @@ LAKES = Path(__file__).parent / "data" / "osm_lakes.geojson"
 
 @pytest.fixture(scope="module")
 def lakes():
-    layer = gpd.read_file(LAKES).to_crs("EPSG:3857")  # 30 OpenStreetMap lakes
+    layer = gpd.read_file(LAKES).to_crs("EPSG:3857").iloc[:12]  # 12 OpenStreetMap lakes
     return layer.set_index(layer.index * 10 + 5)  # an index that is not 0, 1, ...
 
 
@@ -40,8 +40,8 @@ def same(out, serial):
     assert all(a.equals_exact(b, 0.0) for a, b in zip(out.geometry, serial.geometry))
 
 
-@pytest.mark.parametrize("scheduler", [None, "threads", "synchronous"])
-def test_the_same_layer_on_processes_threads_and_in_order(lakes, serial, scheduler):
+@pytest.mark.parametrize("scheduler", [None, "processes", "threads", "synchronous"])
+def test_the_same_layer_on_threads_processes_and_in_order(lakes, serial, scheduler):
     same(mx.centerlines(lakes, n_jobs=2, scheduler=scheduler), serial)
 
 
@@ -65,8 +65,9 @@ def test_bad_options_name_the_value(lakes):
         mx.centerlines(lakes, scheduler="forks")
 
 
-def test_a_progress_bar_counts_the_features(lakes, capsys):
-    mx.centerlines(lakes.iloc[:6], n_jobs=2, show_progress=True)
+@pytest.mark.parametrize("scheduler", [None, "processes"])
+def test_a_progress_bar_counts_the_features(lakes, capsys, scheduler):
+    mx.centerlines(lakes.iloc[:6], n_jobs=2, scheduler=scheduler, show_progress=True)
     err = capsys.readouterr().err
     assert "features" in err and "/6 [" in err, err
     mx.centerlines(lakes.iloc[:6], show_progress=False)
@@ -77,18 +78,20 @@ def _descendants():
     return {p.pid for p in psutil.Process().children(recursive=True)}
 
 
-def test_ctrl_c_stops_the_workers_and_raises_cancelled(lakes):
-    mx.centerlines(lakes.iloc[:4], n_jobs=2)  # the worker server is up
-    before = _descendants()
-    many = gpd.GeoDataFrame(geometry=list(lakes.geometry) * 40, crs=lakes.crs)  # far more than a second of work
+@pytest.mark.parametrize("scheduler", ["threads", "processes"])
+def test_ctrl_c_stops_the_workers_and_raises_cancelled(lakes, scheduler):
+    mx.centerlines(lakes.iloc[:4], n_jobs=2, scheduler=scheduler)  # the worker server is up
+    before, threads = _descendants(), threading.active_count()
+    many = gpd.GeoDataFrame(geometry=list(lakes.geometry) * 250, crs=lakes.crs)  # 40 s of work on one core
     timer = threading.Timer(1.0, _thread.interrupt_main)
     timer.start()
     start = time.perf_counter()
     with pytest.raises(mx.Cancelled):
-        mx.centerlines(many, n_jobs=2)
+        mx.centerlines(many, n_jobs=2, scheduler=scheduler)
     timer.cancel()
-    assert time.perf_counter() - start < 15.0
-    assert _descendants() <= before  # no worker left running
+    assert time.perf_counter() - start < 10.0
+    assert _descendants() <= before  # no worker process left running
+    assert threading.active_count() == threads  # nor a thread
 
 
 def test_cli_jobs_and_scheduler(lakes, serial, tmp_path):

@@ -64,9 +64,9 @@ def _add_centerlines(sub: Any) -> None:
     p.add_argument("--detour", type=float, default=None, help="pruning detour ratio")
     p.add_argument("--band", type=int, default=1, help="band of a raster mask")
     p.add_argument("-j", "--jobs", type=int, default=None,
-                   help="features computed at once (worker processes; default 1, or all CPUs with --scheduler)")
+                   help="features computed at once (threads; default 1, or all CPUs with --scheduler)")
     p.add_argument("--scheduler", default=None,
-                   help="processes, threads, synchronous, or a Dask scheduler address (tcp://host:8786)")
+                   help="threads, processes, synchronous, or a Dask scheduler address (tcp://host:8786)")
     p.set_defaults(run=_run_centerlines)
 
 

@@ -88,14 +88,14 @@ or sequence of them
         ``band``'s non-zero valid pixels (see :mod:`medialaxis.gis.rasters`).
         Never modified.
     n_jobs : int, optional
-        Features computed at once: None or 1 in this process; more on that
-        many worker processes (faster than threads here, see
-        :mod:`medialaxis.gis.parallel`).
-    scheduler : {None, "processes", "threads", "synchronous"}, dask Client or address, optional
-        Where the features run: worker processes, threads (``n_jobs``, or
+        Features computed at once: None or 1 in this process, one after the
+        other; more on that many threads (measured faster than worker
+        processes, see :mod:`medialaxis.gis.parallel`).
+    scheduler : {None, "threads", "processes", "synchronous"}, dask Client or address, optional
+        Where the features run: threads, worker processes (``n_jobs``, or
         all CPUs), in order in this process, or a Dask cluster in chunks.
         A dask GeoDataFrame takes neither: it runs on the scheduler active
-        when it is computed.
+        when it is computed. A raster mask is one axis: neither applies.
     band : int
         The band of a raster mask (1-based).
     show_progress : bool, optional
