@@ -12,9 +12,10 @@ feature, the peak resident memory of the process and all its worker
 processes together (sampled every 0.2 s with psutil, reading and tiling
 included) and of the main process alone (``ru_maxrss``). Configurations:
 
-- ``medialaxis-1``: ``mx.centerlines(layer)``, the default call (one process);
-- ``medialaxis-2``: ``n_jobs=2`` (two worker processes, the default pool);
-- ``threads-2``: ``n_jobs=2, scheduler="threads"``;
+- ``medialaxis-1``: ``mx.centerlines(layer)``, the default call (one thread);
+- ``medialaxis-2``: ``n_jobs=2`` (the default pool: two threads);
+- ``threads-2``: ``n_jobs=2, scheduler="threads"`` (the same, named);
+- ``processes-2``: ``n_jobs=2, scheduler="processes"`` (two worker processes);
 - ``dask-2``: a ``dask_geopandas.GeoDataFrame`` of 8 partitions computed on a
   ``distributed.LocalCluster`` of 2 single-threaded workers;
 - ``pygeoops``: ``pygeoops.centerline(layer.geometry)`` with its defaults (one
@@ -23,9 +24,11 @@ included) and of the main process alone (``ru_maxrss``). Configurations:
 Usage::
 
     NUMBA_NUM_THREADS=1 python benchmarks/bench_gis_scale.py [--count 100000]
-        [--configs medialaxis-1,medialaxis-2,threads-2,dask-2,pygeoops] [--count-for medialaxis-1=10000]
+        [--configs medialaxis-1,medialaxis-2,processes-2,dask-2,pygeoops] [--count-for medialaxis-1=10000]
 
-``--count-for`` runs a configuration on fewer features (the ratios are per
+The wall time depends on what else runs on the machine: the CPU seconds of
+the call (workers included), the cores they amount to and the load average
+are printed beside it. ``--count-for`` runs a configuration on fewer features (the ratios are per
 feature) when the whole layer would take too long on one worker.
 """
 
@@ -45,7 +48,7 @@ import numpy as np
 import shapely
 
 LAKES = Path(__file__).resolve().parents[1] / "tests" / "data" / "osm_lakes.geojson"
-CONFIGS = ("medialaxis-1", "medialaxis-2", "threads-2", "dask-2", "pygeoops")
+CONFIGS = ("medialaxis-1", "medialaxis-2", "processes-2", "dask-2", "pygeoops")
 
 
 def tiled_lakes(count: int):
@@ -130,7 +133,7 @@ def _run(config: str, count: int, memory: PeakMemory) -> dict:
             lines = mx.centerlines(dask_geopandas.from_geopandas(layer, npartitions=8)).compute().geometry
     else:
         jobs = int(config.rsplit("-", 1)[1])
-        scheduler = "threads" if config.startswith("threads") else None
+        scheduler = config.split("-")[0] if config.startswith(("threads", "processes")) else None
         lines = mx.centerlines(layer, n_jobs=jobs, scheduler=scheduler, show_progress=False).geometry
     seconds = time.perf_counter() - start
     time.sleep(0.3)

@@ -63,6 +63,11 @@ def test_bad_options_name_the_value(lakes):
         mx.centerlines(lakes, n_jobs=0)
     with pytest.raises(mx.InvalidInputError, match="'forks'"):
         mx.centerlines(lakes, scheduler="forks")
+    dask = pytest.importorskip("dask")
+    pytest.importorskip("distributed")
+    with dask.config.set({"distributed.comm.timeouts.connect": "1s"}), \
+            pytest.raises(mx.InvalidInputError, match="cannot reach the Dask scheduler 'tcp://127.0.0.1:1'"):
+        mx.centerlines(lakes, scheduler="tcp://127.0.0.1:1")
 
 
 @pytest.mark.parametrize("scheduler", [None, "processes"])

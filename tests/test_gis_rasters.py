@@ -145,8 +145,14 @@ def test_cli_writes_the_network_in_the_rasters_crs(tmp_path):
     from medialaxis.cli import main
 
     path, _, _ = geotiff(tmp_path / "water.tif", RIVER, (2.0, 3.0), 0.0)
-    out = tmp_path / "lines.gpkg"
-    assert main(["centerlines", str(path), "-o", str(out)]) == 0
+    out, points = tmp_path / "lines.gpkg", tmp_path / "stations.fgb"
+    assert main(["centerlines", str(path), "-o", str(out), "--stations", str(points), "--step", "10"]) == 0
     back = gpd.read_file(out)
     assert back.crs.to_epsg() == 32633 and {"start_kind", "end_kind", "width_mean"} <= set(back.columns)
     assert nearest(shapely.get_coordinates(back.geometry.values))[0].max() <= 2 * 3.0  # caps included
+    stations_back = gpd.read_file(points)
+    assert stations_back.crs.to_epsg() == 32633 and stations_back.geom_type.eq("Point").all()
+    off, t = nearest(shapely.get_coordinates(stations_back.geometry.values))
+    inner = (t > 0) & (t < LENGTH)
+    assert np.abs(stations_back["width"] - 2 * radius(t))[inner].max() <= 3.0
+    assert main(["centerlines", str(path), "-o", str(out), "--step", "-1"]) == 2

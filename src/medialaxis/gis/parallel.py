@@ -2,12 +2,12 @@
 
 Threads are the pool for ``n_jobs`` > 1: measured on tiled OpenStreetMap
 lakes (``benchmarks/bench_gis_scale.py``, 2 cores shared with other work,
-load average 7 to 14), 2 threads took 0.82 to 0.92 of the time of 2 worker
-processes in three runs (600, 2,000 and 3,000 lakes), with 12% less CPU
-time (no start-up, nothing pickled) and half the peak memory (388 MB against
-782 MB for 2,000 lakes): the compiled kernels and shapely release the GIL.
-Worker processes (``scheduler="processes"``) are there for work that holds
-it.
+load average 7 to 14), 2 threads took 0.73 to 0.93 of the time of 2 worker
+processes in four runs (600, 2,000 and twice 3,000 lakes), with 12 to 18%
+less CPU time (no start-up, nothing pickled) and half the peak memory (388 MB
+against 782 MB for 2,000 lakes): the compiled kernels and shapely release
+the GIL. Worker processes (``scheduler="processes"``) are there for work
+that holds it.
 """
 
 from __future__ import annotations
@@ -83,8 +83,11 @@ def map_features(kind: str, items: Sequence[tuple[Any, Any]], options: dict[str,
         context.set_forkserver_preload(["medialaxis.gis._warm"])
         pool = ProcessPoolExecutor(min(workers, len(chunks)), mp_context=context, initializer=_quiet_worker)
         return _on_pool(pool, kind, chunks, options, step, workers, show_progress)
-    done = run_tasks(_chunk_task, chunks, kind, options, step, scheduler=scheduler, desc="feature chunks",
-                     show_progress=show_progress)
+    try:
+        done = run_tasks(_chunk_task, chunks, kind, options, step, scheduler=scheduler, desc="feature chunks",
+                         show_progress=show_progress)
+    except OSError as exc:  # distributed: no scheduler there
+        raise InvalidInputError(f"cannot reach the Dask scheduler {scheduler!r}: {exc}") from exc
     return [row for rows in done for row in rows]
 
 
