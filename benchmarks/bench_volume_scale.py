@@ -20,10 +20,15 @@ interpreter, the libraries and the pages of the memory-mapped input. A tool whos
 99th percentile distance of the mesh vertices, share of the true mid-surface
 within 1 voxel of the mesh, components, median thickness.
 
+* ours on a Dask ``LocalCluster`` of worker processes (``--workers 1 2``),
+  the mesh streamed to a PLY file (``out=``): the largest process's own
+  high-water mark (the client's and each worker's, from the processes
+  themselves) and the tree's sampled peak until the axis is done.
+
 Usage::
 
     PYTHONPATH=src python benchmarks/bench_volume_scale.py --sizes 256 512 1024 --chunks 256 --jobs 2 \
-        [--dir /tmp/panels] [--no-kimimaro] [--no-memory-route]
+        [--workers 1 2] [--no-threads] [--dir /tmp/panels] [--no-kimimaro] [--no-memory-route]
 """
 
 from __future__ import annotations
@@ -66,29 +71,71 @@ def write_panel(path: Path, n: int, slab: int = 32) -> float:
     return time.perf_counter() - t0
 
 
+def read_ply(path: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Points, faces and radii of the binary PLY the mesh was streamed to (its own header: x y z radius ...)."""
+    with open(path, "rb") as fh:
+        header = []
+        while not header or header[-1] != "end_header":
+            header.append(fh.readline().decode("ascii").strip())
+        nv = int(next(h for h in header if h.startswith("element vertex")).split()[-1])
+        nf = int(next(h for h in header if h.startswith("element face")).split()[-1])
+        names = [h.split()[-1] for h in header[header.index(f"element vertex {nv}"):] if h.startswith("property double")]
+        vert = np.fromfile(fh, dtype=[(k, "<f8") for k in names], count=nv)
+        face = np.fromfile(fh, dtype=[("k", "u1"), ("v", "<i4", (3,))], count=nf)
+    return np.stack([vert["x"], vert["y"], vert["z"]], axis=1), face["v"].astype(np.int64), vert["radius"]
+
+
 def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
-    """Runs in the measured process; prints a JSON line."""
+    """Runs in the measured process; prints a JSON line.
+
+    ``cluster``: the blocks run on a ``LocalCluster`` of ``jobs`` worker
+    processes (one thread each) and the mesh is streamed to a PLY file
+    (``out=``); the workers' own high-water marks come from the workers.
+    """
     out: dict = {"tool": tool, "size": n}
-    if tool in ("chunked", "memory"):
+    if tool in ("chunked", "memory", "cluster"):
         import medialaxis as mx
         from medialaxis.volume.phantoms import ribbed_panel_truth
         from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
 
+        cluster = client = None
+        options: dict = {"n_jobs": jobs}
+        ply = Path(path).with_suffix(f".{tool}.ply")
+        if tool == "cluster":
+            from distributed import Client, LocalCluster
+
+            cluster = LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None,
+                                   memory_limit="3GiB")
+            client = Client(cluster)
+            options = {"scheduler": client, "out": ply}
         t0 = time.perf_counter()
-        ma = mx.medial_axis(path, method="midsurface", chunks=chunks if tool == "chunked" else 0, n_jobs=jobs)
+        ma = mx.medial_axis(path, method="midsurface", chunks=chunks if tool != "memory" else 0, **options)
         out["seconds"] = time.perf_counter() - t0
         # the run's own high-water mark, before the scoring below allocates its samples
         out["own_peak_gib"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
+        if client is not None:
+            peaks = client.run(lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20)
+            out["worker_peaks_gib"] = sorted(peaks.values())
+            client.close()
+            cluster.close()
+        done = os.environ.get("BENCH_DONE")
+        if done:
+            Path(done).touch()  # the parent stops sampling the tree here
+        out["blocks"] = ma.metadata.get("blocks")
+        out["mesh_halo"] = ma.metadata.get("mesh_halo")
+        points, faces, radii = (read_ply(str(ply)) if tool == "cluster" else (ma.points, ma.faces, ma.radii))
         rects = ribbed_panel_truth((n, n, n), thickness=THICKNESS, margin=MARGIN)
-        d = distance_to_rects(ma.points, rects)
+        d = distance_to_rects(points, rects)
         truth = np.concatenate([r.sample(1.0) for r in rects])
         out["p99"] = float(np.percentile(d, 99))
-        out["covered"] = coverage(truth, ma.points, ma.faces, tolerance=1.0, step=0.5)[0]
-        topo = mesh_topology(ma.faces)
-        out["components"], out["euler"] = topo.components, topo.euler
-        out["faces"], out["vertices"] = len(ma.faces), len(ma.points)
-        out["thickness"] = float(np.median(2 * ma.radii))
+        out["covered"] = coverage(truth, points, faces, tolerance=1.0, step=0.5)[0]
+        topo = mesh_topology(faces)
+        out["components"], out["euler"], out["boundary_edges"] = topo.components, topo.euler, topo.boundary_edges
+        out["faces"], out["vertices"] = len(faces), len(points)
+        out["thickness"] = float(np.median(2 * radii))
         out["iso"] = ma.metadata["iso"]
+        if ply.exists():
+            ply.unlink()
     elif tool == "kimimaro":
         import kimimaro
 
@@ -110,14 +157,18 @@ def measure(tool: str, path: Path, n: int, chunks: int, jobs: int, timeout: floa
 
     cmd = [sys.executable, __file__, "--child", tool, str(path), str(n), str(chunks), str(jobs)]
     env = dict(os.environ, PYTHONPATH=str(SRC) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    done = path.with_suffix(f".{tool}.done")
+    done.unlink(missing_ok=True)
+    env["BENCH_DONE"] = str(done)
     t0 = time.perf_counter()
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    peak = 0
+    peak = largest = 0
     watched = psutil.Process(proc.pid)
     while proc.poll() is None:
         try:
-            rss = watched.memory_info().rss + sum(c.memory_info().rss for c in watched.children(recursive=True))
-            peak = max(peak, rss)
+            if not done.exists():  # the tree until the axis is done (the scoring comes after)
+                sizes = [watched.memory_info().rss] + [c.memory_info().rss for c in watched.children(recursive=True)]
+                peak, largest = max(peak, sum(sizes)), max(largest, max(sizes))
         except psutil.Error:
             pass
         if time.perf_counter() - t0 > timeout or peak > cap_gib * 2**30:
@@ -132,10 +183,12 @@ def measure(tool: str, path: Path, n: int, chunks: int, jobs: int, timeout: floa
     stdout, stderr = proc.communicate()
     if proc.returncode != 0:
         return {"tool": tool, "size": n, "error": (stderr.strip().splitlines() or ["?"])[-1]}
+    done.unlink(missing_ok=True)
     result = json.loads(stdout.strip().splitlines()[-1])
-    # ours: the process's high-water mark when the axis was done (scoring comes after);
-    # peers: the sampled peak of the process tree
-    result["peak_gib"] = result.pop("own_peak_gib", peak / 2**30)
+    # ours: the process's high-water mark when the axis was done (scoring comes after), and for a
+    # cluster the largest of the client's and the workers' own; peers: the sampled peak of the tree
+    result["peak_gib"] = max([result.pop("own_peak_gib", peak / 2**30), *result.get("worker_peaks_gib", [])])
+    result["tree_gib"], result["sampled_largest_gib"] = peak / 2**30, largest / 2**30
     return result
 
 
@@ -146,6 +199,9 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--dir", type=Path, default=Path(os.environ.get("TMPDIR", "/tmp")) / "medialaxis-panels")
     parser.add_argument("--no-kimimaro", action="store_true")
+    parser.add_argument("--workers", type=int, nargs="*", default=[],
+                        help="also run on a LocalCluster of this many worker processes (one thread each; repeatable: 1 2)")
+    parser.add_argument("--no-threads", action="store_true", help="skip the local-threads run of the chunked route")
     parser.add_argument("--no-memory-route", action="store_true", help="skip the in-memory route (chunks=0)")
     parser.add_argument("--memory-limit", type=int, default=512, help="largest size run in memory (default 512)")
     parser.add_argument("--timeout", type=float, default=3600)
@@ -162,31 +218,45 @@ def main() -> None:
         if not path.exists():
             print(f"writing {path} ({n}^3 uint16, {n**3 * 2 / 2**30:.2f} GiB) ...", flush=True)
             print(f"  written in {write_panel(path, n):.1f} s", flush=True)
-        tools = ["chunked"]
+        tools = [] if args.no_threads else ["chunked"]
+        tools += [f"cluster{w}" for w in args.workers]
         if not args.no_memory_route and n <= args.memory_limit:
             tools.append("memory")
         if not args.no_kimimaro:
             tools.append("kimimaro")
         chunks = min(args.chunks, n // 2)  # at least 8 blocks, so that both cores work
-        for tool in tools:
-            r = measure(tool, path, n, chunks, args.jobs, args.timeout, args.cap)
-            r["chunks"] = chunks if tool == "chunked" else None
+        for name in tools:
+            tool, jobs = ("cluster", int(name[7:])) if name.startswith("cluster") else (name, args.jobs)
+            r = measure(tool, path, n, chunks, jobs, args.timeout, args.cap)
+            r["chunks"] = chunks if tool != "memory" else None
+            r["jobs"] = jobs
             if "seconds" in r:
                 r["mvox_per_s"] = n**3 / r["seconds"] / 1e6
             rows.append(r)
             print(json.dumps(r), flush=True)
     print()
-    print("| size | tool | seconds | M voxels/s | peak GiB | p99 (vox) | covered | pieces | euler | thickness |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    name = {"chunked": "ours, chunks={}", "memory": "ours, in memory", "kimimaro": "kimimaro"}
+    print("| size | tool | seconds | M voxels/s | largest process GiB | tree GiB | p99 (vox) | covered | pieces | euler | thickness |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    name = {"chunked": "ours, chunks={}, {} threads", "memory": "ours, in memory", "kimimaro": "kimimaro",
+            "cluster": "ours, chunks={}, LocalCluster of {} workers"}
     for r in rows:
-        label = name[r["tool"]].format(r.get("chunks"))
+        label = name[r["tool"]].format(r.get("chunks"), r.get("jobs"))
         if "error" in r:
             print(f"| {r['size']}^3 | {label} | {r['error']} |")
             continue
         acc = (f"{r['p99']:.2f} | {100 * r['covered']:.1f}% | {r['components']} | {r['euler']} | {r['thickness']:.2f}"
                if "p99" in r else "- | - | - | - | -")
-        print(f"| {r['size']}^3 | {label} | {r['seconds']:.1f} | {r['mvox_per_s']:.2f} | {r['peak_gib']:.2f} | {acc} |")
+        print(f"| {r['size']}^3 | {label} | {r['seconds']:.1f} | {r['mvox_per_s']:.2f} | {r['peak_gib']:.2f} | "
+              f"{r['tree_gib']:.2f} | {acc} |")
+    for r in rows:
+        b = r.get("blocks")
+        if b:
+            print(f"{r['size']}^3 {r['tool']} x{r['jobs']}: {b['blocks']} blocks ({b['sheet_blocks']} with sheet), "
+                  f"first pass {b['medial_seconds']:.1f} s, mesh pass {b['mesh_seconds']:.1f} s "
+                  f"({b['mesh_block_seconds'] / max(b['sheet_blocks'], 1):.2f} s per sheet block), sheet "
+                  f"{b['sheet_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.2f} MiB and piece "
+                  f"{b['piece_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.3f} MiB per sheet block, "
+                  f"{b['medial_voxels']} medial voxels, mesh halo {r.get('mesh_halo')}")
     print(f"\nchunks=min({args.chunks}, size/2), n_jobs={args.jobs}; targets: peak <= 8 GiB at 1024^3, >= 2.6 M voxels/s (goal 5), "
           "p99 <= 1 voxel, >= 98% covered, one piece, thickness within 10% of 8")
 

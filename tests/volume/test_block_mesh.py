@@ -100,10 +100,11 @@ def test_certain_picks_of_a_window_are_the_whole_sheets(seed, cut, reach):
     w_order = local[order[inside[order]]]
     w_vox, w_radius = voxels[rows], radius[rows]
     band = w_vox[:, 2] >= cut - int(np.ceil(reach)) - 1
+    near_band = w_vox[:, 2] >= cut - 2 * int(np.ceil(reach)) - 2
     w_table = voxel_table(w_vox, (6, 40, 40))
     w_picked = np.zeros(len(rows), bool)
     w_picked[K.greedy_subsample(*w_table, w_vox, w_order, w_radius, spacing)] = True
-    certain = K.subsample_certainty(*w_table, w_vox, w_order, w_radius, spacing, band, float(reach))
+    certain = K.subsample_certainty(*w_table, w_vox, w_order, w_radius, spacing, band, near_band)
     assert np.array_equal(w_picked[certain], picked[rows][certain])
     assert certain[w_vox[:, 2] < cut - 4 * reach - 2].mean() > 0.5 if (w_vox[:, 2] < cut - 4 * reach - 2).any() else True
-    assert np.array_equal(certain, K.subsample_certainty_reference(w_vox, w_order, w_radius, spacing, band, float(reach)))
+    assert np.array_equal(certain, K.subsample_certainty_reference(w_vox, w_order, w_radius, spacing, band, near_band))

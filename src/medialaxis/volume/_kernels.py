@@ -204,65 +204,55 @@ def greedy_subsample_reference(voxels: np.ndarray, order: np.ndarray, radius: np
 @njit(cache=True, nogil=True)
 def subsample_certainty(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray,
                         order: np.ndarray, radius: np.ndarray, spacing: np.ndarray, band: np.ndarray,
-                        reach: float) -> np.ndarray:  # pragma: no cover - compiled
+                        near_band: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Which decisions of :func:`greedy_subsample` (same arguments) a window of the sheet takes for sure.
 
     ``band`` marks the voxels whose own order or radius may be wrong in the
-    window or that voxels outside it may remove (those within ``reach``, the
-    largest radius, of a side that cuts the sheet). A voxel is certain when
-    a certain pick removes it, or when no uncertain voxel before it could
-    (every voxel within ``reach`` of the band is uncertain from the start,
-    whatever its order).
+    window or that voxels outside it may remove (those near a side that cuts
+    the sheet); ``near_band`` every voxel that a band voxel may remove (within
+    the largest radius of one; a superset will do). A voxel is certain when
+    a certain pick removes it, or when neither the band nor an uncertain
+    voxel before it could.
     """
     n = voxels.shape[0]
     removed = np.zeros(n, np.bool_)  # by a certain pick
-    maybe = np.zeros(n, np.bool_)  # perhaps by an uncertain voxel
+    maybe = near_band.copy()  # perhaps by an uncertain voxel
     certain = np.zeros(n, np.bool_)
     Z, Y, X = shape[0], shape[1], shape[2]
-    for step in range(2):
-        for k in range(n):
-            i = order[k]
-            if step == 0:
-                if not band[i]:
-                    continue
-                r = reach
-            else:
-                if removed[i]:
-                    certain[i] = True
-                    continue
-                sure = not (band[i] or maybe[i])
-                certain[i] = sure
-                r = radius[i]
-            r2 = r * r
-            z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
-            hz, hy, hx = int(r / spacing[0]), int(r / spacing[1]), int(r / spacing[2])
-            for a in range(max(z - hz, 0), min(z + hz + 1, Z)):
-                da = (a - z) * spacing[0]
-                for b in range(max(y - hy, 0), min(y + hy + 1, Y)):
-                    db = (b - y) * spacing[1]
-                    for c in range(max(x - hx, 0), min(x + hx + 1, X)):
-                        j = table_find(directory, bricks, shape, a, b, c)
-                        if j >= 0 and j != i:
-                            dc = (c - x) * spacing[2]
-                            if da * da + db * db + dc * dc <= r2:
-                                if step == 1 and sure:
-                                    removed[j] = True
-                                else:
-                                    maybe[j] = True
-            if step == 1 and sure:
-                removed[i] = True
+    for k in range(n):
+        i = order[k]
+        if removed[i]:
+            certain[i] = True
+            continue
+        sure = not (band[i] or maybe[i])
+        certain[i] = sure
+        r = radius[i]
+        r2 = r * r
+        z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
+        hz, hy, hx = int(r / spacing[0]), int(r / spacing[1]), int(r / spacing[2])
+        for a in range(max(z - hz, 0), min(z + hz + 1, Z)):
+            da = (a - z) * spacing[0]
+            for b in range(max(y - hy, 0), min(y + hy + 1, Y)):
+                db = (b - y) * spacing[1]
+                for c in range(max(x - hx, 0), min(x + hx + 1, X)):
+                    j = table_find(directory, bricks, shape, a, b, c)
+                    if j >= 0 and j != i and not removed[j] and (sure or not maybe[j]):
+                        dc = (c - x) * spacing[2]
+                        if da * da + db * db + dc * dc <= r2:
+                            if sure:
+                                removed[j] = True
+                            else:
+                                maybe[j] = True
+        if sure:
+            removed[i] = True
     return certain
 
 
 def subsample_certainty_reference(voxels: np.ndarray, order: np.ndarray, radius: np.ndarray, spacing: np.ndarray,
-                                  band: np.ndarray, reach: float) -> np.ndarray:
+                                  band: np.ndarray, near_band: np.ndarray) -> np.ndarray:
     """Pure-NumPy reference of :func:`subsample_certainty`."""
     phys = voxels * spacing
-    maybe = np.zeros(len(voxels), bool)
-    for i in np.flatnonzero(band):
-        near = np.sum((phys - phys[i]) ** 2, axis=1) <= reach ** 2
-        near[i] = False
-        maybe |= near
+    maybe = np.asarray(near_band, bool).copy()
     removed = np.zeros(len(voxels), bool)
     certain = np.zeros(len(voxels), bool)
     for i in order:

@@ -17,19 +17,17 @@ Passes over the blocks:
    medial voxels at once; a part with several nominal thicknesses reads each
    block again to label its plates (:func:`~medialaxis.volume.blocks.medial_block`).
 
-The medial voxels are a thin sheet (a few per thousand voxels of a thin-plate
-part); gathered, they are polygonized, their dents removed and their free
-edges extended to the isosurface as one mesh
-(:func:`~medialaxis.volume.stages.polygonize_stage` and the stages after
-it), so the mesh has no seams at all. The extension rays read the grey
-values around their ends block by block.
+Each block's medial voxels are written to a folder (the temporary folder, or
+``spill=``, which every worker must see), never gathered: each block then
+meshes a window of the sheet on the workers (:func:`~medialaxis.volume.tiles.mesh_block`:
+polygonization, dents, extension, as the whole route), and the pieces are
+joined by their vertex names (:mod:`~medialaxis.volume.stitch`) into the
+mesh the whole sheet gives, or streamed to a PLY file (``out=``). The
+extension rays read the grey values around their ends block by block.
 
 Memory: each running block holds its box (chunk plus halo) at about 40 bytes
-per voxel plus the per-voxel arrays of its foreground. What grows with the
-part is the sheet: the candidate pairs wait in a temporary folder (local
-runs; in the client's memory on a cluster, about 130 bytes per marked voxel)
-and the gathered medial voxels take about 100 bytes each, their
-polygonization about 170 more.
+per voxel plus the per-voxel arrays of its foreground, and then its window of
+the sheet; the client holds the blocks' counts, and without ``out=`` the mesh.
 """
 
 from __future__ import annotations
@@ -38,6 +36,7 @@ import math
 import os
 import shutil
 import tempfile
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -326,8 +325,10 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
     folder = _sheet_folder(spill)
     source = None
     try:
+        started = time.perf_counter()
         state = chunked_medial_voxels(volume, chunks=chunks, folder=folder, **options)
         source = state["source"]
+        medial_seconds = time.perf_counter() - started
         state["dropped"] = dropped_report(state["medial"], state["plates"], state["lam"])
         plan = _mesh_plan(state, folder, density, rng, extend, remove_dents)
         items = [item for item, part in zip(state["items"], state["parts"]) if part.count]
@@ -336,7 +337,8 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
                                   state["spacing"], source.shape, threshold_method=state["threshold_method"])
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
                          "chunks": list(state["chunks"]), "halo": state["halo"].tolist(),
-                         "mesh_halo": max(c["halo"] for c in counts)})
+                         "mesh_halo": max(c["halo"] for c in counts),
+                         "blocks": _block_figures(state, counts, folder, medial_seconds, time.perf_counter() - started)})
         shell = shell_of_source(source, state["iso"], state["spacing"])
         if out is not None:
             vertices, faces = stream_ply(folder, counts, state["chunks"], out)
@@ -348,6 +350,16 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
         if source is not None:
             _cleanup(source)
         shutil.rmtree(folder, ignore_errors=True)
+
+
+def _block_figures(state: dict[str, Any], counts: list[dict[str, Any]], folder: str, medial_seconds: float,
+                   seconds: float) -> dict[str, float]:
+    """Costs per block (for planning a cluster): seconds of the passes, bytes of the sheets and pieces."""
+    sheets = sum(f.stat().st_size for f in Path(folder).glob("sheet_*.npz"))
+    return {"blocks": len(state["items"]), "sheet_blocks": len(counts), "medial_seconds": medial_seconds,
+            "mesh_seconds": seconds - medial_seconds, "mesh_block_seconds": float(sum(c["seconds"] for c in counts)),
+            "sheet_bytes": sheets, "piece_bytes": int(sum(c["bytes"] for c in counts)),
+            "medial_voxels": int(sum(p.count for p in state["parts"]))}
 
 
 def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], spill: Any = None, **options: Any) -> MedialAxis:

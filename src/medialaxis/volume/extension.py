@@ -312,15 +312,17 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         # beside the sheet
         along_line = along_line[good]
         reach = np.nan_to_num(length)
-        for inner in (points[vertices] + 0.5 * reach[:, None] * directions,
-                      points[vertices] + np.maximum(reach - float(spacing.max()), 0)[:, None] * directions):
-            for k in range(3):
-                n = eigen[good][:, :, k]
+        # every probe point in one call (a volume read by blocks reads each block once)
+        probe_points = [(inner + sign * probes[vertices][:, None] * eigen[good][:, :, k]) / spacing
+                        for inner in (points[vertices] + 0.5 * reach[:, None] * directions,
+                                      points[vertices] + np.maximum(reach - float(spacing.max()), 0)[:, None] * directions)
+                        for k in range(3) for sign in (1.0, -1.0)]
+        values = sample_grey(grey, np.concatenate(probe_points).T, iso - 1.0).reshape(len(probe_points), -1)
+        for row in range(len(probe_points)):
+            k = (row // 2) % 3
+            if row % 2 == 0:
                 use = is_normal[good][:, k] & grow & ~along_line & (probes[vertices] > 0)
-                for sign in (1.0, -1.0):
-                    probe_point = (inner + sign * probes[vertices][:, None] * n) / spacing
-                    val = sample_grey(grey, probe_point.T, iso - 1.0)
-                    grow &= ~(use & (val > iso))
+            grow &= ~(use & (values[row] > iso))
     vertices, directions, length = vertices[grow], directions[grow], length[grow]
     new_index = np.full(len(points), -1, np.int64)
     new_index[vertices] = len(points) + np.arange(len(vertices))

@@ -245,12 +245,13 @@ def midsurface_medial_axis(
     chunks : int or 3 ints, optional
         Block size of the chunked route (:mod:`~medialaxis.volume.chunked`),
         for volumes larger than memory: the volume is read and processed a
-        block at a time, each with a halo (see below), and only the medial
-        voxels are gathered. Default: blocks of 256 for a Dask or Zarr array,
+        block at a time, each with a halo (see below); the medial voxels of
+        each block wait in a folder (``spill``). Default: blocks of 256 for a Dask or Zarr array,
         with a cluster ``scheduler``, or above 2^27 voxels (512^3); ``0``
         keeps the whole volume in memory. The medial voxels are identical to
-        the in-memory route's, and the mesh is built from all of them at
-        once (no seams).
+        the in-memory route's, and so is the mesh: each block meshes a window
+        of the sheet around it and keeps what it owns, vertices named by
+        their voxel, so the pieces join without seams.
 
         The halo is chosen from the part: without a thickness, a first pass
         measures the deepest voxel ``D`` (half the thickest plate); the halo
@@ -261,7 +262,9 @@ def midsurface_medial_axis(
         plus three voxels. Every block checks that each voxel its answer
         depends on is nearer to a boundary point it read than to the sides
         of its box, and reads itself again with a doubled halo where not.
-        The mesh stages need no halo: they run on the gathered voxels.
+        The mesh stages read a window of the neighbouring blocks' medial
+        voxels, wider where the picks near the core are not provably the
+        whole sheet's (``metadata["mesh_halo"]``).
         Accepted sources: arrays, ``dask.array.Array``, Zarr arrays and
         stores, ``.npy`` and raw files (memory-mapped), NRRD (raw
         memory-mapped; gzip/bzip2 decompressed once to a temporary file),

@@ -107,7 +107,8 @@ def pick_hash(voxels: np.ndarray, seed: int) -> np.ndarray:
 
 
 def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: float = 1.0, rng: Any = 0,
-               band: np.ndarray | None = None, shift: Any = 0, seed: int | None = None) -> Polygonization:
+               band: tuple[np.ndarray, np.ndarray] | None = None, shift: Any = 0,
+               seed: int | None = None) -> Polygonization:
     """Triangle mesh of the medial voxels by sub-sampling.
 
     Parameters
@@ -120,10 +121,11 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
         gives more vertices. The radius is at least 1.5 voxels.
     rng : seed or numpy Generator
         Order of the picks within a class (results are reproducible for a seed).
-    band : (n,) bool ndarray, optional
+    band : ((n,) bool ndarray, (n,) bool ndarray), optional
         For a window of a larger sheet: the voxels whose class may be wrong
         there or that voxels outside may remove (near the sides that cut the
-        sheet). ``certain`` then says which picks are the whole sheet's.
+        sheet), and the voxels a band voxel may remove. ``certain`` then says
+        which picks are the whole sheet's.
 
     Returns
     -------
@@ -148,8 +150,9 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
     picks = _kernels.greedy_subsample(*table, voxels, order, radius, features.spacing)
     certain = None
     if band is not None:
+        band, near_band = band
         certain = _kernels.subsample_certainty(*table, voxels, order, radius, features.spacing,
-                                               np.asarray(band, bool), float(radius.max(initial=0.0)))
+                                               np.asarray(band, bool), np.asarray(near_band, bool))
     junction = kind == JUNCTION
     sheet = sheet_ids(table, voxels, junction, features.spacing)
     label = region_labels(table, voxels, picks, junction, sheet, features.spacing)

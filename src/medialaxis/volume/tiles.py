@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import time
 from pathlib import Path
 from typing import Any
 
@@ -173,6 +174,7 @@ def _neighbours(plan: MeshPlan, lo: np.ndarray, hi: np.ndarray) -> list[tuple[in
 
 def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source: Any) -> dict[str, Any]:
     """Mesh one block's window and write the piece its core owns; returns its counts."""
+    started = time.perf_counter()
     block, index = item
     lo, hi = np.array(block.lo), np.array(block.hi)
     halo = plan.halo
@@ -198,9 +200,10 @@ def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source:
     else:
         state["extended_from"] = np.zeros(0, np.int64)
     piece = _owned_piece(state, mesh, state["medial"].voxels, lo, hi)
-    np.savez(Path(plan.folder) / ("mesh_{}_{}_{}.npz".format(*index)), **piece)
+    path = Path(plan.folder) / ("mesh_{}_{}_{}.npz".format(*index))
+    np.savez(path, **piece)
     return {"index": index, "vertices": len(piece["names"]), "faces": len(piece["faces"]), "halo": halo,
-            "voxels": len(medial.voxels)}
+            "voxels": len(medial.voxels), "seconds": time.perf_counter() - started, "bytes": path.stat().st_size}
 
 
 def _window_mesh(medial: MedialVoxels, wlo: np.ndarray, whi: np.ndarray, plan: MeshPlan) -> tuple[Any, dict[str, Any]]:
@@ -210,7 +213,13 @@ def _window_mesh(medial: MedialVoxels, wlo: np.ndarray, whi: np.ndarray, plan: M
     grid = Grid(offset, tuple(int(s) for s in whi - wlo + 2), plan.spacing)
     width = np.ceil(plan.reach / plan.spacing).astype(np.int64) + 1
     cut_lo, cut_hi = wlo > plan.crop, whi < plan.crop_hi
-    band = np.any((cut_lo & (medial.voxels - wlo < width)) | (cut_hi & (whi - 1 - medial.voxels < width)), axis=1)
+    below, above = medial.voxels - wlo, whi - 1 - medial.voxels
+
+    def within(w: np.ndarray) -> np.ndarray:
+        return np.any((cut_lo & (below < w)) | (cut_hi & (above < w)), axis=1)
+
+    # the band, and every voxel one of its voxels may remove (a box around it: a superset of the balls)
+    band = (within(width), within(2 * width))
     mesh = polygonize(grid, local, density=plan.density, seed=plan.seed, band=band, shift=offset - plan.crop)
     state = {"medial": local, "grid": grid, "plates": plan.plates, "thickness": plan.thickness, "lam": plan.lam,
              "mesh": mesh, "points": mesh.points, "faces": mesh.faces, "radii": mesh.radii, "kind": mesh.kind}
