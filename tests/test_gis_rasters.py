@@ -111,6 +111,9 @@ def test_a_y_shaped_river_has_one_junction_and_three_ends(tmp_path):
     for row in lines.itertuples():
         kinds[row.start_node], kinds[row.end_node] = row.start_kind, row.end_kind
     assert sorted(kinds.values()) == ["end", "end", "end", "junction"]
+    with rasterio.open(path) as dataset:  # an open dataset is the same raster
+        again = mx.centerlines(dataset)
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(again.geometry, lines.geometry))
     tips = np.asarray([a[-1] for a in arms])
     ends = np.asarray([row.geometry.coords[0 if row.start_kind == "end" else -1] for row in lines.itertuples()])
     tip = np.linalg.norm(ends[:, None] - tips[None], axis=2).argmin(axis=1)
