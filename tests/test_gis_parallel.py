@@ -51,7 +51,7 @@ def test_a_dask_cluster_and_a_dask_geodataframe(lakes, serial):
     lazy = mx.centerlines(dask_geopandas.from_geopandas(lakes, npartitions=3))
     assert isinstance(lazy, dask_geopandas.GeoDataFrame) and lazy.npartitions == 3
     same(lazy.compute(scheduler="synchronous"), serial)
-    with distributed.Client(processes=False, n_workers=2, threads_per_worker=1, dashboard_address=None) as client:
+    with distributed.Client(processes=False, n_workers=2, threads_per_worker=1, dashboard_address=":0") as client:
         same(lazy.compute(), serial)  # on the active cluster
         same(mx.centerlines(lakes, scheduler=client), serial)  # a layer sent to it in chunks
     with pytest.raises(mx.InvalidInputError, match="scheduler active when it is computed"):
