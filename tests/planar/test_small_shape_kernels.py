@@ -269,3 +269,16 @@ def test_ties_with_the_kth_are_all_taken() -> None:
         kth = np.sort(d2)[7]
         assert set(row.tolist()) == set(np.flatnonzero(d2 <= kth * (1 + 2e-9)).tolist())
     assert len(set(near[0].tolist())) == 12  # the 4 + 8 grid points at the two nearest distances from a cell centre
+
+
+def test_dual_edges_kernel_is_the_numpy_version() -> None:
+    from medialaxis.planar._graph_kernels import dual_edges
+    from medialaxis.planar.axis import dual_edges_reference
+    from medialaxis.planar.pipeline import planar_stages
+
+    for mask in _masks()[::4]:
+        st = planar_stages(mask)
+        tri, inside, nxt = st.triangulation, st.inside, st.samples.next
+        ours = dual_edges(tri.simplices, tri.neighbors, np.flatnonzero(inside), tri.points, nxt)
+        for a, b in zip(ours, dual_edges_reference(tri, inside, nxt)):
+            np.testing.assert_array_equal(a, b)

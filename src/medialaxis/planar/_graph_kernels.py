@@ -1,4 +1,4 @@
-"""Compiled graph steps of the planar axis: merging close nodes, components and regrowing tips.
+"""Compiled graph steps of the planar axis: its edges, merging close nodes, components and regrowing tips.
 
 Each kernel replaces a few SciPy sparse-graph and ``np.unique`` calls on the
 small graphs of one shape, where their set-up costs more than the work:
@@ -12,6 +12,8 @@ small graphs of one shape, where their set-up costs more than the work:
 - :func:`adjacency_lists` gives each node's neighbours and edge indices (CSR).
 - :func:`regrow_tips_kernel` is :func:`medialaxis.planar.pruning.regrow_tips_reference`
   compiled.
+- :func:`dual_edges` builds the raw axis's edges between inner triangles,
+  :func:`medialaxis.planar.axis.dual_edges_reference` compiled.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ import numpy as np
 from medialaxis._jit import njit
 from medialaxis.core._kernels import find_root
 
-__all__ = ["merge_clusters", "component_labels", "adjacency_lists", "regrow_tips_kernel"]
+__all__ = ["merge_clusters", "component_labels", "adjacency_lists", "regrow_tips_kernel", "dual_edges"]
 
 
 @njit(cache=True, nogil=True)
@@ -183,3 +185,39 @@ def regrow_tips_kernel(indptr, nbrs, eids, edges, keep, growable):  # type: igno
             node = nbrs[way]
             used[node] = True
     return keep
+
+
+@njit(cache=True, nogil=True)
+def dual_edges(simplices, neighbors, inner, points, nxt):  # type: ignore[no-untyped-def]
+    """The Voronoi edges between the inner triangles ``inner`` (ascending), as :func:`medialaxis.planar.axis.dual_edges_reference`.
+
+    Returns ``(edges, contact, diameter, adjacent)``: node pairs (positions
+    in ``inner``), the two samples of each dual Delaunay edge, their
+    distance, and whether they are consecutive samples.
+    """
+    node_of = np.full(len(simplices), -1, np.int64)
+    for i in range(len(inner)):
+        node_of[inner[i]] = i
+    m = 0
+    for t in inner:
+        for k in range(3):
+            u = neighbors[t, k]
+            if u > t and node_of[u] >= 0:
+                m += 1
+    edges = np.empty((m, 2), np.int64)
+    contact = np.empty((m, 2), np.int64)
+    diameter = np.empty(m)
+    adjacent = np.empty(m, np.bool_)
+    m = 0
+    for t in inner:
+        for k in range(3):
+            u = neighbors[t, k]
+            if u > t and node_of[u] >= 0:
+                a, b = simplices[t, (k + 1) % 3], simplices[t, (k + 2) % 3]
+                edges[m, 0], edges[m, 1] = node_of[t], node_of[u]
+                contact[m, 0], contact[m, 1] = a, b
+                dx, dy = points[a, 0] - points[b, 0], points[a, 1] - points[b, 1]
+                diameter[m] = np.sqrt(dx * dx + dy * dy)
+                adjacent[m] = nxt[a] == b or nxt[b] == a
+                m += 1
+    return edges, contact, diameter, adjacent

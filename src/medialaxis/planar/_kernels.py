@@ -381,3 +381,4 @@ def nearest_with_ties(query, points, k):  # type: ignore[no-untyped-def]
         for j in range(m, width):
             near[q, j] = closest[q]
     return near
+

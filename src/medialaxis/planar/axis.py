@@ -20,12 +20,13 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from medialaxis.planar._graph_kernels import dual_edges
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar._kernels import nearest_piece_distance, nearest_samples, nearest_with_ties, triangle_centroids
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
 
-__all__ = ["RawAxis", "proper_triangles", "inner_triangles", "raw_axis", "boundary_distance"]
+__all__ = ["RawAxis", "proper_triangles", "inner_triangles", "raw_axis", "boundary_distance", "dual_edges_reference"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -149,8 +150,6 @@ def raw_axis(
 ) -> RawAxis:
     """Build the inner Voronoi graph (see module docstring); ``locator``: the compiled inside test of ``region``."""
     t_in = np.flatnonzero(inside)
-    node_of = np.full(len(tri.simplices), -1, np.int64)
-    node_of[t_in] = np.arange(len(t_in))
     pos = tri.centers[t_in].copy()
 
     # Voronoi vertices outside the region (obtuse triangles at sparse spots) are
@@ -163,7 +162,22 @@ def raw_axis(
         ok = _contains(region, locator, mid)
         pos[outside] = np.where(ok[:, None], mid, tri_pts.mean(1))
 
-    # Dual edges between inner triangles.
+    # Dual edges between inner triangles (compiled; dual_edges_reference is the NumPy version)
+    edges, contact, diameter, adjacent = dual_edges(tri.simplices, tri.neighbors, t_in.astype(np.int64),
+                                                    np.ascontiguousarray(tri.points, dtype=np.float64),
+                                                    np.asarray(smp.next, np.int64))
+    arc = smp.arc_between(contact[:, 0], contact[:, 1])
+    radii = boundary_distance(pos, smp)
+    return RawAxis(pos, radii, edges, contact, diameter, arc, adjacent, t_in)
+
+
+def dual_edges_reference(
+    tri: Triangulation, inside: np.ndarray, nxt: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """NumPy version of :func:`medialaxis.planar._kernels.dual_edges` (for the tests)."""
+    t_in = np.flatnonzero(inside)
+    node_of = np.full(len(tri.simplices), -1, np.int64)
+    node_of[t_in] = np.arange(len(t_in))
     nb = tri.neighbors[t_in]
     t_rep = np.repeat(t_in, 3)
     k_rep = np.tile(np.arange(3), len(t_in))
@@ -176,10 +190,5 @@ def raw_axis(
     rows = np.arange(len(t_rep))
     ca = s[rows, (k_rep + 1) % 3]
     cb = s[rows, (k_rep + 2) % 3]
-    edges = np.c_[node_of[t_rep], node_of[n_rep]]
-    contact = np.c_[ca, cb]
     diameter = np.linalg.norm(tri.points[ca] - tri.points[cb], axis=1)
-    arc = smp.arc_between(ca, cb)
-    adjacent = (smp.next[ca] == cb) | (smp.next[cb] == ca)
-    radii = boundary_distance(pos, smp)
-    return RawAxis(pos, radii, edges, contact, diameter, arc, adjacent, t_in)
+    return np.c_[node_of[t_rep], node_of[n_rep]], np.c_[ca, cb], diameter, (nxt[ca] == cb) | (nxt[cb] == ca)
