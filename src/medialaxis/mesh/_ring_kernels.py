@@ -16,7 +16,6 @@ from medialaxis._jit import njit, prange
 __all__ = [
     "ring_side_ids",
     "csr_transpose",
-    "ring_rises",
     "ring_all",
     "ring_max",
     "edge_order",
@@ -67,22 +66,6 @@ def csr_transpose(ptr, idx, n_cols):  # type: ignore[no-untyped-def]
             rows[fill[c]] = r
             fill[c] += 1
     return tptr, rows
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def ring_rises(ring_ptr, ring_tets, flag):  # type: ignore[no-untyped-def]
-    """For each ring, how many times an unflagged tetrahedron is followed by a flagged one (cyclically)."""
-    n = ring_ptr.shape[0] - 1
-    rises = np.zeros(n, np.int64)
-    for r in prange(n):
-        start, stop = ring_ptr[r], ring_ptr[r + 1]
-        count = 0
-        for q in range(start, stop):
-            nxt = ring_tets[q + 1] if q + 1 < stop else ring_tets[start]
-            if not flag[ring_tets[q]] and flag[nxt]:
-                count += 1
-        rises[r] = count
-    return rises
 
 
 @njit(cache=True, nogil=True, parallel=True)
