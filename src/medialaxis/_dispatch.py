@@ -6,6 +6,7 @@ entry points live (``"module:function"`` strings, imported on first use).
 
 from __future__ import annotations
 
+import functools
 import importlib
 import inspect
 import os
@@ -163,9 +164,14 @@ def resolve(domain: str, method: str | None) -> tuple[str, Callable[..., Any]]:
     return name, _load(available[name])
 
 
+@functools.lru_cache(maxsize=64)
+def _signature(fn: Callable[..., Any]) -> inspect.Signature:
+    return inspect.signature(fn)  # 0.1-0.2 ms a call: 3-4% of a small shape's axis
+
+
 def call_checked(fn: Callable[..., Any], shape: Any, options: Mapping[str, Any]) -> Any:
     """Call ``fn(shape, **options)`` after checking the option names."""
-    sig = inspect.signature(fn)
+    sig = _signature(fn)
     try:
         sig.bind(shape, **options)
     except TypeError as exc:
