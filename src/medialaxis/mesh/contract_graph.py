@@ -170,21 +170,31 @@ def _spanning_forest_with_cycles(pos: np.ndarray, node_edges: np.ndarray, n_cycl
         return kept
     in_tree = {tuple(e) for e in kept.tolist()}
     candidates = np.array([i for i, e in enumerate(node_edges.tolist()) if tuple(e) not in in_tree], dtype=np.int64)
+    if candidates.size == 0:
+        return kept
+    src, dst = node_edges[candidates, 0], node_edges[candidates, 1]
+    kw = np.linalg.norm(pos[kept[:, 0]] - pos[kept[:, 1]], axis=1) + 1e-12
+    adj = _adjacency(kept, kw, m)
+    uniq, inv = np.unique(src, return_inverse=True)
+    # path length between each candidate's ends over the kept edges; an added edge (a, b) of
+    # weight w shortens it to min(d(u, v), d(u, a) + w + d(b, v), d(u, b) + w + d(a, v)): two
+    # Dijkstra runs per added edge instead of one per candidate source (20 s -> 1 s on 17 cycles)
+    between = csgraph.dijkstra(adj, indices=uniq)[inv.ravel(), dst]
+    open_ = np.ones(len(candidates), dtype=bool)
     for _ in range(n_cycles):
-        if candidates.size == 0:
-            break
-        kw = np.linalg.norm(pos[kept[:, 0]] - pos[kept[:, 1]], axis=1) + 1e-12
-        adj = _adjacency(kept, kw, m)
-        src = node_edges[candidates, 0]
-        uniq, inv = np.unique(src, return_inverse=True)
-        dist = csgraph.dijkstra(adj, indices=uniq)
-        loop = dist[inv.ravel(), node_edges[candidates, 1]] + w[candidates]
-        loop[~np.isfinite(loop)] = -1.0  # joins two components: not a cycle
+        loop = np.where(open_, between + w[candidates], -np.inf)
+        loop[~np.isfinite(between) & open_] = -1.0  # joins two components: not a cycle
         best = int(np.argmax(loop))
-        if loop[best] <= 0:
+        if not open_[best] or loop[best] <= 0:
             break
+        a, b = node_edges[candidates[best]]
+        from_a, from_b = csgraph.dijkstra(adj, indices=[a, b])
+        wb = w[candidates[best]]
+        between = np.minimum(between, np.minimum(from_a[src] + wb + from_b[dst], from_b[src] + wb + from_a[dst]))
         kept = np.vstack([kept, node_edges[candidates[best]][None]])
-        candidates = np.delete(candidates, best)
+        adj = _adjacency(kept, np.r_[kw, w[candidates[best]]], m)
+        kw = np.r_[kw, w[candidates[best]]]
+        open_[best] = False
     return kept
 
 
