@@ -199,3 +199,17 @@ def test_peeling_kernel_matches_reference_and_keeps_topology(g):
         nodes = np.unique(kept.ravel()[before[kept.ravel()] == comp]) if len(kept) else []
         if len(nodes):
             assert len(np.unique(after[nodes])) == 1
+
+
+@given(st.integers(1, 30).flatmap(lambda n: st.tuples(
+    st.just(n), st.lists(st.tuples(st.integers(0, n - 1), st.integers(0, n - 1)), max_size=50))))
+def test_compiled_branch_walk_equals_the_python_walk(g):
+    # repeated edges and self-loops included: each edge walked exactly once, in the same order
+    n, pairs = g
+    edges = np.array(pairs, np.int64).reshape(-1, 2)
+    got, want = graph.branches(n, edges), graph.branches_reference(n, edges)
+    assert len(got) == len(want)
+    for a, b in zip(got, want):
+        np.testing.assert_array_equal(a, b)
+    walked = sum(len(c) - 1 for c in got)
+    assert walked == len(edges)

@@ -6,7 +6,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["peel_leaves_kernel", "peel_leaves_reference", "find_root"]
+__all__ = ["peel_leaves_kernel", "peel_leaves_reference", "find_root", "branch_walks"]
 
 
 @njit(cache=True, nogil=True)
@@ -74,3 +74,52 @@ def peel_leaves_kernel(indptr, nbrs, eids, deg, edges, removable, keep):  # prag
         if deg[other] == 1:
             stack[top] = other
             top += 1
+
+
+@njit(cache=True, nogil=True)
+def branch_walks(indptr, nbrs, eids, deg, edges):  # type: ignore[no-untyped-def]
+    """Compiled walk of :func:`medialaxis.core.graph.branches`: chains as flat nodes and offsets."""
+    m = edges.shape[0]
+    used = np.zeros(m, np.bool_)
+    nodes = np.empty(2 * m + 1, np.int64)
+    offsets = np.zeros(m + 1, np.int64)
+    n_nodes, n_chains = 0, 0
+    n = deg.shape[0]
+    for phase in range(2):
+        for item in range(n if phase == 0 else m):
+            if phase == 0:
+                if deg[item] == 2 or deg[item] == 0:
+                    continue
+                start = item
+                lo, hi = indptr[start], indptr[start + 1]
+            else:
+                if used[item]:
+                    continue
+                start = edges[item, 0]
+                lo, hi = indptr[start], indptr[start + 1]
+            for k0 in range(lo, hi):
+                if used[eids[k0]] or (phase == 1 and eids[k0] != item):
+                    continue
+                k = k0
+                nodes[n_nodes] = start
+                n_nodes += 1
+                while True:
+                    used[eids[k]] = True
+                    node = nbrs[k]
+                    nodes[n_nodes] = node
+                    n_nodes += 1
+                    if deg[node] != 2 or node == start:
+                        break
+                    nxt = -1
+                    for j in range(indptr[node], indptr[node + 1]):
+                        if not used[eids[j]]:
+                            nxt = j
+                            break
+                    if nxt < 0:
+                        break
+                    k = nxt
+                n_chains += 1
+                offsets[n_chains] = n_nodes
+                if phase == 1:
+                    break
+    return nodes[:n_nodes], offsets[: n_chains + 1]

@@ -12,6 +12,8 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import csgraph
 
+from medialaxis.core._kernels import branch_walks
+
 __all__ = [
     "degree",
     "adjacency",
@@ -19,6 +21,7 @@ __all__ = [
     "component_labels",
     "cycle_rank",
     "branches",
+    "branches_reference",
     "peel_leaves",
     "compact",
     "to_networkx",
@@ -73,6 +76,19 @@ def branches(n: int, edges: np.ndarray) -> list[np.ndarray]:
     deg = degree(n, edges)
     # Neighbour lists by sorting, not a sparse matrix: repeated edges and
     # self-loops keep one entry each instead of being summed into one.
+    rows = np.concatenate([edges[:, 0], edges[:, 1]])
+    order = np.argsort(rows, kind="stable")
+    indptr = np.searchsorted(rows[order], np.arange(n + 1))
+    nbrs = np.concatenate([edges[:, 1], edges[:, 0]])[order]
+    eids = np.tile(np.arange(len(edges)), 2)[order]
+    nodes, offsets = branch_walks(indptr.astype(np.int64), nbrs, eids, deg, edges)
+    return np.split(nodes, offsets[1:-1]) if len(offsets) > 1 else []
+
+
+def branches_reference(n: int, edges: np.ndarray) -> list[np.ndarray]:
+    """Pure-Python twin of :func:`branches` (the tests' reference)."""
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    deg = degree(n, edges)
     rows = np.concatenate([edges[:, 0], edges[:, 1]])
     order = np.argsort(rows, kind="stable")
     indptr = np.searchsorted(rows[order], np.arange(n + 1))
