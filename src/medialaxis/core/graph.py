@@ -12,8 +12,6 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import csgraph
 
-from medialaxis.core._kernels import branch_walks
-
 __all__ = [
     "degree",
     "adjacency",
@@ -81,6 +79,8 @@ def branches(n: int, edges: np.ndarray) -> list[np.ndarray]:
     indptr = np.searchsorted(rows[order], np.arange(n + 1))
     nbrs = np.concatenate([edges[:, 1], edges[:, 0]])[order]
     eids = np.tile(np.arange(len(edges)), 2)[order]
+    from medialaxis.core._kernels import branch_walks  # numba loads on first use, not with the graph helpers
+
     nodes, offsets = branch_walks(indptr.astype(np.int64), nbrs, eids, deg, edges)
     return np.split(nodes, offsets[1:-1]) if len(offsets) > 1 else []
 
