@@ -217,3 +217,12 @@ def test_holes_touching_at_a_vertex_are_capped_each_on_its_own():
         solid = load_mesh(holed).mesh
     assert solid.is_watertight and solid.is_winding_consistent and solid.euler_number == 2
     assert solid.volume == pytest.approx(sphere.volume, rel=1e-12)
+
+
+def test_a_flat_shell_bounds_no_solid_and_is_refused_with_the_reason():
+    from medialaxis.errors import InvalidInputError
+
+    tri = trimesh.creation.box().triangles[:1].reshape(-1, 3)
+    flat = trimesh.Trimesh(np.vstack([tri, tri]), [[0, 1, 2], [3, 5, 4]], process=False)  # a face and its reverse
+    with pytest.raises(InvalidInputError, match="bounds no solid"):
+        solid_surface(flat.vertices, flat.faces)

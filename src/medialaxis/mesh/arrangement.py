@@ -276,8 +276,11 @@ def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray, covered: 
     faces, origin = faces[valid], origin[valid]
     if not len(faces):  # every face welded flat (coordinates far apart in scale)
         return faces, 0, len(np.unique(origin))
+    parents = np.unique(origin)
     faces, origin, doubled = _coincident(faces, origin)
     n = len(faces)
+    if not n:  # every face cancelled by a coincident opposite one (flat shells: a triangle soup capped face by face)
+        return faces, 0, len(parents)
     edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     owner = np.tile(np.arange(n), 3)
     _, inverse, counts = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
@@ -302,7 +305,6 @@ def _select(points: np.ndarray, faces: np.ndarray, origin: np.ndarray, covered: 
     for f, lower in covered.items():
         state[(origin == f) & (state != 0) & _inside_any(tri, origin, f, lower, all_tri)] = 0
     out = np.where((state == -1)[:, None], faces[:, ::-1], faces)[state != 0]
-    parents = np.unique(origin)
     kept = np.unique(origin[state != 0])
     flipped = len(np.unique(origin[state == -1]))
     return out, flipped, len(parents) - len(kept)
