@@ -16,6 +16,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 from medialaxis.core._kernels import find_root
+from medialaxis.mesh._ring_kernels import csr_transpose
 
 __all__ = ["all_edge_rings", "minor_star_groups", "nearest_other_sample", "tet_centroids", "tet_geometry"]
 
@@ -104,18 +105,24 @@ def nearest_other_sample(
         check = False
     else:
         check = True
-    n = len(points)
-    order = np.argsort(simplices.ravel(), kind="stable")
-    vptr = np.searchsorted(simplices.ravel()[order], np.arange(n + 1)).astype(np.int64)
-    return _greedy_nearest(
-        np.ascontiguousarray(queries), points, simplices, centres, radii, vptr, (order // 4).astype(np.int64),
-        np.ascontiguousarray(normals, np.float64), np.ascontiguousarray(signed, np.float64), check,
+    queries = np.ascontiguousarray(queries)
+    start, walk = _walk_starts(
+        queries, points, simplices, centres, radii, np.ascontiguousarray(normals, np.float64),
+        np.ascontiguousarray(signed, np.float64), check,
     )
+    out = np.full(len(queries), -1, np.int64)
+    which = np.flatnonzero(walk)
+    if len(which):  # the points' tetrahedra, only now: most calls walk from a few percent of the queries
+        vptr, vtets = csr_transpose(np.arange(0, 4 * len(simplices) + 1, 4), simplices.ravel(), len(points))
+        out[which] = _greedy_nearest(queries, points, simplices, vptr, vtets, which, start)
+    return out
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets, normals, signed, check):  # type: ignore[no-untyped-def]
-    out = np.full(queries.shape[0], -1, np.int64)
+def _walk_starts(queries, points, simplices, centres, radii, normals, signed, check):  # type: ignore[no-untyped-def]
+    """Each query's nearest vertex of its tetrahedron, and whether a nearer sample may lie elsewhere."""
+    start = np.empty(queries.shape[0], np.int64)
+    walk = np.zeros(queries.shape[0], np.bool_)
     for q in prange(queries.shape[0]):
         best, best_d = -1, np.inf
         for k in range(4):
@@ -125,7 +132,7 @@ def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets, nor
                 d += (queries[q, c] - points[v, c]) ** 2
             if d < best_d:
                 best, best_d = v, d
-        own = best
+        start[q] = best
         inset = 0.0  # how far inside the circumsphere the query lies: other samples are at least that far
         for c in range(3):
             inset += (queries[q, c] - centres[q, c]) ** 2
@@ -141,6 +148,20 @@ def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets, nor
                 if (facing > 0.0) != (signed[q] > 0.0):
                     agree = False
             moved = not agree
+        walk[q] = moved
+    return start, walk
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def _greedy_nearest(queries, points, simplices, vptr, vtets, which, start):  # type: ignore[no-untyped-def]
+    out = np.full(which.shape[0], -1, np.int64)
+    for i in prange(which.shape[0]):
+        q = which[i]
+        best = start[q]
+        best_d = 0.0
+        for c in range(3):
+            best_d += (queries[q, c] - points[best, c]) ** 2
+        moved = True
         while moved:
             moved = False
             for j in range(vptr[best], vptr[best + 1]):
@@ -152,8 +173,8 @@ def _greedy_nearest(queries, points, simplices, centres, radii, vptr, vtets, nor
                         d += (queries[q, c] - points[v, c]) ** 2
                     if d < best_d:
                         best, best_d, moved = v, d, True
-        if best != own:
-            out[q] = best
+        if best != start[q]:
+            out[i] = best
     return out
 
 
