@@ -127,7 +127,7 @@ def _run(config: str, count: int, memory: PeakMemory) -> dict:
         import dask_geopandas
         from distributed import Client, LocalCluster
 
-        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
                 Client(cluster):
             start = time.perf_counter()
             lines = mx.centerlines(dask_geopandas.from_geopandas(layer, npartitions=8)).compute().geometry

@@ -1,13 +1,13 @@
 """The features of a layer on threads, worker processes or Dask, or one after the other here.
 
 Threads are the pool for ``n_jobs`` > 1: measured on tiled OpenStreetMap
-lakes (``benchmarks/bench_gis_scale.py``, 2 cores shared with other work,
-load average 7 to 14), 2 threads took 0.73 to 0.93 of the time of 2 worker
-processes in four runs (600, 2,000 and twice 3,000 lakes), with 12 to 18%
-less CPU time (no start-up, nothing pickled) and half the peak memory (388 MB
-against 782 MB for 2,000 lakes): the compiled kernels and shapely release
-the GIL. Worker processes (``scheduler="processes"``) are there for work
-that holds it.
+lakes (``benchmarks/bench_gis_scale.py``, 2 cores shared with other work),
+2 threads took 0.73 to 0.93 of the time of 2 worker processes in four runs
+at load average 7 to 14 (600, 2,000 and twice 3,000 lakes) and 0.97 of it
+at load 4.3 (5,000 lakes, 52.5 s against 54.1 s), with half the peak memory
+(470 MB against 864 MB for 5,000 lakes): nothing is pickled or started, and
+the compiled kernels and shapely release the GIL. Worker processes
+(``scheduler="processes"``) are there for work that holds it.
 """
 
 from __future__ import annotations
