@@ -8,6 +8,8 @@ components, computed by trimesh), not from medialaxis.
 
 from __future__ import annotations
 
+import warnings
+
 import networkx as nx
 import numpy as np
 import pytest
@@ -123,22 +125,31 @@ def test_duplicated_vertices_of_a_closed_mesh():
     assert mx.medial_axis(soup, method="flow").n_components == 1
 
 
-def test_open_and_non_manifold_meshes_are_refused_with_counts():
+def test_open_meshes_are_refused_with_counts():
     open_box = trimesh.creation.box()
     open_box = trimesh.Trimesh(open_box.vertices, open_box.faces[:-1], process=False)
     with pytest.raises(mx.InvalidInputError, match="3 open edges, 0 edges shared by more than two faces"):
         load_mesh(open_box)
-    # two tetrahedra sharing one edge by index: that edge has four faces
-    tet = trimesh.creation.icosphere(0)
-    v = np.asarray(tet.vertices)
-    shifted = v.copy()
-    shifted[2:] += 5.0  # the second keeps vertices 0 and 1 (the shared edge) and moves the others
-    vertices = np.vstack([v, shifted[2:]])
-    second = tet.faces.copy()
-    second[second >= 2] += len(v) - 2
-    pinched = trimesh.Trimesh(vertices, np.vstack([tet.faces, second]), process=False)
-    with pytest.raises(mx.InvalidInputError, match="edges shared by more than two faces"):
-        load_mesh(pinched)
+
+
+def test_solids_touching_along_an_edge_are_taken_apart_not_refused():
+    # two unit boxes sharing the edge x = y = 1 by index: that edge has four faces
+    a = trimesh.creation.box(bounds=[[0, 0, 0], [1, 1, 1]])
+    b = trimesh.creation.box(bounds=[[1, 1, 0], [2, 2, 1]])
+    both = trimesh.util.concatenate([a, b])
+    both.merge_vertices()
+    edges, counts = np.unique(np.sort(both.edges, axis=1), axis=0, return_counts=True)
+    assert (counts == 4).sum() == 1  # the input really has one edge of four faces
+    with pytest.warns(mx.MedialAxisWarning, match="edges of more than two faces"):
+        solid = load_mesh(both).mesh
+    assert solid.is_watertight and solid.is_winding_consistent
+    assert len(solid.split(only_watertight=False)) == 2
+    assert solid.volume == pytest.approx(2.0, abs=1e-12)  # exact: two unit boxes
+    assert solid.euler_number == 4  # two spheres
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mx.MedialAxisWarning)
+        assert mx.medial_axis(both).betti == (2, 0, 0)
+        assert mx.medial_axis(both, method="flow").betti == (2, 0, 0)
 
 
 def _winding_numbers(mesh, points):
