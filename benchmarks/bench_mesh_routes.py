@@ -34,13 +34,16 @@ hash of the name), so that work can be tuned on one half and reported on the
 other.
 
 Measured on c7b14c0 (57 models, one thread, a loaded 2-core machine):
-voronoi refused 15, one timeout (chipped-torus), Betti right 34 of 41
-computed, median 2.9 s, largest 84 s, peak 612 MB; flow refused 15, Betti
-right 40 of 42, median 4.0 s, largest 85 s, peak 1,047 MB. The refusals: 4
-closed meshes whose crossings do not cut into a closed surface (seahorse,
-gt-fertility, cow, camel-pinched), holes over the small-hole limit or touching
-at vertices (8), non-manifold edges (2), a triangle soup whose per-triangle
-caps leave no solid.
+voronoi refused 15, one timeout, Betti right 34 of 41 computed. On 3d4de6d
+(voronoi only, ``--check-points 0``): tuning half (27 models) refused 4,
+Betti right 21 of 23 (seahorse (1,7,0) for (1,9,0); ogre, open and crossing
+in 9,090 face pairs, (1,17,4) for (5,16,0)), median 4.2 s; check half (30)
+refused 7 (gt-sphere-soup, a triangle soup, bounds no solid once each
+triangle is capped), Betti right 23 of 23, median 6.0 s. Refusals left:
+holes over the small-hole limit (alligator, stanford-bunny, lion, beetle,
+chipped-torus), caps that cross the surface (teapot), edges of three or more
+faces that do not pair up (truck, gt-hand-shells), crossings of open
+unoriented meshes (orc, beast).
 
 Run it single-threaded and one model at a time so as to share the machine::
 
