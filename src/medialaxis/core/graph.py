@@ -63,6 +63,21 @@ def cycle_rank(n: int, edges: np.ndarray) -> int:
     return int(len(edges) - n + n_components(n, edges))
 
 
+def _neighbour_lists(n: int, edges: Any) -> tuple[np.ndarray, ...]:
+    """Edges, degrees and CSR neighbour lists (``indptr``, neighbour, edge id) of a multigraph.
+
+    By sorting, not a sparse matrix: repeated edges and self-loops keep one
+    entry each instead of being summed into one.
+    """
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    rows = np.concatenate([edges[:, 0], edges[:, 1]])
+    order = np.argsort(rows, kind="stable")
+    indptr = np.searchsorted(rows[order], np.arange(n + 1)).astype(np.int64)
+    nbrs = np.concatenate([edges[:, 1], edges[:, 0]])[order]
+    eids = np.tile(np.arange(len(edges)), 2)[order]
+    return edges, degree(n, edges), indptr, nbrs, eids
+
+
 def branches(n: int, edges: np.ndarray) -> list[np.ndarray]:
     """Chains between nodes whose degree is not 2.
 
@@ -70,30 +85,16 @@ def branches(n: int, edges: np.ndarray) -> list[np.ndarray]:
     component that is a pure loop is returned once, closed (first index
     repeated last).
     """
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    deg = degree(n, edges)
-    # Neighbour lists by sorting, not a sparse matrix: repeated edges and
-    # self-loops keep one entry each instead of being summed into one.
-    rows = np.concatenate([edges[:, 0], edges[:, 1]])
-    order = np.argsort(rows, kind="stable")
-    indptr = np.searchsorted(rows[order], np.arange(n + 1))
-    nbrs = np.concatenate([edges[:, 1], edges[:, 0]])[order]
-    eids = np.tile(np.arange(len(edges)), 2)[order]
+    edges, deg, indptr, nbrs, eids = _neighbour_lists(n, edges)
     from medialaxis.core._kernels import branch_walks  # numba loads on first use, not with the graph helpers
 
-    nodes, offsets = branch_walks(indptr.astype(np.int64), nbrs, eids, deg, edges)
+    nodes, offsets = branch_walks(indptr, nbrs, eids, deg, edges)
     return np.split(nodes, offsets[1:-1]) if len(offsets) > 1 else []
 
 
 def branches_reference(n: int, edges: np.ndarray) -> list[np.ndarray]:
     """Pure-Python twin of :func:`branches` (the tests' reference)."""
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
-    deg = degree(n, edges)
-    rows = np.concatenate([edges[:, 0], edges[:, 1]])
-    order = np.argsort(rows, kind="stable")
-    indptr = np.searchsorted(rows[order], np.arange(n + 1))
-    nbrs = np.concatenate([edges[:, 1], edges[:, 0]])[order]
-    eids = np.tile(np.arange(len(edges)), 2)[order]
+    edges, deg, indptr, nbrs, eids = _neighbour_lists(n, edges)
     used = np.zeros(len(edges), bool)
     chains: list[np.ndarray] = []
 

@@ -118,6 +118,15 @@ def nearest_other_sample(
     return out
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _squared(queries, q, points, v):  # type: ignore[no-untyped-def]
+    """Squared distance from query ``q`` to point ``v``."""
+    d = 0.0
+    for c in range(3):
+        d += (queries[q, c] - points[v, c]) ** 2
+    return d
+
+
 @njit(cache=True, nogil=True, parallel=True)
 def _walk_starts(queries, points, simplices, centres, radii, normals, signed, check):  # type: ignore[no-untyped-def]
     """Each query's nearest vertex of its tetrahedron, and whether a nearer sample may lie elsewhere."""
@@ -126,12 +135,9 @@ def _walk_starts(queries, points, simplices, centres, radii, normals, signed, ch
     for q in prange(queries.shape[0]):
         best, best_d = -1, np.inf
         for k in range(4):
-            v = simplices[q, k]
-            d = 0.0
-            for c in range(3):
-                d += (queries[q, c] - points[v, c]) ** 2
+            d = _squared(queries, q, points, simplices[q, k])
             if d < best_d:
-                best, best_d = v, d
+                best, best_d = simplices[q, k], d
         start[q] = best
         inset = 0.0  # how far inside the circumsphere the query lies: other samples are at least that far
         for c in range(3):
@@ -158,21 +164,16 @@ def _greedy_nearest(queries, points, simplices, vptr, vtets, which, start):  # t
     for i in prange(which.shape[0]):
         q = which[i]
         best = start[q]
-        best_d = 0.0
-        for c in range(3):
-            best_d += (queries[q, c] - points[best, c]) ** 2
+        best_d = _squared(queries, q, points, best)
         moved = True
         while moved:
             moved = False
             for j in range(vptr[best], vptr[best + 1]):
                 t = vtets[j]
                 for k in range(4):
-                    v = simplices[t, k]
-                    d = 0.0
-                    for c in range(3):
-                        d += (queries[q, c] - points[v, c]) ** 2
+                    d = _squared(queries, q, points, simplices[t, k])
                     if d < best_d:
-                        best, best_d, moved = v, d, True
+                        best, best_d, moved = simplices[t, k], d, True
         if best != start[q]:
             out[i] = best
     return out
