@@ -11,7 +11,9 @@ by two of them; facets: Delaunay edges all of whose tetrahedra are inside).
 approximates the solid, when that union is a 3-manifold: flat tetrahedra on
 the surface, whose centroids fall a hair inside or outside, can pinch it
 along an edge or at a point and add cycles that the solid does not have, so
-the inner set is first made manifold there (:func:`unpinch`). ``D`` is then collapsed: facets narrower than lambda
+the inner set is first unpinched at its points (:func:`unpinch`), and the
+Voronoi cells of samples buried inside it, 3-cells ``D`` lacks, are opened
+(:func:`open_cells`). ``D`` is then collapsed: facets narrower than lambda
 are removed, shortest first, only through a free side (an elementary
 collapse), then dangling curve pieces are removed. Every facet of at least
 lambda stays; the facets narrower than lambda that remain are those needed
