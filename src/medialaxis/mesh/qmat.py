@@ -75,8 +75,10 @@ _ONE_EDGE = np.array([[0, 1]], np.int64)
 _NO_FACES = np.zeros((0, 3), np.int64)
 
 
-def check_simplify(simplify: Any) -> None:
-    """Validate ``simplify``: an int >= 1 (spheres to keep) or a float in (0, 1) (error bound)."""
+def check_simplify(simplify: Any, mode: str = "medial") -> None:
+    """Validate ``simplify`` (an int >= 1, spheres to keep, or a float in (0, 1), an error bound) and ``mode``."""
+    if mode not in MODES:
+        raise InvalidInputError(f"simplify_mode must be one of {', '.join(MODES)}, got {mode!r}")
     if isinstance(simplify, bool):
         raise InvalidInputError(f"simplify must be an int or a float in (0, 1), got {simplify!r}")
     if isinstance(simplify, (int, np.integer)):
@@ -198,9 +200,7 @@ def simplify_medial_mesh(
     >>> len(s.points)
     40
     """
-    check_simplify(simplify)
-    if mode not in MODES:
-        raise InvalidInputError(f"simplify mode must be one of {', '.join(MODES)}, got {mode!r}")
+    check_simplify(simplify, mode)
     if ma.dim != 3:
         raise InvalidInputError("simplify applies to 3D medial meshes")
     if surface is None:

@@ -245,13 +245,11 @@ def voronoi_medial_axis(
             raise InvalidInputError(f"simplify_error must be a float in (0, 1) of the diagonal, got {simplify_error!r}")
         simplify = simplify_error
     if simplify is not None or simplify_mode != "medial":
-        from medialaxis.mesh.qmat import MODES, check_simplify
+        from medialaxis.mesh.qmat import check_simplify
 
-        if simplify_mode not in MODES:
-            raise InvalidInputError(f"simplify_mode must be one of {', '.join(MODES)}, got {simplify_mode!r}")
         if simplify is None:
             raise InvalidInputError("simplify_mode needs simplify or simplify_error")
-        check_simplify(simplify)
+        check_simplify(simplify, simplify_mode)
     while True:  # once more on the surface of the solid if the mesh passes through itself
         diag = float(np.linalg.norm(np.ptp(np.asarray(work.vertices), axis=0)))
         t0 = time.perf_counter()
