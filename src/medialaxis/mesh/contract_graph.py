@@ -192,8 +192,8 @@ def _spanning_forest_with_cycles(pos: np.ndarray, node_edges: np.ndarray, n_cycl
         wb = w[candidates[best]]
         between = np.minimum(between, np.minimum(from_a[src] + wb + from_b[dst], from_b[src] + wb + from_a[dst]))
         kept = np.vstack([kept, node_edges[candidates[best]][None]])
-        adj = _adjacency(kept, np.r_[kw, w[candidates[best]]], m)
-        kw = np.r_[kw, w[candidates[best]]]
+        kw = np.r_[kw, wb]
+        adj = _adjacency(kept, kw, m)
         open_[best] = False
     return kept
 
