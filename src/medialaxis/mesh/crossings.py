@@ -14,7 +14,9 @@ import numpy as np
 
 from medialaxis.core.arrays import unique_ints
 
-__all__ = ["candidate_pairs", "crossing_pairs", "nested_shell", "shell_labels", "unit_triangles", "winding_numbers"]
+__all__ = [
+    "candidate_pairs", "crossing_pairs", "nested_shell", "shell_labels", "solid_betti", "unit_triangles", "winding_numbers",
+]
 
 #: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
 SHELL_PROBES = 500
@@ -34,6 +36,31 @@ def shell_labels(mesh: Any) -> np.ndarray:
     from trimesh.graph import connected_component_labels
 
     return connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
+
+
+def solid_betti(mesh: Any) -> tuple[int, int, int]:
+    """Betti numbers ``(b0, b1, b2)`` of the solid a closed, outward-oriented 2-manifold mesh bounds.
+
+    Shells of positive signed volume are outer surfaces (``b0``), those of
+    negative volume cavities (``b2``); ``b1`` follows from the solid's Euler
+    characteristic, half its boundary's (a compact 3-manifold's
+    ``chi(M) = chi(dM) / 2``).
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> solid_betti(trimesh.creation.torus(3.0, 1.0))
+    (1, 1, 0)
+    """
+    labels = shell_labels(mesh)
+    tri = np.asarray(mesh.vertices, np.float64)[np.asarray(mesh.faces, np.int64)]
+    six_volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
+    volume = np.bincount(labels, six_volume, int(labels.max()) + 1 if len(labels) else 0)
+    b0, b2 = int((volume > 0).sum()), int((volume < 0).sum())
+    faces = np.asarray(mesh.faces, np.int64)
+    edges = unique_ints(np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1) @ np.array([len(mesh.vertices), 1]))
+    chi = len(unique_ints(faces.ravel())) - len(edges) + len(faces)
+    return b0, b0 + b2 - chi // 2, b2
 
 
 def nested_shell(mesh: Any) -> int | None:

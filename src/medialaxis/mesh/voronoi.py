@@ -36,7 +36,7 @@ from medialaxis.errors import (
     MedialAxisWarning,
 )
 from medialaxis.mesh._voronoi_kernels import tet_centroids
-from medialaxis.mesh.crossings import crossing_pairs, shell_labels
+from medialaxis.mesh.crossings import crossing_pairs, shell_labels, solid_betti
 from medialaxis.mesh.inner_set import inner_tets
 from medialaxis.mesh.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
 from medialaxis.mesh.sampling import (
@@ -361,6 +361,7 @@ def voronoi_medial_axis(
         "mesh_volume": src.volume,
         "mesh_euler_characteristic": int(src.mesh.euler_number),
         "euler_characteristic": chi,
+        "solid_betti": list(solid_betti(src.mesh)),
         "repairs": list(src.repairs),
         "defects": dict(src.found),
         "topology": topology,
@@ -391,6 +392,12 @@ def voronoi_medial_axis(
         )
         timings["compact"] = time.perf_counter() - t0
         timings["total"] = time.perf_counter() - t_start
+    solid_chi = metadata["solid_betti"][0] - metadata["solid_betti"][1] + metadata["solid_betti"][2]
+    if topology == "preserve" and result.metadata["euler_characteristic"] != solid_chi:
+        warnings.warn(
+            f"the medial complex has Euler characteristic {result.metadata['euler_characteristic']} where the solid has "
+            f"{solid_chi} (Betti numbers {tuple(metadata['solid_betti'])}): a handle or a part smaller than the "
+            "sampling is lost or added; raise samples", MedialAxisWarning, stacklevel=2)
     if simplify is None:
         return result
     from medialaxis.mesh.qmat import simplify_medial_mesh
