@@ -11,13 +11,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import trimesh
+from scipy import ndimage
 from skimage.measure import marching_cubes
 
 import medialaxis as mx
 
 
-def _surface(volume: np.ndarray) -> trimesh.Trimesh:
-    vertices, faces, _, _ = marching_cubes(np.pad(volume, 1).astype(np.float64), 0.5)
+def _surface(volume: np.ndarray, blur: float = 0.0) -> trimesh.Trimesh:
+    grey = np.pad(volume, 1).astype(np.float64)
+    if blur:  # a grey scan's partial-volume edges
+        grey = ndimage.gaussian_filter(grey, blur)
+    vertices, faces, _, _ = marching_cubes(grey, 0.5)
     return trimesh.Trimesh(vertices - 1.0, faces)  # back to the volume's indices
 
 
@@ -25,12 +29,13 @@ def _degrees(ma: mx.MedialAxis) -> np.ndarray:
     return np.bincount(np.asarray(ma.edges).ravel(), minlength=len(ma.points))
 
 
-@pytest.mark.parametrize("radius", [3.0, 5.0, 8.0])
-def test_a_rod_is_one_centred_segment(radius: float) -> None:
+@pytest.mark.parametrize(("radius", "blur"), [(3.0, 0.0), (5.0, 0.0), (8.0, 0.0), (8.0, 0.7)])
+def test_a_rod_is_one_centred_segment(radius: float, blur: float) -> None:
+    # the blurred rod of radius 8 had 14 ends when only binary staircases were recognized
     size, centre = int(2 * radius) + 10, radius + 5.0
     z, y, x = np.mgrid[:80, :size, :size]
     rod = ((y - centre) ** 2 + (x - centre) ** 2 <= radius**2) & (z >= 10) & (z < 70)
-    ma = mx.medial_axis(_surface(rod), method="flow")
+    ma = mx.medial_axis(_surface(rod, blur), method="flow")
     degree = _degrees(ma)
     assert ma.betti == (1, 0, 0)
     assert (degree == 1).sum() == 2 and (degree >= 3).sum() == 0
@@ -50,3 +55,15 @@ def test_a_torus_is_one_centred_ring() -> None:
     assert (_degrees(ma) != 2).sum() == 0
     to_core = np.hypot(np.hypot(ma.points[:, 1], ma.points[:, 2]) - major, ma.points[:, 0])
     assert np.percentile(to_core, 99) <= 0.03 * major
+
+
+def test_what_is_a_voxel_staircase() -> None:
+    from medialaxis.mesh._flow_operators import on_voxel_grid
+
+    z, y, x = np.mgrid[:40, :40, :40]
+    ball = (x - 20) ** 2 + (y - 20) ** 2 + (z - 20) ** 2 <= 144
+    grey = ndimage.gaussian_filter(ball.astype(np.float64), 1.0)
+    anisotropic = marching_cubes(grey, 0.5, spacing=(0.3, 0.3, 0.6))[0]
+    assert on_voxel_grid(anisotropic) and on_voxel_grid(_surface(ball).vertices)
+    assert not on_voxel_grid(trimesh.creation.icosphere(4).vertices)
+    assert not on_voxel_grid(trimesh.creation.box().subdivide().subdivide().vertices)  # a lattice: three grid coordinates

@@ -41,6 +41,8 @@ OPPOSITE = 0.8
 PLANE_NEIGHBOURS = 32
 #: Share of the vertices on grid edges that makes a surface a voxel staircase (:func:`on_voxel_grid`).
 LATTICE_SHARE = 0.9
+#: Most shared coordinate values whose differences are tried as grid steps, and vertices looked at.
+GRID_CANDIDATES, GRID_SAMPLE = 24, 20_000
 #: Median tilt (degrees) of the one-ring normals from the fitted planes' that makes a grid surface a staircase:
 #: 11-22 on marching-cubes rods, spheres and tori; 0 on a thin CAD plate refined on a lattice.
 STAIRCASE_TILT = 5.0
@@ -273,40 +275,46 @@ def plane_normals(points: np.ndarray, normals: np.ndarray, k: int = PLANE_NEIGHB
     return fitted * np.where(np.einsum("ij,ij->i", fitted, normals) < 0, -1.0, 1.0)[:, None]
 
 
+def _grid_of(values: np.ndarray, top: int = GRID_CANDIDATES) -> tuple[float, float, np.ndarray]:
+    """The coarsest grid ``origin + k step`` holding at least half of ``values``, and which values lie on it.
+
+    Candidate steps are the differences between the ``top`` values that the
+    most vertices share (grid planes hold curves of vertices; interpolated
+    values repeat only by symmetry); a finer grid holds what a coarser one
+    does, so the coarsest that holds half the values is taken.
+    """
+    distinct, counts = np.unique(values, return_counts=True)
+    shared = distinct[np.argsort(-counts, kind="stable")[:top]]
+    scale = max(1.0, float(np.abs(values).max()))
+    best = (0.0, 0.0, np.zeros(len(values), bool))
+    for i, origin in enumerate(shared):
+        for step in np.abs(shared[i + 1 :] - origin):
+            if not step > 1e-9 * scale or step <= best[1]:
+                continue
+            t = (values - origin) / step
+            on = np.abs(t - np.round(t)) <= 1e-6 * max(1.0, float(np.abs(t).max()))
+            if on.mean() >= 0.5:
+                best = (float(origin), float(step), on)
+    return best
+
+
 def on_voxel_grid(points: np.ndarray, share: float = LATTICE_SHARE) -> bool:
     """Whether the vertices lie on the edges of a voxel grid, as marching cubes puts them.
 
     A marching-cubes vertex lies on an edge of the grid: exactly two of its
-    coordinates are grid coordinates, the third is interpolated (half-way
-    on a binary volume). The step of an axis is the median gap between the
-    values that at least three vertices share (half the grid's on a binary
-    volume, whose half-way values are shared too: then the grid of twice
-    that step is tried at both phases). ``share`` of the vertices must have
-    exactly two grid coordinates. A CAD part refined on a lattice can pass
-    too: :func:`robust_poles` tells it by its normals.
+    coordinates are grid coordinates (:func:`_grid_of`, per axis), the third
+    is interpolated. ``share`` of the vertices must be such. A CAD part
+    refined on a lattice can pass too: :func:`robust_poles` tells it by its
+    normals.
     """
     points = np.asarray(points, np.float64)
     if len(points) < 100:
         return False
-    grids = []
+    sample = points[:: max(1, len(points) // GRID_SAMPLE)]
+    count = np.zeros(len(sample), np.int64)
     for axis in range(3):
-        values, counts = np.unique(points[:, axis], return_counts=True)
-        shared = values[counts >= 3]
-        step = float(np.median(np.diff(shared))) if len(shared) >= 3 else 0.0
-        if not step > 0:
-            return False
-        grids.append((shared[0], step))
-
-    def exactly_two(phases: tuple[int, ...], factor: float) -> float:
-        count = np.zeros(len(points), np.int64)
-        for axis, ((origin, step), phase) in enumerate(zip(grids, phases)):
-            t = (points[:, axis] - origin - phase * step) / (factor * step)
-            count += np.abs(t - np.round(t)) <= 1e-6 * max(1.0, float(np.abs(t).max()))
-        return float(np.mean(count == 2))
-
-    if exactly_two((0, 0, 0), 1.0) >= share:
-        return True
-    return any(exactly_two(phases, 2.0) >= share for phases in np.ndindex(2, 2, 2))
+        count += _grid_of(sample[:, axis])[2]
+    return bool(np.mean(count == 2) >= share)
 
 
 def robust_poles(
