@@ -5,7 +5,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from medialaxis.volume import _kernels as K
-from medialaxis.volume.voxel_table import voxel_table
+from medialaxis.volume.voxel_table import neighbour_rows, voxel_table
 
 
 def _random_sheet(seed: int, shape=(9, 10, 11), p=0.35) -> np.ndarray:
@@ -19,7 +19,7 @@ def _random_sheet(seed: int, shape=(9, 10, 11), p=0.35) -> np.ndarray:
 def test_topology_class_matches_reference(seed, p):
     occ = _random_sheet(seed, p=p)
     vox = np.argwhere(occ)
-    fast = K.topology_class(*voxel_table(np.argwhere(occ), occ.shape), vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE)
+    fast = K.topology_class(neighbour_rows(voxel_table(np.argwhere(occ), occ.shape), vox), K.N26_ADJ)
     assert np.array_equal(fast, K.topology_class_reference(occ, vox))
 
 
@@ -28,7 +28,7 @@ def test_topology_class_of_plane_edge_and_junction():
     occ[2, 1:8, 1:6] = True  # a sheet normal to axis 0
     occ[3:6, 4, 1:6] = True  # a sheet hanging from its middle: a T
     vox = np.array([[2, 2, 3], [2, 1, 3], [2, 4, 3], [4, 4, 3]])
-    got = K.topology_class(*voxel_table(np.argwhere(occ), occ.shape), vox, K.N26_OFFSETS, K.N26_ADJ, K.N26_FACE).tolist()
+    got = K.topology_class(neighbour_rows(voxel_table(np.argwhere(occ), occ.shape), vox), K.N26_ADJ).tolist()
     assert got == [2, 1, 3, 2]  # surface, free edge, junction, surface
 
 
@@ -60,7 +60,7 @@ def test_single_sheet_labels_are_plain_geodesic_voronoi(seed, nseeds):
     spacing = np.array([1.0, 1.0, 2.0])
     labels = np.arange(len(seeds), dtype=np.int64)
     sheet = np.zeros(len(vox), np.int64)
-    fast = K.sheet_labels(*table, vox, seeds, labels, sheet, K.OFFSETS_26, spacing)
+    fast = K.sheet_labels(neighbour_rows(table, vox), vox, seeds, labels, sheet, K.OFFSETS_26, spacing)
     assert np.array_equal(fast, K.sheet_labels_reference(vox, seeds, labels, sheet, spacing))
     assert np.array_equal(fast[seeds], np.arange(len(seeds)))
 
@@ -77,7 +77,7 @@ def test_sheet_labels_match_reference(seed, nseeds):
     seeds = np.concatenate([junction, others]).astype(np.int64)
     seed_label = np.concatenate([rng.integers(0, 2, len(junction)), 2 + np.arange(len(others))]).astype(np.int64)
     spacing = np.array([1.0, 1.0, 2.0])
-    fast = K.sheet_labels(*table, vox, seeds, seed_label, sheet, K.OFFSETS_26, spacing)
+    fast = K.sheet_labels(neighbour_rows(table, vox), vox, seeds, seed_label, sheet, K.OFFSETS_26, spacing)
     assert np.array_equal(fast, K.sheet_labels_reference(vox, seeds, seed_label, sheet, spacing))
     assert np.array_equal(fast[seeds], seed_label)
     # a region never holds voxels of two sheets

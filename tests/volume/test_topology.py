@@ -15,7 +15,7 @@ from medialaxis.volume.phantoms import member_phantom, t_phantom
 from medialaxis.volume.regions import JUNCTION, sheet_ids
 from medialaxis.volume.repair import _close_boundary_triangles, _close_junction_notches, _drop_double_quads
 from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
-from medialaxis.volume.voxel_table import voxel_table
+from medialaxis.volume.voxel_table import neighbour_rows, voxel_table
 
 
 def _truth(ph):
@@ -83,7 +83,7 @@ def test_sheet_ids_split_a_voxel_t_at_its_junction():
     stem_row = np.flatnonzero(voxels[:, 0] == 12)
     seeds = np.r_[np.flatnonzero(junction), stem_row].astype(np.int64)
     seed_label = np.r_[np.zeros(junction.sum()), np.ones(len(stem_row))].astype(np.int64)
-    labels = _kernels.sheet_labels(*table, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, np.ones(3))
+    labels = _kernels.sheet_labels(neighbour_rows(table, voxels), voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, np.ones(3))
     assert np.all(labels[voxels[:, 0] == 5] == 0)  # the flange has no pick of its own
     assert np.all(labels[voxels[:, 0] >= 9] == 1)
 

@@ -58,26 +58,24 @@ OFFSETS_26 = np.array([(a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c i
 
 
 @njit(cache=True, nogil=True)
-def topology_class(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, offs: np.ndarray,
-                   adj: np.ndarray, face: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+def topology_class(neighbours: np.ndarray, adj: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Number of 6-connected background components in the 26-neighbourhood
     of each voxel (Malandain's count of background components: 2 inside a
     thin sheet, 1 on its free edge, 3 or more at a junction of sheets).
 
-    The sheet is the voxel table ``(directory, bricks, shape)``
-    (:class:`~medialaxis.volume.voxel_table.VoxelTable`; outside ``shape`` is
-    background); ``voxels`` (n, 3) are indices of sheet voxels.
+    ``neighbours`` (n, 26) are the rows of each voxel's neighbours in the
+    order of ``N26_OFFSETS`` (-1: background;
+    :func:`~medialaxis.volume.voxel_table.neighbour_rows`).
     """
-    n = voxels.shape[0]
-    m = offs.shape[0]
+    n = neighbours.shape[0]
+    m = neighbours.shape[1]
     out = np.zeros(n, np.int64)
     bg = np.zeros(m, np.bool_)
     seen = np.zeros(m, np.bool_)
     stack = np.zeros(m, np.int64)
     for i in range(n):
-        z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
         for j in range(m):
-            bg[j] = table_find(directory, bricks, shape, z + offs[j, 0], y + offs[j, 1], x + offs[j, 2]) < 0
+            bg[j] = neighbours[i, j] < 0
             seen[j] = False
         count = 0
         for j in range(m):
@@ -101,19 +99,17 @@ def topology_class(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray,
 
 
 @njit(cache=True, nogil=True)
-def neighbour_components(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray,
-                         member: np.ndarray, offs: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
-    """Connected components of the ``member`` voxels under the neighbourhood ``offs``
-    (union-find: no edge list is stored). Each voxel gets the smallest row of
-    its component (non-members their own row)."""
-    n = voxels.shape[0]
+def neighbour_components(neighbours: np.ndarray, member: np.ndarray, half: int) -> np.ndarray:  # pragma: no cover - compiled
+    """Connected components of the ``member`` voxels under the first ``half`` columns of
+    ``neighbours`` (rows of each voxel's neighbours, -1 none; union-find: no edge list is
+    stored). Each voxel gets the smallest row of its component (non-members their own row)."""
+    n = neighbours.shape[0]
     parent = np.arange(n)
     for i in range(n):
         if not member[i]:
             continue
-        for t in range(offs.shape[0]):
-            j = table_find(directory, bricks, shape, voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1],
-                           voxels[i, 2] + offs[t, 2])
+        for t in range(half):
+            j = np.int64(neighbours[i, t])
             if j < 0 or not member[j]:
                 continue
             a = i
@@ -272,15 +268,14 @@ def subsample_certainty_reference(voxels: np.ndarray, order: np.ndarray, radius:
 
 
 @njit(cache=True, nogil=True)
-def sheet_labels(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, seeds: np.ndarray,
-                 seed_label: np.ndarray, sheet: np.ndarray, offs: np.ndarray,
-                 spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+def sheet_labels(neighbours: np.ndarray, voxels: np.ndarray, seeds: np.ndarray, seed_label: np.ndarray,
+                 sheet: np.ndarray, offs: np.ndarray, spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Discrete geodesic Voronoi regions of ``seeds`` that stay inside sheets.
 
     Regions grow in order of the Euclidean distance from a voxel to the seed
     of the neighbour it is reached from (vector propagation with a heap), so
     region borders are near the Euclidean bisectors; ties go to the lower
-    seed. The voxel table ``(directory, bricks, shape)`` maps grid positions to rows. Seed ``s``
+    seed. ``neighbours`` (n, len(offs)) holds the row of each voxel's neighbour at each of ``offs`` (-1 none). Seed ``s``
     gives its region the label ``seed_label[s]`` (several seeds may share
     one), and a region grows from
     voxel ``i`` to voxel ``j`` only when ``sheet[j] >= 0`` and ``sheet[i]``
@@ -296,19 +291,25 @@ def sheet_labels(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, v
     for s in range(seeds.shape[0]):
         best[seeds[s]] = 0.0
         owner[seeds[s]] = s
-        heapq.heappush(heap, (0.0, np.int64(s), np.int64(seeds[s])))
     done = np.zeros(n, np.bool_)
-    while len(heap) > 0:
-        d, s, i = heapq.heappop(heap)
+    # the seeds' entries (distance 0) would pop first, in seed order: they are taken in that order
+    # without the heap (most voxels are seeds when the sheets grow into the junctions' surroundings)
+    k = 0
+    while k < seeds.shape[0] or len(heap) > 0:
+        if k < seeds.shape[0]:
+            s, i = np.int64(k), np.int64(seeds[k])
+            k += 1
+        else:
+            d, s, i = heapq.heappop(heap)
         if done[i] or owner[i] != s:
             continue
         done[i] = True
         label[i] = seed_label[s]
         src = seeds[s]
         for t in range(offs.shape[0]):
-            a, b, c = voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1], voxels[i, 2] + offs[t, 2]
-            j = table_find(directory, bricks, shape, a, b, c)
+            j = np.int64(neighbours[i, t])
             if j >= 0 and not done[j] and sheet[j] >= 0 and (sheet[i] < 0 or sheet[i] == sheet[j]):
+                a, b, c = voxels[i, 0] + offs[t, 0], voxels[i, 1] + offs[t, 1], voxels[i, 2] + offs[t, 2]
                 dz = (a - voxels[src, 0]) * spacing[0]
                 dy = (b - voxels[src, 1]) * spacing[1]
                 dx = (c - voxels[src, 2]) * spacing[2]

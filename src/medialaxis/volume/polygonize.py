@@ -34,7 +34,7 @@ from medialaxis.volume.medial import MedialVoxels
 from medialaxis.volume.regions import BOUNDARY, EXTENSION, JUNCTION, SURFACE, classify_voxels, region_labels, sheet_ids
 from medialaxis.volume.repair import repair_faces
 from medialaxis.volume.triangles import region_triangles
-from medialaxis.volume.voxel_table import voxel_table
+from medialaxis.volume.voxel_table import neighbour_rows, voxel_table
 
 __all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "Polygonization", "classify_voxels", "pick_hash", "pick_seed", "polygonize"]
 
@@ -134,7 +134,8 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
     voxels = np.ascontiguousarray(medial.voxels, np.int64)
     n = len(voxels)
     table = voxel_table(voxels, features.shape)
-    kind = classify_voxels(table, voxels)
+    neighbours = neighbour_rows(table, voxels)  # looked up once for the classes, sheets and regions
+    kind = classify_voxels(neighbours, voxels)
     # creases (a sheet bending sharply, pairs in two directions) come right
     # after junctions so that vertices sit on the crease line
     crease = (kind == SURFACE) & (medial.coherence < CREASE_COHERENCE)
@@ -154,8 +155,9 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
         certain = _kernels.subsample_certainty(*table, voxels, order, radius, features.spacing,
                                                np.asarray(band, bool), np.asarray(near_band, bool))
     junction = kind == JUNCTION
-    sheet = sheet_ids(table, voxels, junction, features.spacing)
-    label = region_labels(table, voxels, picks, junction, sheet, features.spacing)
+    sheet = sheet_ids(neighbours, voxels, junction, features.spacing)
+    label = region_labels(neighbours, voxels, picks, junction, sheet, features.spacing)
+    del neighbours
     points = medial.position[picks]
     vertex_junction = kind[picks] == JUNCTION
     faces = region_triangles(table, voxels, label, points, sheet)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis.volume import _kernels
-from medialaxis.volume.voxel_table import VoxelTable
+from medialaxis.volume.voxel_table import VoxelTable, neighbour_rows
 
 __all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "classify_voxels", "sheet_ids", "region_labels"]
 
@@ -23,15 +23,23 @@ __all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "classify_voxels", "s
 SURFACE, BOUNDARY, JUNCTION, EXTENSION = 0, 1, 2, 3
 
 
-def classify_voxels(table: VoxelTable, voxels: np.ndarray) -> np.ndarray:
+def _neighbours(table: VoxelTable | np.ndarray, voxels: np.ndarray) -> np.ndarray:
+    """The rows of the 26 neighbours of ``voxels`` (the table's own rows): given, or looked up in ``table``."""
+    if isinstance(table, VoxelTable):
+        return neighbour_rows(table, voxels)
+    return table
+
+
+def classify_voxels(table: VoxelTable | np.ndarray, voxels: np.ndarray) -> np.ndarray:
     """Junction / boundary / surface class of each voxel of a thin sheet.
 
     Parameters
     ----------
-    table : VoxelTable
-        The sheet (:func:`~medialaxis.volume.voxel_table.voxel_table`).
+    table : VoxelTable or (n, 26) int32 ndarray
+        The sheet (:func:`~medialaxis.volume.voxel_table.voxel_table`), or the
+        rows of its voxels' neighbours (:func:`~medialaxis.volume.voxel_table.neighbour_rows`).
     voxels : (n, 3) int64 ndarray
-        Indices of the sheet voxels.
+        Indices of the sheet voxels (the table's rows).
 
     Returns
     -------
@@ -39,8 +47,7 @@ def classify_voxels(table: VoxelTable, voxels: np.ndarray) -> np.ndarray:
         ``JUNCTION`` (three or more background components around the voxel),
         ``BOUNDARY`` (at most one) or ``SURFACE`` (two).
     """
-    count = _kernels.topology_class(*table, np.ascontiguousarray(voxels, np.int64), _kernels.N26_OFFSETS,
-                                    _kernels.N26_ADJ, _kernels.N26_FACE)
+    count = _kernels.topology_class(_neighbours(table, voxels), _kernels.N26_ADJ)
     kind = np.full(len(voxels), SURFACE, np.int8)
     kind[count <= 1] = BOUNDARY
     kind[count >= 3] = JUNCTION
@@ -56,7 +63,7 @@ SHEET_SEPARATION = 3.0
 MIN_SHEET_VOXELS = 20
 
 
-def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spacing: np.ndarray) -> np.ndarray:
+def sheet_ids(table: VoxelTable | np.ndarray, voxels: np.ndarray, junction: np.ndarray, spacing: np.ndarray) -> np.ndarray:
     """Split the medial voxels into sheets that meet at junction voxels.
 
     Voxels farther than ``SHEET_SEPARATION`` voxels from every junction voxel
@@ -66,8 +73,8 @@ def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spaci
 
     Parameters
     ----------
-    table : VoxelTable
-        Row of each medial voxel.
+    table : VoxelTable or (n, 26) int32 ndarray
+        Row of each medial voxel, or the rows of their neighbours.
     voxels : (n, 3) int64 ndarray
     junction : (n,) bool ndarray
     spacing : (3,) float64 ndarray
@@ -80,13 +87,14 @@ def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spaci
     from scipy.spatial import cKDTree
 
     n = len(voxels)
+    neighbours = _neighbours(table, voxels)
     if not junction.any():
         free = np.ones(n, bool)
     else:
         near, _ = cKDTree(voxels[junction]).query(voxels, k=1, distance_upper_bound=SHEET_SEPARATION + 1e-9)
         free = ~np.isfinite(near) | (near > SHEET_SEPARATION)
     # components numbered by their smallest row (the order of scipy's connected_components)
-    comp = _kernels.neighbour_components(*table, voxels, free, _kernels.OFFSETS_26[:13])
+    comp = _kernels.neighbour_components(neighbours, free, 13)
     size = np.bincount(comp[free], minlength=n)
     core = free & (size[comp] >= MIN_SHEET_VOXELS)
     if not core.any():
@@ -94,14 +102,14 @@ def sheet_ids(table: VoxelTable, voxels: np.ndarray, junction: np.ndarray, spaci
     _, sheet = np.unique(comp[core], return_inverse=True)
     seeds = np.flatnonzero(core)
     grow = np.where(junction, -1, 0).astype(np.int64)
-    out = _kernels.sheet_labels(*table, voxels, seeds, sheet.astype(np.int64), grow, _kernels.OFFSETS_26, spacing)
+    out = _kernels.sheet_labels(neighbours, voxels, seeds, sheet.astype(np.int64), grow, _kernels.OFFSETS_26, spacing)
     out[junction] = -1
     # cut off from every sheet (rare specks): one sheet of their own, numbered past the others
     out[(out < 0) & ~junction] = int(sheet.max(initial=-1)) + 1
     return out
 
 
-def region_labels(table: VoxelTable, voxels: np.ndarray, picks: np.ndarray, junction: np.ndarray, sheet: np.ndarray,
+def region_labels(table: VoxelTable | np.ndarray, voxels: np.ndarray, picks: np.ndarray, junction: np.ndarray, sheet: np.ndarray,
             spacing: np.ndarray) -> np.ndarray:
     """Vertex (pick number) of every medial voxel: Voronoi regions kept inside sheets.
 
@@ -112,10 +120,11 @@ def region_labels(table: VoxelTable, voxels: np.ndarray, picks: np.ndarray, junc
     """
     from scipy.spatial import cKDTree
 
+    neighbours = _neighbours(table, voxels)
     on_line = np.where(junction, 0, -1).astype(np.int64)
     vertex = np.arange(len(picks), dtype=np.int64)
     at_junction = junction[picks]
-    jlabel = _kernels.sheet_labels(*table, voxels, picks[at_junction], vertex[at_junction], on_line,
+    jlabel = _kernels.sheet_labels(neighbours, voxels, picks[at_junction], vertex[at_junction], on_line,
                                    _kernels.OFFSETS_26, spacing)
     lost = junction & (jlabel < 0)
     if lost.any() and at_junction.any():  # junction voxels cut off from every junction pick
@@ -124,4 +133,4 @@ def region_labels(table: VoxelTable, voxels: np.ndarray, picks: np.ndarray, junc
     rows = np.flatnonzero(junction & (jlabel >= 0))
     seeds = np.concatenate([rows, picks[~at_junction]]).astype(np.int64)
     seed_label = np.concatenate([jlabel[rows], vertex[~at_junction]]).astype(np.int64)
-    return _kernels.sheet_labels(*table, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, spacing)
+    return _kernels.sheet_labels(neighbours, voxels, seeds, seed_label, sheet, _kernels.OFFSETS_26, spacing)

@@ -14,9 +14,10 @@ import itertools
 import numpy as np
 
 from medialaxis.core.arrays import unique_ints
+from medialaxis.volume._triangle_kernels import block_labels
 from medialaxis.volume.voxel_table import VoxelTable, table_lookup
 
-__all__ = ["region_triangles", "pair_keys", "has_keys"]
+__all__ = ["region_triangles", "pair_keys", "has_keys", "block_labels_reference"]
 
 
 def pair_keys(a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
@@ -53,7 +54,7 @@ def has_keys(keys: np.ndarray, query: np.ndarray) -> np.ndarray:
     return keys[pos] == query if len(keys) else np.zeros(len(query), bool)
 
 
-#: Medial voxels whose 2x2x2 blocks are labelled at a time (bounds the memory of a large sheet).
+#: Medial voxels whose 2x2x2 blocks the reference labels at a time (bounds the memory of a large sheet).
 BLOCK_BATCH = 250_000
 
 
@@ -64,10 +65,19 @@ def _block_labels(table: VoxelTable, voxels: np.ndarray, label: np.ndarray,
     With ``sheet`` (sheet of each voxel, -1 junction), a block gives one row
     per sheet in it, with the labels of that sheet's voxels and of the
     junction voxels; blocks of junction voxels only give none. Regions of
-    two sheets thus never form a triangle. The voxels are taken
-    ``BLOCK_BATCH`` at a time: a block may come once per batch (the
-    triangles are made unique afterwards).
+    two sheets thus never form a triangle. Compiled
+    (:func:`~medialaxis.volume._triangle_kernels.block_labels`); the same
+    rows as :func:`block_labels_reference`, in another order.
     """
+    use_sheet = sheet is not None
+    sheets = np.asarray(sheet if use_sheet else np.zeros(0), np.int64)
+    return block_labels(*table, np.ascontiguousarray(voxels, np.int64), np.asarray(label, np.int64), sheets, use_sheet)
+
+
+def block_labels_reference(table: VoxelTable, voxels: np.ndarray, label: np.ndarray,
+                           sheet: np.ndarray | None = None) -> np.ndarray:
+    """NumPy reference of :func:`_block_labels`: the voxels are taken ``BLOCK_BATCH`` at a time, and a block
+    may come once per batch."""
     out = [np.zeros((0, 8), np.int64)]
     for start in range(0, len(voxels), BLOCK_BATCH):
         labels = _batch_labels(table, voxels[start:start + BLOCK_BATCH], label, sheet)

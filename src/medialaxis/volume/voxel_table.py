@@ -20,7 +20,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["VoxelTable", "voxel_table", "table_find", "table_lookup"]
+__all__ = ["VoxelTable", "voxel_table", "table_find", "table_lookup", "neighbour_rows", "NEIGHBOURS_26"]
 
 
 class VoxelTable(NamedTuple):
@@ -99,3 +99,30 @@ def table_lookup(table: VoxelTable, points: np.ndarray) -> np.ndarray:
     """(k,) rows of the voxels at ``points`` ((k, 3) indices), -1 where there is none."""
     points = np.ascontiguousarray(points, np.int64).reshape(-1, 3)
     return _lookup(table.directory, table.bricks, table.shape, points)
+
+
+#: The 26 neighbour offsets in C order (the first 13 precede the voxel).
+NEIGHBOURS_26 = np.array([(a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c in (-1, 0, 1) if (a, b, c) != (0, 0, 0)],
+                         np.int64)
+
+
+@njit(cache=True, nogil=True)
+def _neighbour_rows(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray,
+                    offs: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
+    out = np.empty((voxels.shape[0], offs.shape[0]), np.int32)
+    for i in range(voxels.shape[0]):
+        z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
+        for t in range(offs.shape[0]):
+            out[i, t] = table_find(directory, bricks, shape, z + offs[t, 0], y + offs[t, 1], x + offs[t, 2])
+    return out
+
+
+def neighbour_rows(table: VoxelTable, voxels: np.ndarray) -> np.ndarray:
+    """(n, 26) int32 rows of the 26 neighbours (:data:`NEIGHBOURS_26`) of each of ``voxels``, -1 where there is none.
+
+    Looked up once, the table serves every pass over the sheet's
+    neighbourhoods (classes, sheets, regions): a lookup in the sparse
+    table costs more than reading a row of this array.
+    """
+    voxels = np.ascontiguousarray(voxels, np.int64).reshape(-1, 3)
+    return _neighbour_rows(table.directory, table.bricks, table.shape, voxels, NEIGHBOURS_26)
