@@ -83,3 +83,19 @@ def test_sheet_labels_match_reference(seed, nseeds):
     # a region never holds voxels of two sheets
     for lab in np.unique(fast[fast >= 2]):
         assert len(np.unique(sheet[fast == lab])) == 1
+
+
+@given(st.integers(0, 10_000), st.floats(0.2, 0.8), st.booleans())
+def test_block_labels_match_reference(seed, p, sheets):
+    from medialaxis.volume.triangles import _block_labels, block_labels_reference
+
+    occ = _random_sheet(seed, p=p)
+    vox = np.argwhere(occ)
+    table = voxel_table(vox, occ.shape)
+    rng = np.random.default_rng(seed)
+    label = rng.integers(-1, 12, len(vox))
+    sheet = rng.integers(-1, 3, len(vox)) if sheets else None
+    fast = _block_labels(table, vox, label, sheet)
+    ref = block_labels_reference(table, vox, label, sheet)
+    # the same rows (the compiled walk visits each block once, in another order)
+    assert len(fast) == len(ref) and np.array_equal(np.unique(fast, axis=0), np.unique(ref, axis=0))
