@@ -23,9 +23,32 @@ WIDE = (40, 160, 160)
 CHUNK = 48
 
 
+#: A smaller panel for the outputs (T and X junctions, free edges; windows hold most of its sheet).
+SMALL = (40, 96, 96)
+
+
 @pytest.fixture(scope="module")
 def wide():
     return ribbed_panel_slab(WIDE, 0, WIDE[0], thickness=4, margin=8, levels=(1000, 3000), dtype=np.uint16)
+
+
+@pytest.fixture(scope="module")
+def small():
+    """The small panel and its mid-surface by the whole route."""
+    grey = ribbed_panel_slab(SMALL, 0, SMALL[0], thickness=4, margin=8, levels=(1000, 3000), dtype=np.uint16)
+    return grey, mx.medial_axis(grey, method="midsurface", chunks=0)
+
+
+def _same_mesh(points, faces, radii, whole):
+    """The same vertices and radii (bit for bit, in any order) and the same triangles over them."""
+    order, ref = np.lexsort(points.T), np.lexsort(whole.points.T)
+    assert np.array_equal(points[order], whole.points[ref]) and np.array_equal(radii[order], whole.radii[ref])
+    rank, ref_rank = np.empty(len(order), np.int64), np.empty(len(ref), np.int64)
+    rank[order], ref_rank[ref] = np.arange(len(order)), np.arange(len(ref))
+    got = np.unique(np.sort(rank[faces], axis=1), axis=0)
+    assert len(got) == len(faces) == len(whole.faces)
+    assert np.array_equal(got, np.unique(np.sort(ref_rank[whole.faces], axis=1), axis=0))
+    return order, ref
 
 
 def test_blocks_mesh_windows_and_the_stitched_mesh_is_the_whole_one(wide):
@@ -42,29 +65,37 @@ def test_blocks_mesh_windows_and_the_stitched_mesh_is_the_whole_one(wide):
     assert np.percentile(distance_to_rects(blocks.points, truth), 99) <= 1.0
 
 
-def test_the_mesh_streams_to_a_ply_file(tmp_path):
+def test_the_mesh_streams_to_a_ply_file(tmp_path, small):
     trimesh = pytest.importorskip("trimesh")
-    small = ribbed_panel_slab((40, 96, 96), 0, 40, thickness=4, margin=8, levels=(1000, 3000), dtype=np.uint16)
-    whole = mx.medial_axis(small, method="midsurface", chunks=0)
+    grey, whole = small
     out = tmp_path / "mid.ply"
-    np.save(tmp_path / "scan.npy", small)
+    np.save(tmp_path / "scan.npy", grey)
     written = mx.medial_axis(tmp_path / "scan.npy", method="midsurface", chunks=CHUNK, n_jobs=2, out=out)
     assert written.metadata["written"] == str(out) and len(written.points) == 0
     assert (written.metadata["vertices"], written.metadata["faces"]) == (len(whole.points), len(whole.faces))
-    got = trimesh.load(out, process=False)
-    # the same vertices (bit for bit) and the same triangles over them, in the blocks' order
-    order = np.lexsort(np.asarray(got.vertices).T)
-    ref = np.lexsort(whole.points.T)
-    assert np.array_equal(np.asarray(got.vertices)[order], whole.points[ref])
-    rank = np.empty(len(order), np.int64)
-    rank[order] = np.arange(len(order))
-    ref_rank = np.empty(len(ref), np.int64)
-    ref_rank[ref] = np.arange(len(ref))
-    faces = np.sort(rank[np.asarray(got.faces)], axis=1)
-    expected = np.sort(ref_rank[whole.faces], axis=1)
-    assert np.array_equal(np.unique(faces, axis=0), np.unique(expected, axis=0)) and len(faces) == len(expected)
-    radius = got.metadata["_ply_raw"]["vertex"]["data"]["radius"]
-    assert np.array_equal(np.asarray(radius)[order], whole.radii[ref])
+    got = trimesh.load(out, process=False)  # read back by trimesh
+    radius = np.asarray(got.metadata["_ply_raw"]["vertex"]["data"]["radius"])
+    _same_mesh(np.asarray(got.vertices), np.asarray(got.faces), radius, whole)
+
+
+def test_the_mesh_streams_to_a_zarr_group(tmp_path, small):
+    zarr = pytest.importorskip("zarr")
+    grey, whole = small
+    out = tmp_path / "mid.zarr"
+    written = mx.medial_axis(grey, method="midsurface", chunks=CHUNK, n_jobs=2, out=out)
+    assert written.metadata["written"] == str(out) and len(written.points) == 0
+    assert not (tmp_path / "mid.zarr.part").exists()
+    group = zarr.open_group(str(out), mode="r")  # read back by zarr itself
+    points, faces = np.asarray(group["vertices"]), np.asarray(group["faces"])
+    assert (len(points), len(faces)) == (written.metadata["vertices"], written.metadata["faces"])
+    order, ref = _same_mesh(points, faces, np.asarray(group["radii"]), whole)
+    assert np.array_equal(np.asarray(group["vertex_kind"])[order], whole.vertex_kind[ref])
+    # written again over the old group: the in-memory route writes the same arrays in its own order
+    mx.medial_axis(grey, method="midsurface", chunks=0, out=out)
+    group = zarr.open_group(str(out), mode="r")
+    for key, value in (("vertices", whole.points), ("faces", whole.faces), ("radii", whole.radii),
+                       ("vertex_kind", whole.vertex_kind)):
+        assert np.array_equal(np.asarray(group[key]), value), key
 
 
 def test_out_refuses_other_formats(tmp_path, wide):

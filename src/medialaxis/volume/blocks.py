@@ -101,8 +101,9 @@ def _read(source: Any, block: Block, halo: np.ndarray, iso: float) -> tuple[np.n
     shape = np.array(source.shape)
     lo = np.maximum(np.array(block.lo) - halo, 0)
     hi = np.minimum(np.array(block.hi) + halo, shape)
-    grey = np.asarray(source.read(tuple(slice(int(a), int(b)) for a, b in zip(lo, hi))), dtype=np.float32)
-    if not np.all(np.isfinite(grey)):
+    raw = source.read(tuple(slice(int(a), int(b)) for a, b in zip(lo, hi)))
+    grey = np.asarray(raw, dtype=np.float32)
+    if np.dtype(raw.dtype).kind not in "biu" and not np.all(np.isfinite(grey)):  # integers are finite
         raise InvalidInputError(
             f"the volume contains NaN or infinite values (in voxels {tuple(lo)} to {tuple(hi - 1)} of {source.name})"
         )
@@ -110,8 +111,9 @@ def _read(source: Any, block: Block, halo: np.ndarray, iso: float) -> tuple[np.n
     # pad with background where the box touches the volume's border (the
     # in-memory route pads its crop the same way), not where it cuts the volume
     pad = [(int(a == 0), int(b == s)) for a, b, s in zip(lo, hi, shape)]
-    mask = np.pad(mask, pad, constant_values=False)
-    grey = np.pad(grey, pad, constant_values=np.nan)
+    if any(a or b for a, b in pad):  # a block inside the volume is not copied
+        mask = np.pad(mask, pad, constant_values=False)
+        grey = np.pad(grey, pad, constant_values=np.nan)
     origin = lo - np.array([p[0] for p in pad])
     # crop to the foreground plus one voxel (every crossing edge is inside)
     if mask.any():

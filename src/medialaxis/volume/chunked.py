@@ -58,7 +58,7 @@ from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness, nomi
 from medialaxis.volume.polygonize import JUNCTION_SPACING, pick_seed
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
 from medialaxis.volume.stages import check_range, dropped_report, mesh_result, stage_metadata
-from medialaxis.volume.stitch import STREAMED_SUFFIXES, join_pieces, stream_ply
+from medialaxis.volume.stitch import check_streamed, join_pieces, stream_mesh
 from medialaxis.volume.tiles import MeshPlan, SheetPart, load_sheet, mesh_block, mesh_plan_halo, store_sheet
 
 __all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "check_out", "chunked_medial_voxels", "chunked_midsurface",
@@ -283,9 +283,9 @@ def shell_of_source(source: Source, iso: float, spacing: np.ndarray, cells: int 
 
 
 def check_out(out: Any) -> None:
-    """``out`` is None or a ``.ply`` path (the format the mesh streams to)."""
-    if out is not None and Path(out).suffix.lower() not in STREAMED_SUFFIXES:
-        raise InvalidInputError(f"out= writes the mesh to a {' or '.join(STREAMED_SUFFIXES)} file, got {str(out)!r}")
+    """``out`` is None or a ``.ply`` or ``.zarr`` path (the formats the mesh streams to)."""
+    if out is not None:
+        check_streamed(out)
 
 
 def _sheet_folder(spill: Any) -> str:
@@ -317,7 +317,7 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
     Each block meshes a window of the sheet on the workers
     (:func:`~medialaxis.volume.tiles.mesh_block`); the pieces are joined by
     their vertex names (:mod:`~medialaxis.volume.stitch`), or with ``out``
-    (a ``.ply`` path) streamed to that file block by block, and the result
+    (a ``.ply`` path or a ``.zarr`` group) streamed there block by block, and the result
     then holds no mesh (``metadata["written"]``, ``["vertices"]``, ``["faces"]``).
     """
     density = check_number(density, "density", positive=True)
@@ -341,7 +341,7 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
                          "blocks": _block_figures(state, counts, folder, medial_seconds, time.perf_counter() - started)})
         shell = shell_of_source(source, state["iso"], state["spacing"])
         if out is not None:
-            vertices, faces = stream_ply(folder, counts, state["chunks"], out)
+            vertices, faces = stream_mesh(folder, counts, state["chunks"], out)
             metadata.update({"written": str(out), "vertices": vertices, "faces": faces})
             return MedialAxis(np.zeros((0, 3)), np.zeros(0), metadata=metadata, shape=shell)
         points, radii, kind, faces = join_pieces(folder, [c["index"] for c in counts if c["vertices"] or c["faces"]])

@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -44,6 +45,7 @@ from medialaxis.volume.stages import (
     polygonize_stage,
     stage_metadata,
 )
+from medialaxis.volume.stitch import write_zarr_mesh
 
 __all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
 
@@ -280,10 +282,12 @@ def midsurface_medial_axis(
     show_progress : bool, optional
         Progress bar on stderr (default: when stderr is a terminal).
     out : str or path, optional
-        A ``.ply`` file for the mesh. The chunked route streams it there
-        block by block (the mesh is never whole in one process) and returns
-        a result without the mesh: ``metadata["written"]``, ``["vertices"]``
-        and ``["faces"]``; in memory the result is written and returned.
+        A ``.ply`` file or a ``.zarr`` group (arrays ``vertices``, ``faces``,
+        ``radii``, ``vertex_kind``) for the mesh. The chunked route streams it
+        there block by block (the mesh is never whole in one process) and
+        returns a result without the mesh: ``metadata["written"]``,
+        ``["vertices"]`` and ``["faces"]``; in memory the result is written
+        and returned.
     spill : str or path, optional
         Folder for the blocks' medial voxels and mesh pieces of the chunked
         route (default: the temporary folder; on a cluster of several
@@ -340,7 +344,10 @@ def midsurface_medial_axis(
         show_progress=show_progress,
     ).result
     if out is not None:
-        result.save(out)
+        if Path(out).suffix.lower() == ".zarr":
+            write_zarr_mesh(out, result.points, result.radii, result.vertex_kind, result.faces)
+        else:
+            result.save(out)
     return result
 
 

@@ -1,17 +1,18 @@
-"""The blocks' mesh pieces joined by their vertex names: in memory, or streamed to a PLY file.
+"""The blocks' mesh pieces joined by their vertex names: in memory, or streamed to a PLY file or a Zarr group.
 
 Each piece (:func:`~medialaxis.volume.tiles.mesh_block`) lists the vertices
 its block owns, named by their voxel's volume index and sorted by name, and
 the faces it owns as triples of names. A vertex has one owner, so joining is
 a lookup: :func:`join_pieces` gathers them in the whole route's order (the
-pick order of :mod:`~medialaxis.volume.polygonize`), :func:`stream_ply`
-writes them block by block, each face's names found in the pieces of the
+pick order of :mod:`~medialaxis.volume.polygonize`), :func:`stream_mesh`
+writes them block by block (to PLY, or to a Zarr group of arrays), each face's names found in the pieces of the
 blocks that own them (never more than a few pieces in memory).
 """
 
 from __future__ import annotations
 
 import os
+import shutil
 from collections import OrderedDict
 from pathlib import Path
 from typing import Any
@@ -21,10 +22,10 @@ import numpy as np
 from medialaxis.errors import InvalidInputError
 from medialaxis.volume.tiles import name_voxels
 
-__all__ = ["join_pieces", "stream_ply", "STREAMED_SUFFIXES"]
+__all__ = ["join_pieces", "stream_mesh", "write_zarr_mesh", "check_streamed", "STREAMED_SUFFIXES"]
 
-#: Output files the mesh can be streamed to.
-STREAMED_SUFFIXES = (".ply",)
+#: Outputs the mesh can be streamed to: a binary PLY file, a Zarr group (a folder).
+STREAMED_SUFFIXES = (".ply", ".zarr")
 
 
 def _piece_path(folder: str, index: tuple[int, ...]) -> Path:
@@ -81,42 +82,126 @@ class _Names:
         return out.reshape(names.shape)
 
 
-def stream_ply(folder: str, counts: list[dict[str, Any]], chunks: tuple[int, int, int], out: str | os.PathLike) -> tuple[int, int]:
-    """Write the pieces to a binary PLY file (the fields of :func:`~medialaxis.core.mesh_files.write_ply`)
-    block by block, atomically; returns the numbers of vertices and faces."""
-    out = Path(out)
-    if out.suffix.lower() not in STREAMED_SUFFIXES:
-        raise InvalidInputError(f"out= streams the mesh to {', '.join(STREAMED_SUFFIXES)} files, got {str(out)!r}")
+def _layout(counts: list[dict[str, Any]]) -> tuple[list[dict[str, Any]], dict[tuple[int, int, int], int], int, int]:
+    """The pieces with a vertex or a face, the first vertex number of each, and the numbers of vertices and faces."""
     pieces = [c for c in counts if c["vertices"] or c["faces"]]
     offsets: dict[tuple[int, int, int], int] = {}
     total = 0
     for c in pieces:
         offsets[tuple(c["index"])] = total  # type: ignore[index]
         total += c["vertices"]
-    n_faces = sum(c["faces"] for c in pieces)
+    return pieces, offsets, total, sum(c["faces"] for c in pieces)
+
+
+def _part(out: Path) -> Path:
+    return out.with_name(out.name + ".part")
+
+
+def _ply(folder: str, pieces: list[dict[str, Any]], lookup: _Names, tmp: Path, total: int, n_faces: int) -> None:
+    names = ("x", "y", "z", "radius", "thickness", "vertex_kind")
     header = ["ply", "format binary_little_endian 1.0", "comment medialaxis result (streamed by blocks)",
-              f"element vertex {total}", *(f"property double {n}" for n in ("x", "y", "z", "radius", "thickness",
-                                                                            "vertex_kind")),
+              f"element vertex {total}", *(f"property double {n}" for n in names),
               f"element face {n_faces}", "property list uchar int vertex_indices", "end_header"]
-    lookup = _Names(folder, chunks, offsets)
-    tmp = out.with_name(out.name + ".part")
+    with open(tmp, "wb") as fh:
+        fh.write(("\n".join(header) + "\n").encode("ascii"))
+        for c in pieces:
+            p = _load(folder, c["index"])
+            vert = np.empty(len(p["names"]), [(n, "<f8") for n in names])
+            for j, axis in enumerate("xyz"):
+                vert[axis] = p["points"][:, j]
+            vert["radius"], vert["thickness"], vert["vertex_kind"] = p["radii"], 2.0 * p["radii"], p["kind"]
+            fh.write(vert.tobytes())
+        for c in pieces:
+            faces = _load(folder, c["index"])["faces"]
+            rows = np.empty(len(faces), [("k", "u1"), ("v", "<i4", (3,))])
+            rows["k"], rows["v"] = 3, lookup.numbers(faces)
+            fh.write(rows.tobytes())
+
+
+#: Rows per chunk of the arrays of a Zarr mesh.
+ZARR_ROWS = 1 << 18
+
+
+def _zarr_group(path: Path, total: int, n_faces: int) -> dict[str, Any]:
+    """An empty Zarr group at ``path`` with the mesh's arrays (``vertices``, ``faces``, ``radii``, ``vertex_kind``)."""
+    from medialaxis._optional import require
+
+    zarr = require("zarr", "medialaxis[dask]")
+    group = zarr.open_group(str(path), mode="w")
+    group.attrs.update({"medialaxis": "mid-surface mesh", "n_vertices": int(total), "n_faces": int(n_faces),
+                        "radii": "half the local thickness", "vertex_kind": "0 surface, 1 free edge, 2 junction, 3 extension"})
+    rows = max(1, min(ZARR_ROWS, max(total, n_faces)))
+    return {"vertices": group.create_array("vertices", shape=(total, 3), dtype="<f8", chunks=(rows, 3)),
+            "faces": group.create_array("faces", shape=(n_faces, 3), dtype="<i8", chunks=(rows, 3)),
+            "radii": group.create_array("radii", shape=(total,), dtype="<f8", chunks=(rows,)),
+            "vertex_kind": group.create_array("vertex_kind", shape=(total,), dtype="i1", chunks=(rows,))}
+
+
+def _zarr(folder: str, pieces: list[dict[str, Any]], lookup: _Names, tmp: Path, total: int, n_faces: int) -> None:
+    arrays = _zarr_group(tmp, total, n_faces)
+    start = first_face = 0
+    for c in pieces:
+        p = _load(folder, c["index"])
+        stop = start + len(p["names"])
+        arrays["vertices"][start:stop] = p["points"]
+        arrays["radii"][start:stop] = p["radii"]
+        arrays["vertex_kind"][start:stop] = p["kind"]
+        start = stop
+        faces = lookup.numbers(p["faces"])
+        arrays["faces"][first_face:first_face + len(faces)] = faces
+        first_face += len(faces)
+
+
+def write_zarr_mesh(out: str | os.PathLike, points: np.ndarray, radii: np.ndarray, kind: np.ndarray,
+                    faces: np.ndarray) -> None:
+    """A mesh in memory written as the Zarr group :func:`stream_mesh` streams (atomically)."""
+    out = Path(out)
+    tmp = _part(out)
     try:
-        with open(tmp, "wb") as fh:
-            fh.write(("\n".join(header) + "\n").encode("ascii"))
-            for c in pieces:
-                p = _load(folder, c["index"])
-                vert = np.empty(len(p["names"]), [(n, "<f8") for n in ("x", "y", "z", "radius", "thickness", "vertex_kind")])
-                for j, axis in enumerate("xyz"):
-                    vert[axis] = p["points"][:, j]
-                vert["radius"], vert["thickness"], vert["vertex_kind"] = p["radii"], 2.0 * p["radii"], p["kind"]
-                fh.write(vert.tobytes())
-            for c in pieces:
-                faces = _load(folder, c["index"])["faces"]
-                rows = np.empty(len(faces), [("k", "u1"), ("v", "<i4", (3,))])
-                rows["k"], rows["v"] = 3, lookup.numbers(faces)
-                fh.write(rows.tobytes())
-        os.replace(tmp, out)
+        arrays = _zarr_group(tmp, len(points), len(faces))
+        arrays["vertices"][:], arrays["radii"][:], arrays["vertex_kind"][:] = points, radii, kind
+        arrays["faces"][:] = faces
+        _replace(tmp, out)
     finally:
-        if tmp.exists():
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _replace(tmp: Path, out: Path) -> None:
+    """``tmp`` (a file or a Zarr folder) moved to ``out``, an older output there removed."""
+    if out.is_dir() and tmp.is_dir():
+        old = out.with_name(out.name + ".old")
+        shutil.rmtree(old, ignore_errors=True)
+        os.replace(out, old)
+        os.replace(tmp, out)
+        shutil.rmtree(old, ignore_errors=True)
+    else:
+        os.replace(tmp, out)
+
+
+def check_streamed(out: Any) -> Path:
+    """``out`` as a path with a suffix the mesh streams to (:data:`STREAMED_SUFFIXES`)."""
+    path = Path(out)
+    if path.suffix.lower() not in STREAMED_SUFFIXES:
+        raise InvalidInputError(f"out= writes the mesh to a {' or '.join(STREAMED_SUFFIXES)} file, got {str(out)!r}")
+    return path
+
+
+def stream_mesh(folder: str, counts: list[dict[str, Any]], chunks: tuple[int, int, int], out: str | os.PathLike) -> tuple[int, int]:
+    """Write the pieces block by block, atomically, to a binary PLY file (the fields of
+    :func:`~medialaxis.core.mesh_files.write_ply`) or a Zarr group (``vertices (n, 3)``,
+    ``faces (k, 3)`` int64, ``radii (n,)``, ``vertex_kind (n,)`` int8); returns the numbers of
+    vertices and faces. Vertices come block by block, each block's sorted by name."""
+    out = check_streamed(out)
+    pieces, offsets, total, n_faces = _layout(counts)
+    lookup = _Names(folder, chunks, offsets)
+    tmp = _part(out)
+    write = _zarr if out.suffix.lower() == ".zarr" else _ply
+    try:
+        write(folder, pieces, lookup, tmp, total, n_faces)
+        _replace(tmp, out)
+    finally:
+        if tmp.is_dir():
+            shutil.rmtree(tmp, ignore_errors=True)
+        elif tmp.exists():
             tmp.unlink()
     return total, n_faces
