@@ -136,13 +136,18 @@ def _writers():
         nib.save(nib.Nifti1Image(a, np.eye(4)), str(path / "scan.nii"))
         return path / "scan.nii", {}
 
+    def nifti_gzip(path, a):
+        nib = pytest.importorskip("nibabel")
+        nib.save(nib.Nifti1Image(a, np.eye(4)), str(path / "scan.nii.gz"))
+        return path / "scan.nii.gz", {}
+
     def zarr_store(path, a):
         zarr = pytest.importorskip("zarr")
         z = zarr.open_array(str(path / "scan.zarr"), mode="w", shape=a.shape, dtype=a.dtype, chunks=(16, 32, 32))
         z[:] = a
         return path / "scan.zarr", {}
 
-    return [npy, raw, tiff_stack, tiff_folder, nrrd_raw, nrrd_gzip, nifti, zarr_store]
+    return [npy, raw, tiff_stack, tiff_folder, nrrd_raw, nrrd_gzip, nifti, nifti_gzip, zarr_store]
 
 
 @pytest.mark.parametrize("write", _writers(), ids=lambda f: f.__name__)
@@ -151,10 +156,15 @@ def test_files_written_by_other_programs_are_read_by_blocks(tmp_path, small16, s
     from pathlib import Path
 
     path, options = write(tmp_path, small16)
-    before = set(Path(tempfile.gettempdir()).glob("medialaxis-nrrd-*"))
-    _same_voxels(small_reference, mx.medial_axis(path, method="voxels", chunks=24, n_jobs=2, **options))
+    before = set(Path(tempfile.gettempdir()).glob("medialaxis-inflated-*"))
+    blocks = mx.medial_axis(path, method="voxels", chunks=24, n_jobs=2, **options)
+    _same_voxels(small_reference, blocks)
+    # a compressed file is decompressed once, to a temporary file, not once per block
+    compressed = write.__name__.endswith("gzip")
+    assert (blocks.metadata["decompressed"] is not None) == compressed
+    assert not compressed or blocks.metadata["decompressed"] >= small16.nbytes
     _same_voxels(small_reference, mx.medial_axis(path, method="voxels", **options))  # small: read whole
-    assert set(Path(tempfile.gettempdir()).glob("medialaxis-nrrd-*")) == before  # the decompressed copy is gone
+    assert set(Path(tempfile.gettempdir()).glob("medialaxis-inflated-*")) == before  # the decompressed copy is gone
 
 
 def test_a_dask_array_takes_the_chunked_route(small16, small_reference):

@@ -261,6 +261,11 @@ def _check_foreground(count: int, source: Source, iso: float) -> None:
         raise EmptyShapeError(f"every voxel is above iso={iso:g}: the volume is full, the part has no surface")
 
 
+def _decompressed(source: Source) -> int | None:
+    """Bytes of the temporary file a compressed scan (NRRD, ``.nii.gz``) was decompressed to once, or None."""
+    return getattr(source, "decompressed", None)
+
+
 def _cleanup(source: Source) -> None:
     folder = getattr(source, "cleanup", None)
     if folder:
@@ -337,7 +342,7 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
                                   state["spacing"], source.shape, threshold_method=state["threshold_method"])
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
                          "chunks": list(state["chunks"]), "halo": state["halo"].tolist(),
-                         "mesh_halo": max(c["halo"] for c in counts),
+                         "mesh_halo": max(c["halo"] for c in counts), "decompressed": _decompressed(source),
                          "blocks": _block_figures(state, counts, folder, medial_seconds, time.perf_counter() - started)})
         shell = shell_of_source(source, state["iso"], state["spacing"])
         if out is not None:
@@ -380,7 +385,7 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], spill: Any = No
         kind = classify_voxels(voxel_table(medial.voxels, grid.shape), medial.voxels)
         metadata = stage_metadata("voxels", state["iso"], plates, state["lam"], dropped, state["spacing"], source.shape,
                                   threshold_method=state["threshold_method"])
-        metadata.update({"chunks": list(state["chunks"]), "halo": state["halo"].tolist()})
+        metadata.update({"chunks": list(state["chunks"]), "halo": state["halo"].tolist(), "decompressed": _decompressed(source)})
         return MedialAxis(
             grid.physical(medial.voxels), medial.radius,
             extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},

@@ -2,8 +2,8 @@
 
 A file that is shorter than its header says (a truncated download or copy)
 is refused when it is opened, before any work. Compressed NRRD (gzip,
-bzip2) cannot be read at random: it is decompressed once, slab by slab, into
-a temporary raw file (``source.cleanup`` names its folder).
+bzip2) and NIfTI (``.nii.gz``) cannot be read at random: they are decompressed
+once, slab by slab, into a temporary file (``source.cleanup`` names its folder).
 """
 
 from __future__ import annotations
@@ -169,22 +169,18 @@ def nrrd_source(path: Path, spill: bool = True) -> Source:
     raise InputFileError(f"{name} uses the {encoding!r} encoding; the chunked reader takes raw, gzip and bzip2")
 
 
-def _spill(path: Path, offset: int, encoding: str, shape: Any, dtype: np.dtype, name: str, spacing: Any) -> Source:
-    """Decompress a compressed data section once, in slabs, into a temporary raw file."""
-    shape, dtype = check_volume(shape, dtype, name)
-    folder = tempfile.mkdtemp(prefix="medialaxis-nrrd-")
-    target = Path(folder) / "volume.raw"
-    expected = int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
-    opener = gzip.open if encoding in ("gzip", "gz") else bz2.open
+def _inflate(path: Any, offset: int, opener: Any, expected: int, name: str, suffix: str) -> tuple[str, Path, int]:
+    """The compressed stream at ``offset`` bytes into ``path`` (``opener``: ``gzip.open`` or ``bz2.open``)
+    decompressed once in slabs into a new temporary folder: ``(folder, file, bytes)``; at least
+    ``expected`` bytes, or :class:`InputFileError` (the folder removed)."""
+    folder = tempfile.mkdtemp(prefix="medialaxis-inflated-")
+    target = Path(folder) / f"volume{suffix}"
     written = 0
     try:
         with open(path, "rb") as raw:
             raw.seek(offset)
             with opener(raw, "rb") as stream, open(target, "wb") as out:
-                while written < expected:
-                    block = stream.read(min(64 << 20, expected - written))
-                    if not block:
-                        break
+                while block := stream.read(64 << 20):
                     out.write(block)
                     written += len(block)
     except (OSError, EOFError, ValueError) as exc:
@@ -192,9 +188,18 @@ def _spill(path: Path, offset: int, encoding: str, shape: Any, dtype: np.dtype, 
         raise InputFileError(f"cannot decompress {name}: {exc} (truncated or corrupt)") from exc
     if written < expected:
         shutil.rmtree(folder, ignore_errors=True)
-        raise InputFileError(f"{name} holds {written} bytes of voxels, expected {expected} for shape {shape} (truncated)")
+        raise InputFileError(f"{name} holds {written} bytes, expected {expected} (truncated)")
+    return folder, target, written
+
+
+def _spill(path: Path, offset: int, encoding: str, shape: Any, dtype: np.dtype, name: str, spacing: Any) -> Source:
+    """Decompress a compressed data section once, in slabs, into a temporary raw file."""
+    shape, dtype = check_volume(shape, dtype, name)
+    expected = int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
+    opener = gzip.open if encoding in ("gzip", "gz") else bz2.open
+    folder, target, written = _inflate(path, offset, opener, expected, name, ".raw")
     source = MappedSource(target, shape, dtype, 0, name, spacing)
-    source.cleanup = folder  # type: ignore[attr-defined]
+    source.cleanup, source.decompressed = folder, written  # type: ignore[attr-defined]
     return source
 
 
@@ -268,9 +273,16 @@ def _declared_pages(tf: Any) -> int:
 
 
 class NiftiSource(Source):
-    """A NIfTI file read through nibabel's array proxy (scaled by the header's slope and intercept)."""
+    """A NIfTI file read through nibabel's array proxy (scaled by the header's slope and intercept).
 
-    def __init__(self, path: Path) -> None:
+    A gzip-compressed file (``.nii.gz``) cannot be read at random (each
+    block would decompress the stream from its start): with ``spill`` it is
+    decompressed once into a temporary ``.nii`` file (``source.cleanup``
+    names its folder, ``source.decompressed`` its size in bytes), which the
+    proxy then reads block by block.
+    """
+
+    def __init__(self, path: Path, spill: bool = False) -> None:
         nib = require("nibabel", "nibabel")
         self.path, self.name = str(path), f"NIfTI {str(path)!r}"
         try:
@@ -288,10 +300,16 @@ class NiftiSource(Source):
             dtype = np.dtype(np.float64)
         self.shape, self.dtype = check_volume(shape, dtype, self.name)
         self.spacing = zooms if len(zooms) == 3 else None
-        if not self.path.endswith(".gz"):
-            expected = offset + int(np.prod(self.shape, dtype=np.int64)) * img.get_data_dtype().itemsize
-            if os.path.getsize(self.path) < expected:
-                raise InputFileError(f"{self.name} is shorter than its header says ({expected} bytes): truncated")
+        expected = offset + int(np.prod(self.shape, dtype=np.int64)) * img.get_data_dtype().itemsize
+        if self.path.endswith(".gz") and spill:
+            self.path = self._decompress(expected)
+        if not self.path.endswith(".gz") and os.path.getsize(self.path) < expected:
+            raise InputFileError(f"{self.name} is shorter than its header says ({expected} bytes): truncated")
+
+    def _decompress(self, expected: int) -> str:
+        """The file decompressed once into a temporary ``.nii`` (its path); ``expected`` bytes at least."""
+        self.cleanup, target, self.decompressed = _inflate(self.path, 0, gzip.open, expected, self.name, ".nii")
+        return str(target)
 
     def read(self, region: Region) -> np.ndarray:
         nib = require("nibabel", "nibabel")

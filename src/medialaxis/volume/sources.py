@@ -113,7 +113,7 @@ def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None, he
         if name.endswith((".nrrd", ".nhdr")):
             return nrrd_source(path, spill=not header_only)
         if name.endswith((".nii", ".nii.gz")):
-            return NiftiSource(path)
+            return NiftiSource(path, spill=not header_only)
         if name.endswith((".tif", ".tiff")):
             return TiffSource(path)
         raise UnsupportedFormatError(f"no block reader for {str(path)!r}: use .npy, .raw, .nrrd, .nii, TIFF or Zarr")
