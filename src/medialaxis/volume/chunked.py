@@ -59,7 +59,15 @@ from medialaxis.volume.polygonize import JUNCTION_SPACING, pick_seed
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
 from medialaxis.volume.stages import check_range, dropped_report, mesh_result, stage_metadata
 from medialaxis.volume.stitch import check_streamed, join_pieces, stream_mesh
-from medialaxis.volume.tiles import MeshPlan, SheetPart, load_sheet, mesh_block, mesh_plan_halo, store_sheet
+from medialaxis.volume.tiles import (
+    MeshPlan,
+    SheetPart,
+    forget_window,
+    load_sheet,
+    mesh_block,
+    mesh_plan_halo,
+    store_sheet,
+)
 
 __all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "check_out", "chunked_medial_voxels", "chunked_midsurface",
            "chunked_voxels", "use_chunks"]
@@ -352,6 +360,7 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
         points, radii, kind, faces = join_pieces(folder, [c["index"] for c in counts if c["vertices"] or c["faces"]])
         return mesh_result(points, radii, kind, faces, metadata, shell)
     finally:
+        forget_window()
         if source is not None:
             _cleanup(source)
         shutil.rmtree(folder, ignore_errors=True)

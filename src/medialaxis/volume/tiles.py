@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -39,7 +40,7 @@ from medialaxis.volume.plates import PlateThickness
 from medialaxis.volume.polygonize import polygonize
 from medialaxis.volume.stages import dents_stage, extension_stage
 
-__all__ = ["SheetPart", "MeshPlan", "store_sheet", "load_sheet", "mesh_block", "vertex_names", "name_voxels",
+__all__ = ["SheetPart", "MeshPlan", "store_sheet", "load_sheet", "mesh_block", "forget_window", "vertex_names", "name_voxels",
            "PIECE_FIELDS"]
 
 #: Bits per axis of a vertex name (volumes up to 2^20 voxels along an axis).
@@ -172,6 +173,19 @@ def _neighbours(plan: MeshPlan, lo: np.ndarray, hi: np.ndarray) -> list[tuple[in
             for c in range(first[2], last[2] + 1)]
 
 
+#: The last window meshed in this process (dented and extended) when it was the whole sheet's crop, for
+#: the next block whose window is the same: where the windows reach the crop on every side (small
+#: volumes, small chunks) every block would mesh the whole sheet again. :func:`forget_window` empties it.
+_LAST_WINDOW: dict[str, Any] = {}
+_WINDOW_LOCK = threading.Lock()
+
+
+def forget_window() -> None:
+    """Drop the window kept for the next block (the end of a run)."""
+    with _WINDOW_LOCK:
+        _LAST_WINDOW.clear()
+
+
 def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source: Any) -> dict[str, Any]:
     """Mesh one block's window and write the piece its core owns; returns its counts."""
     started = time.perf_counter()
@@ -181,11 +195,19 @@ def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source:
     while True:
         wlo = np.maximum(lo - halo, plan.crop)
         whi = np.minimum(hi + halo, plan.crop_hi)
-        medial = load_sheet(plan.folder, _neighbours(plan, wlo, whi), wlo, whi)
+        key = (plan.folder, tuple(wlo.tolist()), tuple(whi.tolist()))
+        with _WINDOW_LOCK:
+            last = _LAST_WINDOW.get("key") == key and _LAST_WINDOW["value"]
+        if last:
+            medial, mesh, state = last
+        else:
+            medial = load_sheet(plan.folder, _neighbours(plan, wlo, whi), wlo, whi)
+            mesh = state = None
         core = np.all((medial.voxels >= lo) & (medial.voxels < hi), axis=1)
         if not core.any():
             return {"index": index, "vertices": 0, "faces": 0, "halo": halo, "voxels": len(medial.voxels)}
-        mesh, state = _window_mesh(medial, wlo, whi, plan)
+        if mesh is None:
+            mesh, state = _window_mesh(medial, wlo, whi, plan)
         near = np.all((medial.voxels >= lo - plan.exact) & (medial.voxels < hi + plan.exact), axis=1)
         if mesh.certain[near].all():
             break
@@ -193,12 +215,16 @@ def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source:
             raise InvalidInputError(f"the block at {block.lo} cannot mesh its sheet from a window of {halo} voxels "
                                     f"around it; use larger chunks")
         halo *= 2
-    dents_stage(state, plan.remove_dents)
-    if plan.extend:
-        sampler = BlockSampler(source, plan.chunks, plan.minimum)
-        extension_stage(state, sampler, plan.iso, plan.spacing, plan.density)
-    else:
-        state["extended_from"] = np.zeros(0, np.int64)
+    if not last:
+        dents_stage(state, plan.remove_dents)
+        if plan.extend:
+            sampler = BlockSampler(source, plan.chunks, plan.minimum)
+            extension_stage(state, sampler, plan.iso, plan.spacing, plan.density)
+        else:
+            state["extended_from"] = np.zeros(0, np.int64)
+        if np.array_equal(wlo, plan.crop) and np.array_equal(whi, plan.crop_hi):  # the whole sheet: kept
+            with _WINDOW_LOCK:
+                _LAST_WINDOW.update(key=key, value=(medial, mesh, state))
     piece = _owned_piece(state, mesh, state["medial"].voxels, lo, hi)
     path = Path(plan.folder) / ("mesh_{}_{}_{}.npz".format(*index))
     np.savez(path, **piece)
