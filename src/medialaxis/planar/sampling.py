@@ -102,15 +102,11 @@ def _rings_of(geom: Any) -> list[np.ndarray]:
 
 def _ring_arrays(geom: Any) -> tuple[np.ndarray, np.ndarray] | None:
     """All rings' vertices (not closed) one after another, and where each starts; None for no polygon."""
-    rings = shapely.get_rings(shapely.get_parts(geom))
-    if not len(rings) or shapely.get_type_id(geom) not in (3, 6):
+    rings = [shapely.get_coordinates(r)[:-1] for r in shapely.get_rings(shapely.get_parts(geom))]
+    if not rings or shapely.get_type_id(geom) not in (3, 6):
         return None
-    size = shapely.get_num_coordinates(rings)  # each ring closed: its first vertex repeated last
-    closed = np.concatenate([[0], np.cumsum(size)])
-    keep = np.ones(closed[-1], bool)
-    keep[closed[1:] - 1] = False
-    start = np.concatenate([[0], np.cumsum(size - 1)]).astype(np.int64)
-    return np.ascontiguousarray(shapely.get_coordinates(rings)[keep], np.float64), start
+    start = np.concatenate([[0], np.cumsum([len(r) for r in rings])]).astype(np.int64)
+    return np.ascontiguousarray(np.concatenate(rings), np.float64), start
 
 
 def topology_preserving_simplify(region: Any, tolerance: float) -> Any:
