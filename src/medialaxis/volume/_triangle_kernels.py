@@ -15,7 +15,6 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.volume.voxel_table import table_find
 
 __all__ = ["block_labels"]
 
@@ -50,13 +49,16 @@ def _emit(out: np.ndarray, count: int, labs: np.ndarray) -> tuple[np.ndarray, in
 
 
 @njit(cache=True, nogil=True)
-def block_labels(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, label: np.ndarray,
+def block_labels(neighbours: np.ndarray, shape: np.ndarray, voxels: np.ndarray, label: np.ndarray,
                  sheet: np.ndarray, use_sheet: bool) -> np.ndarray:  # pragma: no cover - compiled
     """Rows (r, 8) of sorted distinct labels (-1 padded first) of the 2x2x2 blocks holding three or more regions.
 
-    With ``use_sheet``, a block gives one row per sheet in it (its voxels'
-    labels and the junction voxels', ``sheet == -1``), and a block of
-    junction voxels only gives none.
+    ``neighbours`` (n, 26) are the rows of each voxel's 26 neighbours in C
+    order (:func:`~medialaxis.volume.voxel_table.neighbour_rows`): the
+    other corners of every block a voxel is in. With ``use_sheet``, a
+    block gives one row per sheet in it (its voxels' labels and the
+    junction voxels', ``sheet == -1``), and a block of junction voxels
+    only gives none.
     """
     n = voxels.shape[0]
     out = np.full((max(16, n // 8), 8), -1, np.int64)
@@ -65,19 +67,23 @@ def block_labels(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, v
     labs = np.empty(8, np.int64)
     for i in range(n):
         for c in range(8):
-            z, y, x = voxels[i, 0] - ((c >> 2) & 1), voxels[i, 1] - ((c >> 1) & 1), voxels[i, 2] - (c & 1)
+            cz, cy, cx = (c >> 2) & 1, (c >> 1) & 1, c & 1
+            z, y, x = voxels[i, 0] - cz, voxels[i, 1] - cy, voxels[i, 2] - cx
             if z < 0 or y < 0 or x < 0 or z >= shape[0] - 1 or y >= shape[1] - 1 or x >= shape[2] - 1:
                 continue
             owner = True  # the block is walked from its first voxel in corner order
-            for k in range(c):
-                if table_find(directory, bricks, shape, z + ((k >> 2) & 1), y + ((k >> 1) & 1), x + (k & 1)) >= 0:
+            for k in range(8):
+                if k == c:
+                    rows[k] = i
+                    continue
+                # corner k is the neighbour at offset (corner k - corner c), column of C order without the centre
+                column = (((k >> 2) & 1) - cz + 1) * 9 + (((k >> 1) & 1) - cy + 1) * 3 + ((k & 1) - cx + 1)
+                rows[k] = neighbours[i, column - (column > 13)]
+                if k < c and rows[k] >= 0:
                     owner = False
                     break
             if not owner:
                 continue
-            for k in range(8):
-                rows[k] = -1 if k < c else table_find(directory, bricks, shape, z + ((k >> 2) & 1), y + ((k >> 1) & 1),
-                                                      x + (k & 1))
             if not use_sheet:
                 for k in range(8):
                     labs[k] = label[rows[k]] if rows[k] >= 0 else -1

@@ -157,10 +157,10 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
     junction = kind == JUNCTION
     sheet = sheet_ids(neighbours, voxels, junction, features.spacing)
     label = region_labels(neighbours, voxels, picks, junction, sheet, features.spacing)
-    del neighbours
     points = medial.position[picks]
     vertex_junction = kind[picks] == JUNCTION
-    faces = region_triangles(table, voxels, label, points, sheet)
+    faces = region_triangles(table, voxels, label, points, sheet, neighbours)
+    del neighbours
     faces = faces[~vertex_junction[faces].all(axis=1)]  # junction lines carry no faces of their own
     faces = repair_faces(faces, vertex_junction, points, free=kind[picks] == BOUNDARY)
     return Polygonization(picks, points, medial.radius[picks], kind[picks], faces, kind, label, certain,
