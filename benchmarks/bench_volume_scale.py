@@ -253,7 +253,8 @@ def main() -> None:
         if b:
             print(f"{r['size']}^3 {r['tool']} x{r['jobs']}: {b['blocks']} blocks ({b['sheet_blocks']} with sheet), "
                   f"first pass {b['medial_seconds']:.1f} s, mesh pass {b['mesh_seconds']:.1f} s "
-                  f"({b['mesh_block_seconds'] / max(b['sheet_blocks'], 1):.2f} s per sheet block), sheet "
+                  f"({b['mesh_block_seconds'] / max(b['sheet_blocks'], 1):.2f} s, "
+                  f"{b.get('mesh_block_cpu_seconds', float('nan')) / max(b['sheet_blocks'], 1):.2f} s CPU per sheet block), sheet "
                   f"{b['sheet_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.2f} MiB and piece "
                   f"{b['piece_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.3f} MiB per sheet block, "
                   f"{b['medial_voxels']} medial voxels, mesh halo {r.get('mesh_halo')}")

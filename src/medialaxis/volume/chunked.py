@@ -372,6 +372,7 @@ def _block_figures(state: dict[str, Any], counts: list[dict[str, Any]], folder: 
     sheets = sum(f.stat().st_size for f in Path(folder).glob("sheet_*.npz"))
     return {"blocks": len(state["items"]), "sheet_blocks": len(counts), "medial_seconds": medial_seconds,
             "mesh_seconds": seconds - medial_seconds, "mesh_block_seconds": float(sum(c["seconds"] for c in counts)),
+            "mesh_block_cpu_seconds": float(sum(c["cpu_seconds"] for c in counts)),
             "sheet_bytes": sheets, "piece_bytes": int(sum(c["bytes"] for c in counts)),
             "medial_voxels": int(sum(p.count for p in state["parts"]))}
 

@@ -188,7 +188,7 @@ def forget_window() -> None:
 
 def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source: Any) -> dict[str, Any]:
     """Mesh one block's window and write the piece its core owns; returns its counts."""
-    started = time.perf_counter()
+    started, cpu = time.perf_counter(), time.thread_time()
     block, index = item
     lo, hi = np.array(block.lo), np.array(block.hi)
     halo = plan.halo
@@ -229,7 +229,8 @@ def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source:
     path = Path(plan.folder) / ("mesh_{}_{}_{}.npz".format(*index))
     np.savez(path, **piece)
     return {"index": index, "vertices": len(piece["names"]), "faces": len(piece["faces"]), "halo": halo,
-            "voxels": len(medial.voxels), "seconds": time.perf_counter() - started, "bytes": path.stat().st_size}
+            "voxels": len(medial.voxels), "seconds": time.perf_counter() - started,
+            "cpu_seconds": time.thread_time() - cpu, "bytes": path.stat().st_size}
 
 
 def _window_mesh(medial: MedialVoxels, wlo: np.ndarray, whi: np.ndarray, plan: MeshPlan) -> tuple[Any, dict[str, Any]]:
