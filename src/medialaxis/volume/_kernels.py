@@ -22,7 +22,6 @@ import heapq
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.volume.voxel_table import table_find
 
 __all__ = [
     "topology_class",
@@ -146,6 +145,37 @@ def topology_class_reference(occupied: np.ndarray, voxels: np.ndarray) -> np.nda
 
 
 @njit(cache=True, nogil=True)
+def _mark_ball(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, i: int, r: float,
+               spacing: np.ndarray, removed: np.ndarray, maybe: np.ndarray, sure: bool) -> None:  # pragma: no cover
+    """Mark the voxels within ``r`` of voxel ``i`` (not ``i``, not yet removed): ``removed`` when ``sure``,
+    else ``maybe`` (those not marked so already). Rows of absent 8^3 bricks are skipped a brick at a time."""
+    r2 = r * r
+    z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
+    hz, hy, hx = int(r / spacing[0]), int(r / spacing[1]), int(r / spacing[2])
+    c0, c1 = max(x - hx, 0), min(x + hx + 1, shape[2])
+    for a in range(max(z - hz, 0), min(z + hz + 1, shape[0])):
+        da = (a - z) * spacing[0]
+        for b in range(max(y - hy, 0), min(y + hy + 1, shape[1])):
+            db = (b - y) * spacing[1]
+            base = ((a & 7) * 8 + (b & 7)) * 8
+            c = c0
+            while c < c1:
+                stop = min(((c >> 3) + 1) << 3, c1)
+                d = directory[a >> 3, b >> 3, c >> 3]
+                if d >= 0:
+                    for cc in range(c, stop):
+                        j = bricks[d, base + (cc & 7)]
+                        if j >= 0 and j != i and not removed[j] and (sure or not maybe[j]):
+                            dc = (cc - x) * spacing[2]
+                            if da * da + db * db + dc * dc <= r2:
+                                if sure:
+                                    removed[j] = True
+                                else:
+                                    maybe[j] = True
+                c = stop
+
+
+@njit(cache=True, nogil=True)
 def greedy_subsample(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarray, voxels: np.ndarray, order: np.ndarray,
                      radius: np.ndarray, spacing: np.ndarray) -> np.ndarray:  # pragma: no cover - compiled
     """Pick ``voxels[order[k]]`` unless removed; each pick removes every
@@ -156,7 +186,6 @@ def greedy_subsample(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarra
     removed = np.zeros(n, np.bool_)
     picks = np.empty(n, np.int64)
     npick = 0
-    Z, Y, X = shape[0], shape[1], shape[2]
     for k in range(n):
         i = order[k]
         if removed[i]:
@@ -164,22 +193,7 @@ def greedy_subsample(directory: np.ndarray, bricks: np.ndarray, shape: np.ndarra
         picks[npick] = i
         npick += 1
         removed[i] = True
-        r = radius[i]
-        r2 = r * r
-        z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
-        hz = int(r / spacing[0])
-        hy = int(r / spacing[1])
-        hx = int(r / spacing[2])
-        for a in range(max(z - hz, 0), min(z + hz + 1, Z)):
-            da = (a - z) * spacing[0]
-            for b in range(max(y - hy, 0), min(y + hy + 1, Y)):
-                db = (b - y) * spacing[1]
-                for c in range(max(x - hx, 0), min(x + hx + 1, X)):
-                    j = table_find(directory, bricks, shape, a, b, c)
-                    if j >= 0 and not removed[j]:
-                        dc = (c - x) * spacing[2]
-                        if da * da + db * db + dc * dc <= r2:
-                            removed[j] = True
+        _mark_ball(directory, bricks, shape, voxels, i, radius[i], spacing, removed, removed, True)
     return picks[:npick].copy()
 
 
@@ -214,7 +228,6 @@ def subsample_certainty(directory: np.ndarray, bricks: np.ndarray, shape: np.nda
     removed = np.zeros(n, np.bool_)  # by a certain pick
     maybe = near_band.copy()  # perhaps by an uncertain voxel
     certain = np.zeros(n, np.bool_)
-    Z, Y, X = shape[0], shape[1], shape[2]
     for k in range(n):
         i = order[k]
         if removed[i]:
@@ -222,23 +235,7 @@ def subsample_certainty(directory: np.ndarray, bricks: np.ndarray, shape: np.nda
             continue
         sure = not (band[i] or maybe[i])
         certain[i] = sure
-        r = radius[i]
-        r2 = r * r
-        z, y, x = voxels[i, 0], voxels[i, 1], voxels[i, 2]
-        hz, hy, hx = int(r / spacing[0]), int(r / spacing[1]), int(r / spacing[2])
-        for a in range(max(z - hz, 0), min(z + hz + 1, Z)):
-            da = (a - z) * spacing[0]
-            for b in range(max(y - hy, 0), min(y + hy + 1, Y)):
-                db = (b - y) * spacing[1]
-                for c in range(max(x - hx, 0), min(x + hx + 1, X)):
-                    j = table_find(directory, bricks, shape, a, b, c)
-                    if j >= 0 and j != i and not removed[j] and (sure or not maybe[j]):
-                        dc = (c - x) * spacing[2]
-                        if da * da + db * db + dc * dc <= r2:
-                            if sure:
-                                removed[j] = True
-                            else:
-                                maybe[j] = True
+        _mark_ball(directory, bricks, shape, voxels, i, radius[i], spacing, removed, maybe, sure)
         if sure:
             removed[i] = True
     return certain
