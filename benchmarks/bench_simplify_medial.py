@@ -49,6 +49,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import json
 import pickle
 import subprocess
 import sys
@@ -172,38 +173,49 @@ def _git_show(mirror: Path, path: str) -> str:
                           capture_output=True, text=True).stdout
 
 
-def _axis(mesh, name: str, reuse: Path | None):
-    """The compact complex of ``mesh`` and its seconds (from ``reuse`` when kept there)."""
+def _kept(ma):
+    """``ma`` (a compact complex) over its full complex, without the chain of what each was made from (for pickling)."""
     from medialaxis.core.result import MedialAxis
-    from medialaxis.mesh.voronoi import voronoi_medial_axis
 
-    kept = reuse / f"{name}.pkl" if reuse else None
-    if kept is not None and kept.exists():
-        return pickle.loads(kept.read_bytes())
-    t0 = time.perf_counter()
-    ma = voronoi_medial_axis(mesh)
-    seconds = time.perf_counter() - t0
     full = ma.raw
-    if full is not None:  # the full complex (the medial candidates), without what it was made from
+    if full is not None:  # the full complex (the medial candidates)
         full = MedialAxis(full.points, full.radii, full.edges, full.faces, extras=dict(full.extras),
                           metadata=dict(full.metadata), shape=full.shape)
-    ma = MedialAxis(ma.points, ma.radii, ma.edges, ma.faces, extras=dict(ma.extras), metadata=dict(ma.metadata),
-                    shape=ma.shape, raw=full)
-    if kept is not None:
-        kept.parent.mkdir(parents=True, exist_ok=True)
-        kept.write_bytes(pickle.dumps((ma, seconds)))
-    return ma, seconds
+    return MedialAxis(ma.points, ma.radii, ma.edges, ma.faces, extras=dict(ma.extras), metadata=dict(ma.metadata),
+                      shape=ma.shape, raw=full)
 
 
 def ours(mesh, name: str, count: int, mode: str, reuse: Path | None, points, tree) -> dict:
+    """Our simplified mesh of ``count`` spheres and its figures.
+
+    Without a kept complex: the default call as users make it,
+    ``medial_axis(mesh, method="voronoi", simplify=count)``, wall-clock
+    seconds "call" (its compact complex is then kept in ``reuse``). With
+    one: ``simplify_medial_mesh`` on it only, and "call" is the kept
+    complex's seconds plus these. "simplify" is the simplification's share
+    (wall clock); "cpu" the call's CPU seconds (``time.process_time``, steady
+    while others load the machine).
+    """
+    import medialaxis as mx
     from medialaxis.mesh.qmat import simplify_medial_mesh
 
-    ma, axis_seconds = _axis(mesh, name, reuse)
-    t0 = time.perf_counter()
-    s = simplify_medial_mesh(ma, count, **({} if mode == "default" else {"mode": mode}))
-    seconds = time.perf_counter() - t0
+    kept = reuse / f"{name}.pkl" if reuse else None
+    if kept is not None and kept.exists():
+        ma, (axis_seconds, axis_cpu) = pickle.loads(kept.read_bytes())
+        t0, c0 = time.perf_counter(), time.process_time()
+        s = simplify_medial_mesh(ma, count, **({} if mode == "default" else {"mode": mode}))
+        seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
+        call, call_cpu = axis_seconds + seconds, axis_cpu + cpu
+    else:
+        t0, c0 = time.perf_counter(), time.process_time()
+        s = mx.medial_axis(mesh, method="voronoi", simplify=count, **({} if mode == "default" else {"simplify_mode": mode}))
+        call, call_cpu = time.perf_counter() - t0, time.process_time() - c0
+        seconds = float(s.metadata.get("timings", {}).get("simplify", np.nan))
+        if kept is not None:  # the complex, and the call's seconds without the simplification (wall, CPU about)
+            kept.parent.mkdir(parents=True, exist_ok=True)
+            kept.write_bytes(pickle.dumps((_kept(s.raw), (call - seconds, call_cpu - seconds))))
     row = figures(mesh, points, s.points, s.radii, s.edges, s.faces, tree)
-    row.update(axis_seconds=axis_seconds, seconds=seconds)
+    row.update(call_seconds=call, call_cpu=call_cpu, seconds=seconds)
     return row
 
 
@@ -216,35 +228,62 @@ def _load(path):
     return mesh
 
 
+def _done(results: Path | None) -> dict:
+    """Rows already in the ``--results`` file (JSON lines), by model name."""
+    if results is None or not results.exists():
+        return {}
+    rows = [json.loads(line) for line in results.read_text().splitlines() if line.strip()]
+    return {r["name"]: r for r in rows}
+
+
+def _print_row(row: dict) -> None:
+    if "failed" in row:
+        print(f"{row['name']:16s} {half_of(row['name']):8s} refused: {row['failed']}", flush=True)
+        return
+    print(f"{row['name']:16s} {half_of(row['name']):8s} {row['spheres']:7d} {100 * row['error']:5.2f}% "
+          f"{100 * row['medial']:6.0f}% {100 * row['inside']:6.0f}% {row['call_seconds']:7.1f} {row['call_cpu']:6.1f} "
+          f"{row['seconds']:11.1f}",
+          flush=True)
+
+
 def run_models(args) -> None:
     names = [m["name"] for m in MODELS if (not args.half or half_of(m["name"]) == args.half)]
     if args.models:
         names = [n for n in names if n in args.models.split(",")]
     paths = fetch_models(default_cache(), names)
+    done = _done(args.results)
     print(f"simplify={args.spheres}, mode {args.mode}: error = two-sided (mat_error), medial = two-sided contact "
-          f"within {100 * BAND:.0f}% of r spanning >= 90 deg, inside = centre depth >= {100 - 100 * BAND:.0f}% of r")
-    print("model            half     spheres  error  medial  inside   axis s  simplify s")
+          f"within {100 * BAND:.0f}% of r spanning >= 90 deg, inside = centre depth >= {100 - 100 * BAND:.0f}% of r; "
+          "call s = medial_axis(mesh, method='voronoi', simplify=n), wall clock and CPU")
+    print("model            half     spheres  error  medial  inside  call s  cpu s  simplify s")
     rows = []
     for name in names:
+        if name in done:  # measured by an earlier run into the same --results file
+            rows.append(done[name])
+            _print_row(done[name])
+            continue
         if name not in paths:
             print(f"{name:16s} not available")
             continue
         mesh = _load(paths[name])
         try:
             points = surface_points(mesh)
-            row = ours(mesh, name, args.spheres, args.mode, args.reuse, points, cKDTree(points))
+            row = dict(name=name, **ours(mesh, name, args.spheres, args.mode, args.reuse, points, cKDTree(points)))
         except Exception as exc:  # a refused or failing model is reported, not fatal
-            print(f"{name:16s} {half_of(name):8s} failed: {type(exc).__name__}: {str(exc).splitlines()[0][:80]}")
-            continue
+            row = dict(name=name, failed=f"{type(exc).__name__}: {str(exc).splitlines()[0][:90]}")
         rows.append(row)
-        print(f"{name:16s} {half_of(name):8s} {row['spheres']:7d} {100 * row['error']:5.2f}% {100 * row['medial']:6.0f}% "
-              f"{100 * row['inside']:6.0f}% {row['axis_seconds']:8.1f} {row['seconds']:11.1f}", flush=True)
-    if rows:
-        err = np.array([r["error"] for r in rows])
-        print(f"models {len(rows)}: error median {100 * np.median(err):.2f}%, largest {100 * err.max():.2f}%, "
-              f"over 3%: {int((err > 0.03).sum())}; medial share median {100 * np.median([r['medial'] for r in rows]):.0f}%, "
-              f"inside share median {100 * np.median([r['inside'] for r in rows]):.0f}%, simplify seconds largest "
-              f"{max(r['seconds'] for r in rows):.1f}")
+        _print_row(row)
+        if args.results is not None:
+            with args.results.open("a") as out:
+                out.write(json.dumps(row) + "\n")
+    ok = [r for r in rows if "failed" not in r]
+    if ok:
+        err = np.array([r["error"] for r in ok])
+        print(f"models {len(ok)} (refused {len(rows) - len(ok)}): error median {100 * np.median(err):.2f}%, "
+              f"largest {100 * err.max():.2f}%, over 3%: {int((err > 0.03).sum())}; medial share median "
+              f"{100 * np.median([r['medial'] for r in ok]):.0f}%, inside share median "
+              f"{100 * np.median([r['inside'] for r in ok]):.0f}%; call seconds largest "
+              f"{max(r['call_seconds'] for r in ok):.1f} (CPU {max(r['call_cpu'] for r in ok):.1f}), simplify seconds largest {max(r['seconds'] for r in ok):.1f}")
 
 
 def run_peers(args) -> None:
@@ -277,7 +316,7 @@ def run_peers(args) -> None:
             f"{100 * a[k]:5.2f}% {100 * b[k]:5.2f}% {100 * c[k]:5.2f}% |" if k == "error" else
             f"{100 * a[k]:4.0f}% {100 * b[k]:5.0f}% {100 * c[k]:5.0f}% |"
             for a, b, c in cols for k in ("error", "medial", "inside"))
-            + f" {peer['MATFP']['spheres']:13d} | {mine['seconds']:.1f}", flush=True)
+            + f" {peer['MATFP']['spheres']:13d} | {mine['call_seconds']:.1f}", flush=True)
 
 
 def main() -> None:
@@ -289,6 +328,8 @@ def main() -> None:
     ap.add_argument("--peers", action="store_true", help="the Q-MAT / MATFP comparison instead")
     ap.add_argument("--mirror", type=Path, default=MIRROR, help="bare git dir of Frank-ZY-Dou/Geometry_Tools")
     ap.add_argument("--reuse", type=Path, help="keep / reuse each model's compact complex here")
+    ap.add_argument("--results", type=Path, help="append each model's row here (JSON lines); models already there are "
+                    "not run again (resume a half run in parts)")
     args = ap.parse_args()
     import trimesh
 

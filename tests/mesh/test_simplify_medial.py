@@ -94,3 +94,23 @@ def test_the_method_takes_the_mode_by_keyword(torus):
         mx.medial_axis(mesh, method="voronoi", simplify=40, simplify_mode="pack")
     with pytest.raises(InvalidInputError, match="simplify_mode needs"):
         mx.medial_axis(mesh, method="voronoi", simplify_mode="packing")
+
+
+def test_shrinking_balls_of_a_sphere_and_a_capsule_are_their_medial_balls():
+    from medialaxis.mesh.medial_candidates import shrinking_balls
+
+    # the vertices with their exact normals: every ball of a sphere is the sphere itself
+    vertices = np.asarray(trimesh.creation.icosphere(subdivisions=4, radius=2.0).vertices)
+    centres, radii, other = shrinking_balls(vertices, vertices / 2.0)
+    assert np.allclose(radii, 2.0) and np.abs(centres).max() < 1e-9
+    assert np.allclose(np.linalg.norm(other, axis=1), 2.0)
+    # the capsule's medial axis is its core segment (z in [-1, 1]), every ball of radius 0.4
+    vertices = np.asarray(trimesh.creation.capsule(height=2.0, radius=0.4, count=[48, 48]).vertices)
+    core = vertices * [0.0, 0.0, 1.0]
+    core[:, 2] = np.clip(core[:, 2], -1.0, 1.0)
+    centres, radii, _ = shrinking_balls(vertices, (vertices - core) / 0.4)
+    assert np.allclose(radii, 0.4) and np.abs(centres - core).max() < 1e-9
+    # with trimesh's vertex normals (off by up to a fraction of a degree) the balls stay inside, a little smaller
+    mesh = trimesh.creation.icosphere(subdivisions=4, radius=2.0)
+    _, radii, _ = shrinking_balls(mesh.vertices, mesh.vertex_normals)
+    assert radii.max() <= 2.0 + 1e-9 and np.median(radii) > 1.9

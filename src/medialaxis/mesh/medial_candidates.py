@@ -6,16 +6,26 @@ degrees or more as seen from its centre, the sphere touches the surface on
 two sides: it stands for the medial axis, not for a patch of one side. The
 simplification (:mod:`medialaxis.mesh.qmat`, ``mode="medial"``) keeps only
 such spheres.
+
+The complex is pruned by lambda (Chazal and Lieutier, "The lambda-medial
+axis", Graphical Models 67(4), 2005): its small spheres near the tips of
+limbs and ears are gone, and a surface point there was covered by a ball
+touching one side only. The shrinking balls of the surface samples (Ma, Bai,
+Song and Wang, "3D medial axis point approximation using nearest neighbors
+and the normal field", The Visual Computer 28(1), 2012) give the medial balls
+there too; those whose two contacts span ``SPAN`` join the candidates.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.core.result import MedialAxis
 
-__all__ = ["MedialCandidates", "SPAN", "SNAP"]
+__all__ = ["MedialCandidates", "shrinking_balls", "SPAN", "SNAP", "DEPTH"]
 
 #: Contacts spanning at least this many degrees from the centre make a sphere a candidate (the
 #: independent test asks 90 of the surface within 2% of the radius, which spans a little more than
@@ -24,6 +34,64 @@ SPAN = 80.0
 
 #: Candidates a collapsed sphere is snapped among (nearest in centre and radius).
 SNAP = 16
+
+#: A candidate is kept when its centre's depth (exact signed distance) is within this share of its radius.
+DEPTH = 0.02
+
+
+def shrinking_balls(points: np.ndarray, normals: np.ndarray, start: float | None = None, samples: np.ndarray | None = None,
+                    tree: cKDTree | None = None, steps: int = 40) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The largest ball inside touching each of ``points`` (outward ``normals``): shrinking balls, all at once.
+
+    The balls are empty of ``samples`` (default ``points``; ``tree`` is
+    theirs when given). The ball at ``p`` starts with radius ``start`` (default: the sample's
+    box diagonal; a bound on the largest inscribed ball is faster) and shrinks to the
+    ball through ``p`` and its nearest other sample ``q`` until no sample is
+    nearer its centre than its radius (Ma et al. 2012).
+
+    Returns
+    -------
+    centres : (n, 3) ndarray
+    radii : (n,) ndarray
+        ``0`` where no ball was found (the normal points along the surface).
+    other : (n, 3) ndarray
+        The second contact ``q`` of each ball.
+    """
+    points = np.asarray(points, np.float64)
+    normals = np.asarray(normals, np.float64)
+    samples = points if samples is None else np.asarray(samples, np.float64)
+    tree = cKDTree(samples) if tree is None else tree
+    n = len(points)
+    if start is None:
+        start = float(np.linalg.norm(np.ptp(points, axis=0))) if n else 0.0
+    radius = np.full(n, start)
+    other = points.copy()
+    active = np.arange(n)
+    for _ in range(steps):
+        if not len(active):
+            break
+        p, nrm, r = points[active], normals[active], radius[active]
+        d, q = tree.query(p - r[:, None] * nrm, k=2)
+        self_hit = np.linalg.norm(samples[q[:, 0]] - p, axis=1) <= 1e-12 * (1.0 + r)
+        near, dist = np.where(self_hit, q[:, 1], q[:, 0]), np.where(self_hit, d[:, 1], d[:, 0])
+        done = dist >= r * (1.0 - 1e-6)
+        v = p - samples[near]
+        cos = np.einsum("ij,ij->i", v, nrm)
+        shrunk = np.where(cos > 1e-12, np.einsum("ij,ij->i", v, v) / (2.0 * np.maximum(cos, 1e-300)), 0.0)
+        stuck = ~done & ((shrunk >= r) | (shrunk <= 0.0))
+        radius[active[stuck]] = np.clip(shrunk[stuck], 0.0, r[stuck])
+        moving = ~done & ~stuck
+        radius[active[moving]] = shrunk[moving]
+        other[active[~stuck]] = samples[near[~stuck]]
+        active = active[moving]
+    return points - radius[:, None] * normals, radius, other
+
+
+def _spans(centres: np.ndarray, contacts: np.ndarray) -> np.ndarray:
+    """Per sphere: do its ``contacts`` (n, k, 3) span at least ``SPAN`` degrees as seen from its centre?"""
+    u = contacts - centres[:, None, :]
+    u /= np.maximum(np.linalg.norm(u, axis=2, keepdims=True), 1e-300)
+    return np.einsum("nid,njd->nij", u, u).min(axis=(1, 2)) <= np.cos(np.radians(SPAN))
 
 
 class MedialCandidates:
@@ -39,34 +107,83 @@ class MedialCandidates:
     reaching nearest to it (:meth:`cover`).
     """
 
-    def __init__(self, ma: MedialAxis) -> None:
+    def __init__(self, ma: MedialAxis, sample: Any = None, signed: Any = None) -> None:
         sources = [m for m in (ma, ma.raw) if m is not None and m.dim == 3 and "contacts" in m.extras]
-        centres = np.concatenate([m.points for m in sources]) if sources else np.zeros((0, 3))
-        radii = np.concatenate([m.radii for m in sources]) if sources else np.zeros(0)
-        contacts = np.concatenate([np.asarray(m.extras["contacts"]) for m in sources]) if sources else np.zeros((0, 4, 3))
-        u = contacts - centres[:, None, :]
-        u /= np.maximum(np.linalg.norm(u, axis=2, keepdims=True), 1e-300)
-        ok = (np.einsum("nid,njd->nij", u, u).min(axis=(1, 2)) <= np.cos(np.radians(SPAN))) & (radii > 0)
+        centres = [m.points for m in sources]
+        radii = [m.radii for m in sources]
+        contacts = [np.asarray(m.extras["contacts"]) for m in sources]
+        centres = np.concatenate(centres) if centres else np.zeros((0, 3))
+        radii = np.concatenate(radii) if radii else np.zeros(0)
+        contacts = np.concatenate(contacts) if contacts else np.zeros((0, 4, 3))
+        ok = _spans(centres, contacts) & (radii > 0)
+        self.sample = sample if sample is not None and len(sample.points) > 2 else None
+        self.sample_tree = cKDTree(sample.points) if self.sample is not None else None
+        self.start = 1.5 * float(radii.max()) if len(radii) else None
         self.spheres = np.c_[centres, radii][ok]
         self.tree = cKDTree(self.spheres) if len(self.spheres) else None
         touch = contacts[ok]
         self.contact_tree = cKDTree(touch.reshape(-1, 3)) if len(self.spheres) else None
         self.per = touch.shape[1]
+        self.signed = signed
+        self.state = np.zeros(len(self.spheres), np.int8)  # 1: its radius is its centre's depth, -1: not, 0: not asked
+
+    def _valid(self, index: np.ndarray) -> np.ndarray:
+        """Which of the candidates ``index`` are inscribed: the centre's depth within ``DEPTH`` of the radius.
+
+        A Voronoi sphere of a sparse sample may poke out between its samples
+        (or stay clear of the surface); asked once per candidate, when first met.
+        """
+        if self.signed is None:
+            return np.ones(len(index), bool)
+        ask = np.unique(index[self.state[index] == 0])
+        if len(ask):
+            depth = -self.signed.exact(self.spheres[ask, :3])[0]
+            r = self.spheres[ask, 3]
+            self.state[ask] = np.where(np.abs(depth - r) <= DEPTH * r, 1, -1)
+        return self.state[index] > 0
 
     def snap(self, s: np.ndarray, qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
         """The candidate among the ``SNAP`` nearest ``s`` in (centre, radius) of least quadric error."""
         if self.tree is None:
             return s
-        _, near = self.tree.query(s, k=min(SNAP, len(self.spheres)))
-        t = self.spheres[np.atleast_1d(near)]
+        for k in (SNAP, 4 * SNAP):
+            near = np.atleast_1d(self.tree.query(s, k=min(k, len(self.spheres)))[1])
+            ok = self._valid(near)
+            if ok.any() or k >= len(self.spheres):
+                break
+        t = self.spheres[near[ok] if ok.any() else near]
         cost = np.einsum("ki,ij,kj->k", t, qa, t) - 2.0 * t @ qb
         return t[int(np.argmin(cost))].copy()
 
+    def snap_all(self, spheres: np.ndarray, qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
+        """:meth:`snap` of each of ``spheres`` with its quadric ``(qa[i], qb[i])``, the candidates asked in one batch."""
+        if self.tree is None or not len(spheres):
+            return spheres.copy()
+        near = self.tree.query(spheres, k=min(SNAP, len(self.spheres)))[1].reshape(len(spheres), -1)
+        self._valid(near.ravel())
+        return np.array([self.snap(s, a, b) for s, a, b in zip(spheres, qa, qb)]).reshape(-1, 4)
+
     def cover(self, x: np.ndarray) -> tuple[np.ndarray, float]:
-        """The candidate ball reaching nearest to ``x`` among those touching the surface near it."""
+        """The candidate ball reaching nearest to ``x`` among those touching the surface near it.
+
+        Besides the complex's, the shrinking balls of the ``SNAP`` samples
+        nearest ``x`` whose two contacts span ``SPAN`` and that are inscribed
+        (the balls the lambda pruning left out near tips).
+        """
         if self.tree is None:
             return x, 0.0
         _, near = self.contact_tree.query(x, k=min(4 * SNAP, len(self.spheres) * self.per))
-        t = self.spheres[np.unique(np.atleast_1d(near) // self.per)]
+        index = np.unique(np.atleast_1d(near) // self.per)
+        ok = self._valid(index)
+        t = self.spheres[index[ok] if ok.any() else index]
+        if self.sample is not None:
+            _, near = self.sample_tree.query(x, k=min(SNAP, len(self.sample.points)))
+            p = self.sample.points[near]
+            c, r, q = shrinking_balls(p, self.sample.normals[near], self.start, self.sample.points, self.sample_tree)
+            keep = _spans(c, np.stack([p, q], axis=1)) & (r > 0)
+            if keep.any() and self.signed is not None:
+                depth = -self.signed.exact(c[keep])[0]
+                keep[keep] = np.abs(depth - r[keep]) <= DEPTH * r[keep]
+            t = np.concatenate([t, np.c_[c, r][keep]])
         best = int(np.argmin(np.linalg.norm(t[:, :3] - x, axis=1) - t[:, 3]))
         return t[best, :3].copy(), float(t[best, 3])
