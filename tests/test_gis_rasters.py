@@ -17,7 +17,7 @@ import medialaxis as mx
 rasterio = pytest.importorskip("rasterio")
 gpd = pytest.importorskip("geopandas")
 from affine import Affine  # noqa: E402  (rasterio's dependency)
-from rasterio.features import rasterize  # noqa: E402
+from rasterio.features import rasterize, shapes  # noqa: E402
 
 from medialaxis.gis import stations  # noqa: E402
 
@@ -83,11 +83,15 @@ def test_the_river_comes_back_on_its_curve_with_its_widths_in_its_crs(tmp_path, 
     inner = (t > 0) & (t < LENGTH)
     assert inner.mean() > 0.95 and off[inner].max() <= one_pixel
     # widths: 2 r(s) along the curve; past its ends, where the curve has no width, twice the
-    # distance to the river's shore
+    # distance to the shore rasterio drew (its pixels' outline), and to the analytic shore within
+    # 1.5 pixels: at the tip of a round cap the staircase lies up to 0.6 pixel inside the circle
     width = points["width"].to_numpy()
     assert np.abs(width - 2 * radius(t))[inner].max() <= one_pixel
-    shore = 2 * shapely.distance(points.geometry.values[~inner], RIVER.boundary)
-    assert np.abs(width[~inner] - shore).max() <= one_pixel
+    drawn = shapely.union_all([shapely.geometry.shape(g) for g, v in shapes(
+        mask.astype(np.uint8), transform=transform) if v == 1])
+    past = points.geometry.values[~inner]
+    assert np.abs(width[~inner] - 2 * shapely.distance(past, drawn.boundary)).max() <= one_pixel
+    assert np.abs(width[~inner] - 2 * shapely.distance(past, RIVER.boundary)).max() <= 1.5 * one_pixel
     for _, row in lines.iterrows():  # the table's widths are the stations' extremes along the branch
         on = points[points["branch"] == row["branch"]]
         assert row["width_min"] <= on["width"].min() + 1e-9 and row["width_max"] >= on["width"].max() - 1e-9
