@@ -99,3 +99,16 @@ def test_block_labels_match_reference(seed, p, sheets):
     ref = block_labels_reference(table, vox, label, sheet)
     # the same rows (the compiled walk visits each block once, in another order)
     assert len(fast) == len(ref) and np.array_equal(np.unique(fast, axis=0), np.unique(ref, axis=0))
+
+
+@given(st.integers(0, 10_000), st.floats(0.0, 4.0))
+def test_pair_gaps_match_reference(seed, shortest):
+    from medialaxis.volume.distance import feature_transform
+    from medialaxis.volume.inputs import load_volume
+    from medialaxis.volume.plates import pair_gaps, pair_gaps_reference
+
+    occ = _random_sheet(seed, shape=(12, 13, 14), p=0.6)
+    features = feature_transform(load_volume(occ), workers=1)
+    for fast, ref in zip(pair_gaps(features, shortest), pair_gaps_reference(features, shortest)):
+        for a, b in zip(fast, ref):
+            assert np.array_equal(a, b)  # the same pairs in the same order, the same gaps bit for bit

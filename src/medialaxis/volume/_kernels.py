@@ -32,6 +32,7 @@ __all__ = [
     "subsample_certainty_reference",
     "sheet_labels",
     "sheet_labels_reference",
+    "adjacent_gaps",
 ]
 
 
@@ -345,3 +346,40 @@ def sheet_labels_reference(voxels: np.ndarray, seeds: np.ndarray, seed_label: np
     label = np.full(len(voxels), -1, np.int64)
     label[done] = np.asarray(seed_label, np.int64)[owner[done]]
     return label
+
+
+@njit(cache=True, nogil=True)
+def adjacent_gaps(index: np.ndarray, feature: np.ndarray, axis: int,
+                  shortest: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # pragma: no cover - compiled
+    """Rows ``(p, q)`` of the foreground voxels 6-adjacent along ``axis`` (``index``: row of each voxel
+    of the grid, -1 background) whose nearest boundary points (``feature``) are more than ``shortest``
+    apart, and that distance; in the grid's C order (the reference: :func:`~medialaxis.volume.plates.pair_gaps_reference`)."""
+    Z, Y, X = index.shape
+    dz, dy, dx = int(axis == 0), int(axis == 1), int(axis == 2)
+    size = 1024
+    p, q, gap = np.empty(size, np.int64), np.empty(size, np.int64), np.empty(size)
+    count = 0
+    for z in range(Z - dz):
+        for y in range(Y - dy):
+            for x in range(X - dx):
+                a = index[z, y, x]
+                if a < 0:
+                    continue
+                b = index[z + dz, y + dy, x + dx]
+                if b < 0:
+                    continue
+                d0 = feature[a, 0] - feature[b, 0]
+                d1 = feature[a, 1] - feature[b, 1]
+                d2 = feature[a, 2] - feature[b, 2]
+                g = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)  # numpy's norm: the squares summed in order
+                if not g > shortest:
+                    continue
+                if count == size:  # twice as long
+                    p = np.concatenate((p, np.empty(size, np.int64)))
+                    q = np.concatenate((q, np.empty(size, np.int64)))
+                    gap = np.concatenate((gap, np.empty(size)))
+                    size *= 2
+                p[count], q[count], gap[count] = a, b, g
+                count += 1
+    return p[:count].copy(), q[:count].copy(), gap[:count].copy()
+

@@ -196,9 +196,7 @@ def medial_pairs(features: Features, shortest: float, labels: np.ndarray | None 
     F = features.feature
     P = (features.voxels + features.offset) * features.spacing
     out = []
-    for axis, (p, q, gap) in enumerate(pair_gaps(features)):
-        candidate = gap > shortest
-        p, q, gap = p[candidate], q[candidate], gap[candidate]
+    for axis, (p, q, gap) in enumerate(pair_gaps(features, shortest)):
         fp, fq = F[p], F[q]
         # separation angle: the contact directions of a sheet are opposite; at
         # convex edges and where an end face meets a junction they are ~90 deg

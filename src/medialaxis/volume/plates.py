@@ -16,10 +16,11 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.errors import EmptyShapeError
+from medialaxis.volume._kernels import adjacent_gaps
 from medialaxis.volume.distance import Features
 
 __all__ = ["PlateThickness", "plate_thickness", "plate_pairs", "plate_summary", "plate_labels", "nominal_thicknesses",
-           "label_shortest", "pair_gaps", "pair_cosines", "DEFAULT_MIN_THICKNESS", "ANTIPODAL_COS", "LABEL_RADIUS"]
+           "label_shortest", "pair_gaps", "pair_gaps_reference", "pair_cosines", "DEFAULT_MIN_THICKNESS", "ANTIPODAL_COS", "LABEL_RADIUS"]
 
 
 #: Pairs whose nearest boundary points are within ~18 degrees of opposite
@@ -102,12 +103,21 @@ def _pairs(features: Features, axis: int) -> tuple[np.ndarray, np.ndarray]:
     return a[both].astype(np.int64), b[both].astype(np.int64)
 
 
-def pair_gaps(features: Features) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+def pair_gaps(features: Features, shortest: float = -np.inf) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Per axis, the rows ``(p, q)`` of 6-adjacent foreground voxels whose nearest boundary points are more
+    than ``shortest`` apart, and that distance (compiled: :func:`~medialaxis.volume._kernels.adjacent_gaps`)."""
+    feature = np.ascontiguousarray(features.feature, np.float64)
+    return [adjacent_gaps(features.index, feature, axis, float(shortest)) for axis in range(3)]
+
+
+def pair_gaps_reference(features: Features, shortest: float = -np.inf) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """NumPy reference of :func:`pair_gaps`."""
     out = []
     for axis in range(3):
         p, q = _pairs(features, axis)
         gap = np.linalg.norm(features.feature[p] - features.feature[q], axis=1)
-        out.append((p, q, gap))
+        keep = gap > shortest
+        out.append((p[keep], q[keep], gap[keep]))
     return out
 
 
@@ -123,9 +133,7 @@ def pair_cosines(features: Features, p: np.ndarray, q: np.ndarray) -> np.ndarray
 def plate_pairs(features: Features, shortest: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Adjacent voxel pairs that see the two faces of a plate (antipodal contacts), longer than ``shortest``."""
     out_p, out_q, out_gap = [], [], []
-    for p, q, gap in pair_gaps(features):
-        keep = gap > shortest
-        p, q, gap = p[keep], q[keep], gap[keep]
+    for p, q, gap in pair_gaps(features, shortest):
         sheet = pair_cosines(features, p, q) < -ANTIPODAL_COS
         out_p.append(p[sheet])
         out_q.append(q[sheet])
