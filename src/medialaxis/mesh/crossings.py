@@ -20,8 +20,12 @@ __all__ = [
 
 #: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
 SHELL_PROBES = 500
-#: Candidate pairs of the large faces looked at per batch (memory: about 100 bytes each).
-BIG_BATCH = 2_000_000
+#: Rounds of longest-edge bisection of a large face (each halves its pieces' longest side).
+MAX_BISECTIONS = 40
+#: Pieces of large faces made beyond 8 per face; larger faces are matched by their own spheres.
+PIECE_BUDGET = 1_000_000
+#: Candidate pairs of faces matched by their own spheres looked at per batch (about 100 bytes each).
+SPHERE_BATCH = 2_000_000
 
 
 def winding_numbers(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
@@ -117,17 +121,21 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
     vertex are kept (a face folded through a neighbour of its corner).
     Triangles up to twice the median size are binned on a grid
     (:func:`~medialaxis.mesh._intersect_kernels.near_pairs`, which also
-    drops the pairs with apart bounding boxes); each
-    larger one (slivers, long CAD faces, caps of holes) is matched against
-    the triangles no larger than itself within twice its radius.
+    drops the pairs with apart bounding boxes); each larger one (slivers,
+    long CAD faces, caps of holes) is cut into pieces no larger by
+    longest-edge bisection (:func:`_pieces`) and matched against the small
+    faces whose spheres meet a piece's
+    (:func:`~medialaxis.mesh._broad_kernels.big_face_pairs`), and against
+    the other large faces whose spheres meet its own. A long face's own sphere
+    holds the whole mesh across it: the 2-unit faces along a 100k-vertex
+    capsule made 60M candidates and the check took 40 s of CPU.
     """
-    from scipy.spatial import cKDTree
-
     from medialaxis.mesh._intersect_kernels import near_pairs
 
     centre = tri.mean(axis=1)
     radius = np.linalg.norm(tri - centre[:, None, :], axis=2).max(axis=1)
-    small = radius <= 2.0 * float(np.median(radius))
+    limit = 2.0 * float(np.median(radius)) if len(radius) else 0.0
+    small = radius <= limit
     idx = np.flatnonzero(small)
     pairs = []
     if len(idx) > 1:
@@ -135,23 +143,88 @@ def candidate_pairs(tri: np.ndarray, faces: np.ndarray) -> np.ndarray:
         pairs.append(near_pairs(tri, faces, centre, radius, idx, cell, False))
     big = np.flatnonzero(~small)
     if len(big):
-        # each pair once, from its larger face: the smaller one's centre is within twice the larger's radius
-        tree, reach = cKDTree(centre), 2.0 * radius[big]
-        count = tree.query_ball_point(centre[big], reach, return_length=True)
-        lo, hi = tri.min(axis=1), tri.max(axis=1)
-        start = 0
-        while start < len(big):  # a few million candidates at a time: long CAD faces reach every face
-            stop = start + max(1, int(np.searchsorted(np.cumsum(count[start:]), BIG_BATCH)))
-            near = tree.query_ball_point(centre[big[start:stop]], reach[start:stop], return_sorted=False)
-            js = np.concatenate([np.asarray(j, np.int64) for j in near])
-            bs = np.repeat(big[start:stop], count[start:stop])
-            keep = (radius[js] < radius[bs]) | ((radius[js] == radius[bs]) & (js > bs))
-            keep &= np.all((lo[js] <= hi[bs]) & (hi[js] >= lo[bs]), axis=1)
-            keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
-            keep &= (faces[bs][:, :, None] == faces[js][:, None, :]).sum(axis=(1, 2)) < 2  # not an edge apart
-            pairs.append(np.column_stack([bs[keep], js[keep]]))
-            start = stop
+        from medialaxis.mesh._broad_kernels import big_face_pairs
+
+        small_reach = float(radius[idx].max()) if len(idx) else limit
+        cut, kept = _pieces(tri, big, 2.0 * small_reach, PIECE_BUDGET + 8 * len(tri))
+        piece_centre, piece_radius, piece_of = cut  # by face, as ``big`` is
+        whole = np.setdiff1d(big, kept)  # too large to cut within the budget (a needle's faces)
+        if len(kept):
+            piece_ptr = np.searchsorted(piece_of, np.r_[kept, len(tri)]).astype(np.int64)
+            pairs.append(big_face_pairs(
+                tri, np.ascontiguousarray(faces, np.int64),
+                np.ascontiguousarray(np.concatenate([centre[idx], piece_centre])),
+                np.concatenate([radius[idx], piece_radius]), np.concatenate([idx, piece_of]).astype(np.int64),
+                len(idx), kept, piece_ptr, max(small_reach + float(piece_radius.max()), 2.0**-19)))
+        pairs.append(_sphere_pairs(big, big, tri, faces, centre, radius))  # large faces among themselves
+        pairs.append(_sphere_pairs(whole, idx, tri, faces, centre, radius))
     return np.ascontiguousarray(np.vstack(pairs), dtype=np.int64) if pairs else np.empty((0, 2), np.int64)
+
+
+def _sphere_pairs(
+    query: np.ndarray, pool: np.ndarray, tri: np.ndarray, faces: np.ndarray, centre: np.ndarray, radius: np.ndarray
+) -> np.ndarray:
+    """Pairs ``(b, j)`` of ``query`` and ``pool`` faces, ``j`` the smaller: spheres and boxes meet, no shared edge."""
+    from scipy.spatial import cKDTree
+
+    if not len(query) or not len(pool):
+        return np.empty((0, 2), np.int64)
+    tree, reach = cKDTree(centre[pool]), 2.0 * radius[query]  # the smaller one's centre is within twice the larger's radius
+    count = tree.query_ball_point(centre[query], reach, return_length=True)
+    lo, hi = tri.min(axis=1), tri.max(axis=1)
+    pairs, start = [], 0
+    while start < len(query):  # a few million candidates at a time: a needle's faces reach every face
+        stop = start + max(1, int(np.searchsorted(np.cumsum(count[start:]), SPHERE_BATCH)))
+        near = tree.query_ball_point(centre[query[start:stop]], reach[start:stop], return_sorted=False)
+        js = pool[np.concatenate([np.asarray(j, np.int64) for j in near])]
+        bs = np.repeat(query[start:stop], count[start:stop])
+        keep = (radius[js] < radius[bs]) | ((radius[js] == radius[bs]) & (js > bs))
+        keep &= np.all((lo[js] <= hi[bs]) & (hi[js] >= lo[bs]), axis=1)
+        keep &= np.linalg.norm(centre[js] - centre[bs], axis=1) <= radius[js] + radius[bs]
+        keep &= (faces[bs][:, :, None] == faces[js][:, None, :]).sum(axis=(1, 2)) < 2  # not an edge apart
+        pairs.append(np.column_stack([bs[keep], js[keep]]))
+        start = stop
+    return np.vstack(pairs)
+
+
+def _pieces(
+    tri: np.ndarray, which: np.ndarray, limit: float, budget: int
+) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
+    """Triangles ``tri[which]`` cut by longest-edge bisection into pieces of bounding radius at most ``limit``.
+
+    Returns each piece's centroid, the distance to its farthest corner and
+    the triangle it is of, by triangle (a point of a triangle lies in one of
+    its pieces), and the triangles cut: the smallest first, while their
+    pieces (about ``4 area / limit^2 + 2 longest side / limit`` each) stay within ``budget``.
+    """
+    side = np.linalg.norm(tri[which] - np.roll(tri[which], -1, axis=1), axis=2)
+    area = 0.5 * np.linalg.norm(np.cross(tri[which, 1] - tri[which, 0], tri[which, 2] - tri[which, 0]), axis=1)
+    expected = 4.0 * area / limit**2 + 2.0 * side.max(axis=1) / limit + 1.0
+    by_size = np.argsort(expected, kind="stable")
+    kept = np.sort(which[by_size[: int(np.searchsorted(np.cumsum(expected[by_size]), budget, side="right"))]])
+    done: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    pieces, of = tri[kept], kept.astype(np.int64)
+    for _ in range(MAX_BISECTIONS):
+        centre = pieces.mean(axis=1)
+        radius = np.linalg.norm(pieces - centre[:, None, :], axis=2).max(axis=1)
+        fine = radius <= limit
+        done.append((centre[fine], radius[fine], of[fine]))
+        pieces, of = pieces[~fine], of[~fine]
+        if not len(pieces):
+            break
+        side = np.linalg.norm(pieces - np.roll(pieces, -1, axis=1), axis=2)  # side k: corner k to k + 1
+        k = np.argmax(side, axis=1)
+        rows = np.arange(len(pieces))
+        a, b, c = pieces[rows, k], pieces[rows, (k + 1) % 3], pieces[rows, (k + 2) % 3]
+        mid = 0.5 * (a + b)
+        pieces = np.concatenate([np.stack([a, mid, c], axis=1), np.stack([mid, b, c], axis=1)])
+        of = np.concatenate([of, of])
+    else:  # what is left stays as it is: still a superset
+        centre = pieces.mean(axis=1)
+        done.append((centre, np.linalg.norm(pieces - centre[:, None, :], axis=2).max(axis=1), of))
+    centre, radius, of = (np.concatenate(part) for part in zip(*done))
+    by_face = np.argsort(of, kind="stable")
+    return (centre[by_face], radius[by_face], of[by_face]), kept
 
 
 def crossing_pairs(mesh: Any) -> np.ndarray:
