@@ -129,7 +129,7 @@ def voronoi_medial_axis(
     simplify : int or float, optional
         Reduce the medial mesh by quadric error minimisation on spheres
         (:func:`medialaxis.mesh.qmat.simplify_medial_mesh`): an ``int`` is the
-        number of spheres to keep (a quarter of them, or all those the
+        most spheres kept (a quarter of them, or all those the
         compact complex lacks, placed last where the surface is farthest
         from the others: tips of limbs), a ``float`` in (0, 1) an error
         bound as a fraction of the bounding-box diagonal. It starts from
