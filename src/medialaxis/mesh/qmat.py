@@ -147,9 +147,8 @@ def simplify_medial_mesh(
         error than its full complex (tens of thousands).
     simplify : int or float
         ``int``: number of spheres to keep; when ``ma`` holds fewer, the
-        missing ones are all placed by the cover repair (at most ``simplify``
-        in all: it stops once no surface sample is left outside, or none left
-        can be reached by an inscribed sphere: kitten at 200 gives 193).
+        missing ones are placed by the cover repair (at most ``simplify`` in all: it stops once no surface
+        sample is left outside, or none left can be reached by an inscribed sphere: kitten at 200 gives 193).
         ``float`` in (0, 1): a bound on the two-sided error, as a fraction of
         the bounding-box diagonal: the fewest spheres (found to a tenth by
         doubling from 32, then bisection) whose measured ``hausdorff`` is
