@@ -15,53 +15,9 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit, prange
-from medialaxis.mesh._intersect_kernels import _boxes_apart, _cell_key, _shared
+from medialaxis.mesh._intersect_kernels import _boxes_apart, _shared, grid_cells
 
 __all__ = ["big_face_pairs"]
-
-
-@njit(cache=True, nogil=True)
-def _grid(points, is_query, cell):  # type: ignore[no-untyped-def]
-    """Entries sorted by cell, the candidates of a cell before its queries.
-
-    Returns the order, each occupied cell's first entry and first query, each
-    entry's cell and the occupied cells around each cell.
-    """
-    n = points.shape[0]
-    key = np.empty(n, np.int64)
-    for q in range(n):
-        key[q] = _cell_key(np.floor(points[q, 0] / cell), np.floor(points[q, 1] / cell), np.floor(points[q, 2] / cell))
-    order = np.argsort(2 * key + is_query)  # cell keys lie within +-2^62
-    sorted_key = key[order]
-    heads = np.flatnonzero(np.diff(sorted_key)) + 1
-    n_cells = heads.shape[0] + 1
-    cell_start = np.empty(n_cells + 1, np.int64)
-    cell_start[0], cell_start[n_cells] = 0, n
-    cell_start[1:n_cells] = heads
-    cell_key = sorted_key[cell_start[:n_cells]]
-    cell_of = np.empty(n, np.int64)
-    query_start = np.empty(n_cells, np.int64)
-    for c in range(n_cells):
-        cell_of[cell_start[c] : cell_start[c + 1]] = c
-        query_start[c] = cell_start[c + 1]
-        for s in range(cell_start[c], cell_start[c + 1]):
-            if is_query[order[s]]:
-                query_start[c] = s
-                break
-    around = np.full((n_cells, 27), -1, np.int64)
-    for c in range(n_cells):
-        p = points[order[cell_start[c]]]
-        gx, gy, gz = np.floor(p[0] / cell), np.floor(p[1] / cell), np.floor(p[2] / cell)
-        m = 0
-        for dx in range(-1, 2):
-            for dy in range(-1, 2):
-                for dz in range(-1, 2):
-                    k = _cell_key(gx + dx, gy + dy, gz + dz)
-                    r = np.searchsorted(cell_key, k)
-                    if r < n_cells and cell_key[r] == k:
-                        around[c, m] = r
-                        m += 1
-    return order, cell_start, query_start, cell_of, around
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -92,7 +48,7 @@ def big_face_pairs(triangles, faces, entry_centre, entry_radius, entry_face, n_s
     """
     is_query = np.zeros(entry_centre.shape[0], np.int64)
     is_query[n_small:] = 1
-    order, cell_start, query_start, cell_of, around = _grid(entry_centre, is_query, cell)
+    order, cell_start, query_start, cell_of, around = grid_cells(entry_centre, is_query, cell)
     rank = np.empty(order.shape[0], np.int64)
     rank[order] = np.arange(order.shape[0])
     n_big = big.shape[0]

@@ -13,7 +13,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["first_crossing", "first_crossing_reference", "crossing_mask", "segment_crosses_triangle", "near_pairs",
+__all__ = ["first_crossing", "first_crossing_reference", "crossing_mask", "segment_crosses_triangle", "near_pairs", "grid_cells",
            "planes_meet", "may_meet"]
 
 
@@ -98,6 +98,50 @@ def _cell_key(x: float, y: float, z: float) -> int:
     return (np.int64(x) * 2097152 + np.int64(y)) * 2097152 + np.int64(z)
 
 
+@njit(cache=True, nogil=True)
+def grid_cells(points, is_query, cell):  # type: ignore[no-untyped-def]
+    """Entries binned on a grid of side ``cell``, sorted by cell, the candidates of a cell before its queries.
+
+    Returns the order, each occupied cell's first entry and first query, each
+    entry's cell and the occupied cells around each cell.
+    """
+    n = points.shape[0]
+    key = np.empty(n, np.int64)
+    for q in range(n):
+        key[q] = _cell_key(np.floor(points[q, 0] / cell), np.floor(points[q, 1] / cell), np.floor(points[q, 2] / cell))
+    order = np.argsort(2 * key + is_query)  # cell keys lie within +-2^62
+    sorted_key = key[order]
+    heads = np.flatnonzero(np.diff(sorted_key)) + 1
+    n_cells = heads.shape[0] + 1
+    cell_start = np.empty(n_cells + 1, np.int64)
+    cell_start[0], cell_start[n_cells] = 0, n
+    cell_start[1:n_cells] = heads
+    cell_key = sorted_key[cell_start[:n_cells]]
+    cell_of = np.empty(n, np.int64)
+    query_start = np.empty(n_cells, np.int64)
+    for c in range(n_cells):
+        cell_of[cell_start[c] : cell_start[c + 1]] = c
+        query_start[c] = cell_start[c + 1]
+        for s in range(cell_start[c], cell_start[c + 1]):
+            if is_query[order[s]]:
+                query_start[c] = s
+                break
+    around = np.full((n_cells, 27), -1, np.int64)
+    for c in range(n_cells):
+        p = points[order[cell_start[c]]]
+        gx, gy, gz = np.floor(p[0] / cell), np.floor(p[1] / cell), np.floor(p[2] / cell)
+        m = 0
+        for dx in range(-1, 2):
+            for dy in range(-1, 2):
+                for dz in range(-1, 2):
+                    k = _cell_key(gx + dx, gy + dy, gz + dz)
+                    r = np.searchsorted(cell_key, k)
+                    if r < n_cells and cell_key[r] == k:
+                        around[c, m] = r
+                        m += 1
+    return order, cell_start, query_start, cell_of, around
+
+
 @njit(cache=True, nogil=True, parallel=True)
 def near_pairs(triangles, faces, centre, radius, members, cell, one_apart=True):  # type: ignore[no-untyped-def]
     """Pairs ``(i, j)``, ``i < j``, of ``members`` that may cross: bounding spheres and boxes meet, no shared vertex.
@@ -112,34 +156,11 @@ def near_pairs(triangles, faces, centre, radius, members, cell, one_apart=True):
     The pairs come in grid order.
     """
     n = members.shape[0]
-    key = np.empty(n, np.int64)
-    for q in range(n):
-        c = centre[members[q]]
-        key[q] = _cell_key(np.floor(c[0] / cell), np.floor(c[1] / cell), np.floor(c[2] / cell))
-    order = np.argsort(key)
+    order, cell_start, _, _, around = grid_cells(centre[members], np.zeros(n, np.int64), cell)
+    n_cells = cell_start.shape[0] - 1
     # members in cell order, their spheres copied alongside: the inner loop reads memory in sequence
-    sorted_key, tri_id = key[order], members[order]
+    tri_id = members[order]
     sc, sr = centre[tri_id], radius[tri_id]
-    heads = np.flatnonzero(np.diff(sorted_key)) + 1
-    n_cells = heads.shape[0] + 1
-    cell_start = np.empty(n_cells + 1, np.int64)
-    cell_start[0], cell_start[n_cells] = 0, n
-    cell_start[1:n_cells] = heads
-    cell_key = sorted_key[cell_start[:n_cells]]
-    # the occupied cells among the 27 around each cell, found once per cell (ascending; -1 ends the list)
-    around = np.full((n_cells, 27), -1, np.int64)
-    for c in prange(n_cells):
-        q = cell_start[c]
-        gx, gy, gz = np.floor(sc[q, 0] / cell), np.floor(sc[q, 1] / cell), np.floor(sc[q, 2] / cell)
-        m = 0
-        for dx in range(-1, 2):
-            for dy in range(-1, 2):
-                for dz in range(-1, 2):
-                    k = _cell_key(gx + dx, gy + dy, gz + dz)
-                    r = np.searchsorted(cell_key, k)
-                    if r < n_cells and cell_key[r] == k:
-                        around[c, m] = r
-                        m += 1
     count = np.zeros(n, np.int64)
     pairs = np.empty((0, 2), np.int64)
     for sweep in range(2):
