@@ -12,7 +12,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["structure", "link_ok", "select", "costs", "lattice", "CostCache"]
+__all__ = ["structure", "link_ok", "select", "costs", "lattice"]
 
 
 @njit(cache=True, nogil=True)
@@ -335,47 +335,3 @@ def lattice(spheres, prims, balls, spacing, tolerance):  # pragma: no cover - co
     owner = np.empty(count, np.int64)
     _lattice(spheres, prims, balls, spacing, tolerance, out, owner)
     return out, owner
-
-
-class CostCache:
-    """The costs of the last round's candidates, kept where neither end's neighbourhood has changed since.
-
-    The cost of merging ``j`` into ``i`` (:func:`costs`) reads ``j``'s
-    quadric, count, move and star (neighbours, the apexes of its edges, which
-    of its edges are features) and the fixed spheres; a round changes these
-    only for the vertices it removes, those they merge into and the removed
-    ones' neighbours (:meth:`touch`). The first round of a 99k-vertex uv
-    ellipsoid's compaction computes 1.2M costs, the next 26 about as many
-    again, mostly the same ones.
-    """
-
-    def __init__(self, n: int) -> None:
-        self.keys = np.empty(0, np.int64)
-        self.values: tuple[np.ndarray, ...] = ()
-        self.dirty = np.zeros(n, np.bool_)
-
-    def costs(self, edges: np.ndarray, cand: np.ndarray, *args: object) -> tuple[np.ndarray, ...]:
-        """:func:`costs` of ``cand`` (ascending), computed only where not kept."""
-        n = len(self.dirty)
-        keys = edges[cand, 0] * n + edges[cand, 1]
-        fresh = np.ones(len(cand), np.bool_)
-        if len(self.keys):
-            at = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
-            fresh = (self.keys[at] != keys) | self.dirty[edges[cand, 0]] | self.dirty[edges[cand, 1]]
-        computed = costs(edges, cand[fresh], *args)
-        values = tuple(np.empty(len(cand), a.dtype) for a in computed)
-        for out, new, old in zip(values, computed, self.values or computed):
-            out[fresh] = new
-            if len(self.keys):
-                out[~fresh] = old[at[~fresh]]
-        self.keys, self.values = keys, values
-        self.dirty[:] = False
-        return values
-
-    def touch(self, removed: np.ndarray, kept: np.ndarray, ptr: np.ndarray, idx: np.ndarray) -> None:
-        """Mark what a round's merges of ``removed`` into ``kept`` change (``ptr``, ``idx``: the neighbours before)."""
-        self.dirty[removed] = True
-        self.dirty[kept] = True
-        starts, counts = ptr[removed], ptr[removed + 1] - ptr[removed]
-        first = np.cumsum(counts) - counts  # where each removed vertex's neighbours start in the gathered list
-        self.dirty[idx[np.arange(counts.sum()) + np.repeat(starts - first, counts)]] = True

@@ -67,7 +67,7 @@ from scipy.spatial import cKDTree
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers, void_faces
 from medialaxis.core.result import MedialAxis
-from medialaxis.mesh._compact_kernels import CostCache, lattice, link_ok, select, structure
+from medialaxis.mesh._compact_kernels import costs, lattice, link_ok, select, structure
 from medialaxis.mesh._rows import first_of_rows
 
 __all__ = [
@@ -175,7 +175,8 @@ def compact_complex(
         inside) of ``points`` (q, 3), whose nearest input spheres are
         ``near`` (q, k) (their contacts show where to search). A round's
         collapses are kept only while the spheres interpolated over the
-        edges and triangles they make reach at most ``tolerance`` out of it (:func:`_inside`).
+        edges and triangles they make reach at most ``tolerance`` out of it
+        (:func:`_inside`).
 
     Returns
     -------
@@ -193,7 +194,7 @@ def compact_complex(
     centres = None if signed is None else cKDTree(spheres[:, :3], balanced_tree=False, compact_nodes=False)  # 8x faster: crowded axes
     blocked = np.empty(0, np.int64)
     all_edges, _ = complex_edges(faces, edges, n)
-    rounds, cache = 0, CostCache(n)
+    rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
         star = ok = cand = src = dst = cost = move = None  # the last round's, freed before this one's are made
@@ -204,7 +205,7 @@ def compact_complex(
         if not len(cand):
             break
         star = (ptr, idx, eid, apex_ptr, apex)
-        src, dst, cost, move = cache.costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2, star)
+        src, dst, cost, move = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2, star)
         within = np.flatnonzero(cost <= tolerance)
         if len(blocked):
             key = all_edges[cand[within], 0] * n + all_edges[cand[within], 1]
@@ -221,7 +222,6 @@ def compact_complex(
             if not len(chosen):
                 continue
         j, i = src[chosen], dst[chosen]
-        cache.touch(j, i, ptr, idx)
         qa[i] += qa[j]
         qb[i] += qb[j]
         qc[i] += qc[j]
