@@ -258,7 +258,6 @@ def pole_targets(
     return np.einsum("nk,nkd->nd", weight, centres[nearest]), np.einsum("nk,nk->n", weight, radii[nearest])
 
 
-
 def plane_normals(points: np.ndarray, normals: np.ndarray, k: int = PLANE_NEIGHBOURS) -> np.ndarray:
     """Unit normals of the least-squares plane of each vertex's ``k`` nearest vertices, oriented as ``normals``.
 
@@ -327,9 +326,10 @@ def robust_poles(
     ball along the one-ring normals had radius 2.3, 3 voxels off the axis,
     and the flow skeleton grew a spur at every step of the staircase. On
     such a surface (on a grid, its one-ring normals tilted from the fitted
-    planes' by more than ``STAIRCASE_TILT`` at the median) the balls are aimed along the fitted planes' normals and
-    ignore the vertices within twice the fit's reach (the steps); elsewhere
-    along the vertex normals, ignoring two edge lengths.
+    planes' by more than ``STAIRCASE_TILT`` at the median) the balls are
+    aimed along the fitted planes' normals and ignore the vertices within
+    twice the fit's reach (the steps); elsewhere along the vertex normals,
+    ignoring two edge lengths.
     """
     fitted = plane_normals(points, normals) if on_voxel_grid(points) else normals
     tilt = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", fitted, normals), -1.0, 1.0)))
