@@ -49,8 +49,6 @@ def big_face_pairs(triangles, faces, entry_centre, entry_radius, entry_face, n_s
     is_query = np.zeros(entry_centre.shape[0], np.int64)
     is_query[n_small:] = 1
     order, cell_start, query_start, cell_of, around = grid_cells(entry_centre, is_query, cell)
-    rank = np.empty(order.shape[0], np.int64)
-    rank[order] = np.arange(order.shape[0])
     n_big = big.shape[0]
     count = np.zeros(n_big, np.int64)
     pairs = np.empty((0, 2), np.int64)
@@ -61,7 +59,7 @@ def big_face_pairs(triangles, faces, entry_centre, entry_radius, entry_face, n_s
             pairs = np.empty((start[n_big], 2), np.int64)
         for b in prange(n_big):
             kept = _near_one(b, big[b], triangles, faces, entry_centre, entry_radius, entry_face, n_small, piece_ptr,
-                             order, rank, cell_start, query_start, cell_of, around)
+                             order, cell_start, query_start, cell_of, around)
             if sweep == 0:
                 count[b] = kept.shape[0]
             else:
@@ -72,13 +70,13 @@ def big_face_pairs(triangles, faces, entry_centre, entry_radius, entry_face, n_s
 
 
 @njit(cache=True, nogil=True)
-def _near_one(b, f, triangles, faces, entry_centre, entry_radius, entry_face, n_small, piece_ptr, order, rank,
+def _near_one(b, f, triangles, faces, entry_centre, entry_radius, entry_face, n_small, piece_ptr, order,
               cell_start, query_start, cell_of, around):  # type: ignore[no-untyped-def]
     """The small faces that may cross large face ``f`` (``big[b]``), ascending, once each."""
     found = np.empty(64, np.int64)
     m = 0
     for e in range(n_small + piece_ptr[b], n_small + piece_ptr[b + 1]):
-        c = cell_of[rank[e]]
+        c = cell_of[e]
         for a in range(27):
             other = around[c, a]
             if other < 0:

@@ -274,8 +274,8 @@ def plane_normals(points: np.ndarray, normals: np.ndarray, k: int = PLANE_NEIGHB
     return fitted * np.where(np.einsum("ij,ij->i", fitted, normals) < 0, -1.0, 1.0)[:, None]
 
 
-def _grid_of(values: np.ndarray, top: int = GRID_CANDIDATES) -> tuple[float, float, np.ndarray]:
-    """The coarsest grid ``origin + k step`` holding at least half of ``values``, and which values lie on it.
+def _grid_of(values: np.ndarray, top: int = GRID_CANDIDATES) -> np.ndarray:
+    """Which ``values`` lie on the coarsest grid ``origin + k step`` holding at least half of them.
 
     Candidate steps are the differences between the ``top`` values that the
     most vertices share (grid planes hold curves of vertices; interpolated
@@ -285,15 +285,15 @@ def _grid_of(values: np.ndarray, top: int = GRID_CANDIDATES) -> tuple[float, flo
     distinct, counts = np.unique(values, return_counts=True)
     shared = distinct[np.argsort(-counts, kind="stable")[:top]]
     scale = max(1.0, float(np.abs(values).max()))
-    best = (0.0, 0.0, np.zeros(len(values), bool))
+    best_step, best = 0.0, np.zeros(len(values), bool)
     for i, origin in enumerate(shared):
         for step in np.abs(shared[i + 1 :] - origin):
-            if not step > 1e-9 * scale or step <= best[1]:
+            if not step > 1e-9 * scale or step <= best_step:
                 continue
             t = (values - origin) / step
             on = np.abs(t - np.round(t)) <= 1e-6 * max(1.0, float(np.abs(t).max()))
             if on.mean() >= 0.5:
-                best = (float(origin), float(step), on)
+                best_step, best = float(step), on
     return best
 
 
@@ -312,7 +312,7 @@ def on_voxel_grid(points: np.ndarray, share: float = LATTICE_SHARE) -> bool:
     sample = points[:: max(1, len(points) // GRID_SAMPLE)]
     count = np.zeros(len(sample), np.int64)
     for axis in range(3):
-        count += _grid_of(sample[:, axis])[2]
+        count += _grid_of(sample[:, axis])
     return bool(np.mean(count == 2) >= share)
 
 
@@ -331,9 +331,11 @@ def robust_poles(
     twice the fit's reach (the steps); elsewhere along the vertex normals,
     ignoring two edge lengths.
     """
-    fitted = plane_normals(points, normals) if on_voxel_grid(points) else normals
+    if not on_voxel_grid(points):
+        return pole_targets(points, normals, max_radius=max_radius, ignore=2.0 * edge_length)
+    fitted = plane_normals(points, normals)
     tilt = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", fitted, normals), -1.0, 1.0)))
-    if not np.median(tilt) > STAIRCASE_TILT:  # smooth, or a CAD part refined on a lattice
+    if not np.median(tilt) > STAIRCASE_TILT:  # a CAD part refined on a lattice
         return pole_targets(points, normals, max_radius=max_radius, ignore=2.0 * edge_length)
     reach = float(np.sqrt(PLANE_NEIGHBOURS / np.pi)) * edge_length
     return pole_targets(points, fitted, max_radius=max_radius, ignore=2.0 * reach)

@@ -102,8 +102,8 @@ def _cell_key(x: float, y: float, z: float) -> int:
 def grid_cells(points, is_query, cell):  # type: ignore[no-untyped-def]
     """Entries binned on a grid of side ``cell``, sorted by cell, the candidates of a cell before its queries.
 
-    Returns the order, each occupied cell's first entry and first query, each
-    entry's cell and the occupied cells around each cell.
+    Returns the order, each occupied cell's first entry and first query, the
+    cell of each entry (in the input's order) and the occupied cells around each cell.
     """
     n = points.shape[0]
     key = np.empty(n, np.int64)
@@ -120,7 +120,7 @@ def grid_cells(points, is_query, cell):  # type: ignore[no-untyped-def]
     cell_of = np.empty(n, np.int64)
     query_start = np.empty(n_cells, np.int64)
     for c in range(n_cells):
-        cell_of[cell_start[c] : cell_start[c + 1]] = c
+        cell_of[order[cell_start[c] : cell_start[c + 1]]] = c
         query_start[c] = cell_start[c + 1]
         for s in range(cell_start[c], cell_start[c + 1]):
             if is_query[order[s]]:
