@@ -13,7 +13,7 @@ minimises the sum of the two quadrics (kept near the two it replaces), and
 the quadrics add. Collapses alone leave the tips of limbs and fins without a
 sphere, so for ``simplify=n`` a quarter of the spheres is kept back and then
 placed where the surface is farthest from the interpolated spheres
-(:func:`_cover_repair`). The result is judged by the two-sided Hausdorff
+(:func:`medialaxis.mesh.simplify_cover.cover_repair`). The result is judged by the two-sided Hausdorff
 distance between the input surface and the boundary of the union of the
 spheres interpolated over the simplified mesh (vertices, edges and
 triangles), as Q-MAT does, computed on the exact envelope
@@ -24,7 +24,7 @@ complex's spheres and each collapse's optimum are replaced by the nearby
 inscribed sphere whose contacts span 90 degrees or so (it touches two
 sides), and the spheres added at the farthest surface points are such
 spheres too (:mod:`medialaxis.mesh.medial_candidates`), but for at most
-``PATCH_SHARE`` of them, patches where no such sphere reaches (tips).
+``simplify_cover.PATCH_SHARE`` of them, patches where no such sphere reaches (tips).
 ``"packing"`` (before issue 31) fills the gaps along one side with small
 balls (a torus at 40 spheres: 60% of the spheres touch two sides).
 """
@@ -36,14 +36,14 @@ import time
 from typing import Any
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from medialaxis._jit import njit
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh.compact import sphere_quadrics
-from medialaxis.mesh.envelope import envelope_gap, surface_sample, two_sided_distance
+from medialaxis.mesh.envelope import surface_sample, two_sided_distance
 from medialaxis.mesh.medial_candidates import MedialCandidates
+from medialaxis.mesh.simplify_cover import cover_repair
 
 __all__ = ["simplify_medial_mesh", "check_simplify", "REGULARISATION"]
 
@@ -53,7 +53,7 @@ REGULARISATION = 1e-3
 
 #: Share of the spheres of ``simplify=n`` added after the collapses, each at
 #: the medial ball touching the surface point farthest from the simplified
-#: mesh's spheres, joined to the sphere it overlaps most (:func:`_cover_repair`).
+#: mesh's spheres, joined to the sphere it overlaps most (:func:`medialaxis.mesh.simplify_cover.cover_repair`).
 #: Ten real models at 200 spheres, median / worst two-sided error measured apart:
 #: 0.1: 1.54 / 2.15%, 0.15: 1.52 / 2.15%, 0.2: 1.49 / 2.15%, 0.25: 1.45 / 2.15%.
 REPAIR_SHARE = 0.25
@@ -62,19 +62,9 @@ REPAIR_SHARE = 0.25
 #: collapses' optima and shrinking balls, the default before issue 31).
 MODES = ("medial", "packing")
 
-#: In ``mode="medial"``, a surface point that no medial candidate reaches within this share of its
-#: gap gets the shrinking ball there instead (a patch: convex corners, where the medial spheres shrink
-#: to nothing before their contacts span 90 degrees).
-PATCH_GAP = 0.9
-
-#: In ``mode="medial"``, at most this share of :func:`_cover_repair`'s spheres are patches (the worst gaps
-#: first), then such points are passed over. kitten: 0.1: 1.19% / 97% medial, 0.2: 1.01 / 94%, 0.4: 0.93 / 90%.
-PATCH_SHARE = 0.2
-
 #: Sphere count the search for ``simplify=e`` (an error bound) starts from, doubling.
 MIN_SEARCH = 32
 
-_ONE_EDGE, _NO_FACES = np.array([[0, 1]], np.int64), np.zeros((0, 3), np.int64)
 
 def check_simplify(simplify: Any, mode: str = "medial") -> None:
     """Validate ``simplify`` (an int >= 1, spheres to keep, or a float in (0, 1), an error bound) and ``mode``."""
@@ -164,7 +154,7 @@ def simplify_medial_mesh(
         ``"medial"`` (default): the spheres are inscribed spheres of the
         medial complex (``ma`` or the full complex ``ma.raw``) or shrinking
         balls whose contacts span at least 90 degrees from the centre (they
-        touch two sides), but for at most ``PATCH_SHARE`` of the spheres
+        touch two sides), but for at most ``simplify_cover.PATCH_SHARE`` of the spheres
         added at the farthest surface points. ``"packing"``: the optima and
         shrinking balls as they come (a tighter fill, lower error, many
         spheres touching one side only; ``benchmarks/bench_simplify_medial.py``).
@@ -174,7 +164,7 @@ def simplify_medial_mesh(
     MedialAxis
         ``points``, ``radii`` of the kept spheres, ``faces`` and ``edges``
         (curve pieces not bounding a triangle); ``raw`` is the complex simplified. Metadata:
-        ``n_spheres``, ``timings["simplify"]`` (seconds), ``hausdorff`` (two-sided, input surface vs. the
+        ``n_spheres``, ``timings["simplify"]`` (seconds; ``"simplify_cpu"``: CPU seconds), ``hausdorff`` (two-sided, input surface vs. the
         boundary of the interpolated spheres), ``hausdorff_surface_to_mat``,
         ``hausdorff_mat_to_surface``, ``diagonal`` (the distances are those of
         :func:`medialaxis.mesh.envelope.two_sided_distance`; absent without a
@@ -200,7 +190,7 @@ def simplify_medial_mesh(
     40
     """
     check_simplify(simplify, mode)
-    t_start = time.perf_counter()
+    t_start, cpu_start = time.perf_counter(), time.process_time()
     if ma.dim != 3:
         raise InvalidInputError("simplify applies to 3D medial meshes")
     if surface is None:
@@ -228,7 +218,8 @@ def simplify_medial_mesh(
         h_sm, h_ms = errors
         metadata.update(hausdorff=max(h_sm, h_ms), hausdorff_surface_to_mat=h_sm, hausdorff_mat_to_surface=h_ms)
     metadata["n_spheres"] = int(len(centres))
-    metadata["timings"] = dict(ma.metadata.get("timings", {}), simplify=time.perf_counter() - t_start)
+    metadata["timings"] = dict(ma.metadata.get("timings", {}), simplify=time.perf_counter() - t_start,
+                               simplify_cpu=time.process_time() - cpu_start)
     return MedialAxis(centres, radii, curve, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
 
 
@@ -268,7 +259,7 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any, medial
     """``(centres, radii, edges, faces)`` of ``ma`` collapsed to ``count`` spheres, or until the root quadric error passes ``bound``.
 
     With a surface ``sample``, ``REPAIR_SHARE`` of the ``count`` spheres (or all
-    that ``ma`` lacks) are placed last by :func:`_cover_repair`.
+    that ``ma`` lacks) are placed last by :func:`~medialaxis.mesh.simplify_cover.cover_repair`.
     """
     n = len(ma.points)
     spheres = np.c_[ma.points, ma.radii]
@@ -349,72 +340,5 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any, medial
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
     curve = np.array(curve, np.int64).reshape(-1, 2)
     if repair:
-        centres, radii, curve = _cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
+        centres, radii, curve = cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
     return centres, radii, curve, out_faces
-
-
-def _medial_ball(p: np.ndarray, n: np.ndarray, tree: cKDTree, samples: np.ndarray, start: float) -> tuple[np.ndarray, float]:
-    """The largest ball inside touching the surface at ``p`` (normal ``n``): shrinking ball (Ma et al. 2012)."""
-    r = start
-    for _ in range(60):
-        c = p - r * n
-        d, q = tree.query(c, k=2)
-        q = q[1] if np.allclose(samples[q[0]], p) else q[0]
-        if np.linalg.norm(samples[q] - c) >= r * (1.0 - 1e-6):
-            break
-        v = p - samples[q]
-        cos = float(v @ n)
-        r_new = float(v @ v) / (2.0 * cos) if cos > 1e-12 else 0.0
-        if r_new >= r or r_new <= 0.0:
-            r = max(min(r_new, r), 0.0)
-            break
-        r = r_new
-    return p - r * n, r
-
-
-def _cover_repair(
-    centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, sample: Any, extra: int,
-    medial: Any = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Add ``extra`` spheres where the surface is farthest outside the interpolated spheres.
-
-    Each new sphere is the medial ball touching that surface point (a
-    shrinking ball among the surface samples, so it reaches tips the lambda
-    pruning cut), joined by an edge to the sphere with the least power
-    distance to its centre (the one it overlaps most): a hanging edge, so the
-    topology stays the collapsed mesh's. The gaps are exact
-    (:func:`medialaxis.mesh.envelope.envelope_gap`).
-    """
-    x, normals = sample.points, sample.normals
-    sample_tree = cKDTree(x)
-    gap = envelope_gap(x, centres, radii, curve, faces)
-    c_list, r_list, e_list = [centres], [radii], [curve]
-    n = len(centres)
-    patches = passed = 0
-    start = float(radii.max()) * 2.0 if len(radii) else 1.0
-    while n < len(centres) + extra:  # a point whose medial ball is empty is passed over, not counted
-        w = int(np.argmax(gap))
-        if gap[w] <= 0:
-            break
-        c, r = medial.cover(x[w]) if medial is not None else (x[w], -np.inf)
-        if np.linalg.norm(x[w] - c) - r > PATCH_GAP * gap[w]:  # no medial sphere reaches it: a patch
-            if medial is not None and patches >= PATCH_SHARE * extra:  # passed over with its neighbours
-                passed += 1
-                if passed > extra:  # what is left is out of the candidates' reach
-                    break
-                gap[sample_tree.query(x[w], k=min(16, len(x)))[1]] = 0.0
-                continue
-            patches += 1
-            c, r = _medial_ball(x[w], normals[w], sample_tree, x, start)
-        if r <= 0.0:
-            gap[w] = 0.0
-            continue
-        all_c, all_r = np.concatenate(c_list), np.concatenate(r_list)
-        link = int(np.argmin(((all_c - c) ** 2).sum(axis=1) - all_r**2))
-        c_list.append(c[None])
-        r_list.append(np.array([r]))
-        e_list.append(np.array([[link, n]]))
-        cone = envelope_gap(x, np.array([all_c[link], c]), np.array([all_r[link], r]), _ONE_EDGE, _NO_FACES)
-        gap = np.minimum(gap, cone)
-        n += 1
-    return np.concatenate(c_list), np.concatenate(r_list), np.concatenate(e_list).astype(np.int64)
