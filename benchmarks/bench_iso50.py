@@ -13,7 +13,9 @@ means, computed here exactly as the library did), and prints the iso value, the
 mean thickness (``2 * radii``) of the vertices at least one plate thickness in
 from the rim, its error to 6.0, and the p99 distance to the plate's mid-plane of
 those vertices and of all vertices (the rim's free-edge and extension vertices
-included). The issue's targets: thickness within 2 %, p99 <= 0.3 voxel.
+included). The issue's targets: thickness within 2 %, p99 <= 0.3 voxel over
+all vertices (the free edges are put on the chords' mid-points across the
+plate in the extension stage).
 
 Usage::
 
@@ -124,8 +126,8 @@ def main(argv=None) -> None:
             print(f"{name:22s} {rule:9s} {worst['iso']:6.0f} {method:>6s} {worst['thickness']:9.3f} "
                   f"{worst['error']:+6.2f}% {p99_inner:7.3f} {p99_all:7.3f}")
             if rule == "ours":
-                verdict &= all(abs(r["error"]) <= 2.0 and r["p99_inner"] <= 0.3 for r in found)
-    print("targets (ours: |error| <= 2 %, p99 of the inner vertices <= 0.3 voxel):", "PASS" if verdict else "FAIL")
+                verdict &= all(abs(r["error"]) <= 2.0 and r["p99_all"] <= 0.3 for r in found)
+    print("targets (ours: |error| <= 2 %, p99 of all vertices <= 0.3 voxel):", "PASS" if verdict else "FAIL")
 
 
 if __name__ == "__main__":

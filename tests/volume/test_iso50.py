@@ -41,6 +41,39 @@ def test_thickness_and_mid_plane_at_every_orientation(plate):
     assert abs(found["iso"] - 2000.0) <= 0.02 * 2000.0, (name, found)
     assert abs(found["thickness"] - 6.0) <= 0.02 * 6.0, (name, found)
     assert found["p99_inner"] <= 0.3, (name, found)
+    # the rim too: the free edges and their extension sit on the chords' mid-points across the plate
+    assert found["p99_all"] <= 0.3, (name, found)
+
+
+@pytest.mark.filterwarnings("ignore::medialaxis.MedialAxisWarning")  # the rim's voxels, under the plates' lam
+def test_the_rim_by_blocks_is_the_whole_rim():
+    """The chords are sampled by blocks as the whole volume samples them: the same mesh, bit for bit
+    (a wider plate, so that the blocks' windows do not all reach the whole sheet)."""
+    volume, normal, centre = bench.plate(bench.ORIENTATIONS["tilted 45 deg"], size=80, radius=36, sub=2, rng=3)
+    whole = mx.medial_axis(volume, method="midsurface", chunks=0)
+    blocks = mx.medial_axis(volume, method="midsurface", chunks=20, n_jobs=1)
+    assert blocks.metadata["blocks"]["blocks"] == 64 and blocks.metadata["mesh_halo"] < 60
+    assert np.array_equal(blocks.points, whole.points) and np.array_equal(blocks.faces, whole.faces)
+    assert bench.measure(blocks, normal, centre, radius=36)["p99_all"] <= 0.3
+
+
+def test_a_chord_mid_point_is_on_the_mid_plane_whatever_the_normal():
+    """A flat plate (exact: its grey value is a ramp of the distance to its mid-plane): the mid-point
+    of a chord along a normal 20 degrees off is on the mid-plane; a chord longer than the plate is refused."""
+    from medialaxis.volume.extension import centre_on_chords
+
+    n = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
+    index = np.indices((40, 40, 40), dtype=np.float64).transpose(1, 2, 3, 0)
+    grey = np.clip(3.0 - np.abs((index - 19.5) @ n), -1.0, 1.0)  # crosses 0 at +-3: 6 voxels thick
+    tilt = np.radians(20.0)
+    normal = np.cos(tilt) * n + np.sin(tilt) * np.array([0.0, 0.0, 1.0])
+    centres = np.array([[19.5, 19.5, 19.5], [21.0, 20.0, 18.0], [18.0, 19.0, 22.0]]) + 0.8 * n
+    spacing = np.ones(3)
+    offsets = centre_on_chords(grey, 0.0, spacing, centres, np.tile(normal, (3, 1)), np.full(3, 6.0), np.full(3, 6.0))
+    moved = centres + offsets[:, None] * normal
+    assert np.abs((moved - 19.5) @ n).max() <= 0.02
+    thin = centre_on_chords(grey, 0.0, spacing, centres, np.tile(normal, (3, 1)), np.full(3, 6.0), np.full(3, 3.0))
+    assert np.array_equal(thin, np.zeros(3))  # a 6-voxel chord where the plate is 3 thick
 
 
 def test_the_previous_rule_read_the_plate_thick(plate):

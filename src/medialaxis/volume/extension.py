@@ -115,6 +115,60 @@ def march_to_iso(grey: np.ndarray, iso: float, spacing: np.ndarray, start: np.nd
     return out
 
 
+#: A chord across the plate is trusted when its length is within this share of the plate's thickness.
+CHORD_TOLERANCE = 0.4
+
+
+def centre_on_chords(grey: Any, iso: float, spacing: np.ndarray, centres: np.ndarray, normals: np.ndarray,
+                     reach: np.ndarray, thickness: np.ndarray) -> np.ndarray:
+    """Offsets along ``normals`` that put ``centres`` on the mid-points of their chords across the plate.
+
+    From each centre the first iso-crossings along ``+normal`` and
+    ``-normal`` (within ``reach``) bound a chord of the part; its mid-point
+    lies on the mid-plane of a flat plate for any direction that crosses both
+    faces, so an error in the normal does not move it. An offset is 0 where a
+    crossing is missing or the chord's length is not the plate's ``thickness``
+    within :data:`CHORD_TOLERANCE` (a chord into a crease or another plate).
+
+    Returns
+    -------
+    (k,) float64 ndarray
+    """
+    step = 0.25 * float(spacing.min())
+    longest = float(reach.max(initial=0.0))
+    both = march_to_iso(grey, iso, spacing, np.concatenate([centres, centres]), np.concatenate([normals, -normals]),
+                        longest, step)
+    up, down = both[:len(centres)], both[len(centres):]
+    ok = np.isfinite(up) & np.isfinite(down) & (up <= reach) & (down <= reach)
+    ok &= np.abs(np.nan_to_num(up + down) - thickness) <= CHORD_TOLERANCE * thickness
+    return np.where(ok, 0.5 * (np.nan_to_num(up) - np.nan_to_num(down)), 0.0)
+
+
+def _centred_ends(points: np.ndarray, new_points: np.ndarray, vertices: np.ndarray, directions: np.ndarray,
+                  length: np.ndarray, eigen: np.ndarray, is_normal: np.ndarray, grey: Any, iso: float,
+                  spacing: np.ndarray, reach: np.ndarray, thickness: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The extended vertices of one sheet and their new vertices moved onto their chords' mid-points.
+
+    A free edge's vertex mixes in points of the end face and its faces tilt
+    near it: the ray's end, several voxels out, would leave the mid-plane by
+    the tilt. The new vertex takes the offset of the chord one voxel inside
+    the end face (at the end face itself the chord vanishes).
+    """
+    one = is_normal.sum(axis=1) == 1
+    rows = np.flatnonzero(one)
+    normal = np.einsum("kij,kj->ki", eigen[rows], is_normal[rows].astype(np.float64))
+    v = vertices[rows]
+    inside = np.maximum(length[rows] - float(spacing.max()), 0.5 * length[rows])
+    centres = np.concatenate([points[v], points[v] + inside[:, None] * directions[rows]])
+    offsets = centre_on_chords(grey, iso, spacing, centres, np.concatenate([normal, normal]),
+                               np.concatenate([reach[v], reach[v]]), np.concatenate([thickness[v], thickness[v]]))
+    points = points.copy()
+    new_points = new_points.copy()
+    points[v] += offsets[:len(v)][:, None] * normal
+    new_points[rows] += offsets[len(v):][:, None] * normal  # the chord was measured on the ray before the move
+    return points, new_points
+
+
 #: Largest |cos| between an extension ray and the normal of a face at its vertex.
 MAX_NORMAL_COMPONENT = 0.35
 
@@ -234,7 +288,7 @@ def _along_junction_lines(points: np.ndarray, faces: np.ndarray, junction: np.nd
 def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: float, spacing: np.ndarray,
                 max_length: float | np.ndarray, plane_normals: tuple[np.ndarray, np.ndarray] | None = None,
                 free: np.ndarray | None = None, junction: np.ndarray | None = None,
-                probe: float | np.ndarray = 0.0,
+                probe: float | np.ndarray = 0.0, chord: float | np.ndarray = 0.0,
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Extend the free boundary of a mid-surface mesh to the isosurface.
 
@@ -267,11 +321,17 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
         the vertex are background (the part ends beside the sheet there; it does not where
         a ray runs along a sheet into a crease or another plate). Rays along
         junction lines are not probed.
+    chord : float or (v,) float64 ndarray, optional
+        When > 0 and with ``probe``: the plate's thickness at each vertex. The
+        extended vertices (of one sheet, not along a junction line) and their
+        new vertices are put on the mid-point of the chord across the plate
+        along the sheet normal (:func:`centre_on_chords`; at a new vertex the
+        chord one voxel inside the end face).
 
     Returns
     -------
     points : (v + k, 3) float64 ndarray
-        The input points followed by the new vertices.
+        The input points (the extended ones centred with ``chord``) followed by the new vertices.
     faces : (f + m, 3) int64 ndarray
     source : (k,) int64 ndarray
         The boundary vertex each new vertex extends.
@@ -324,9 +384,14 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
                 use = is_normal[good][:, k] & grow & ~along_line & (probes[vertices] > 0)
             grow &= ~(use & (values[row] > iso))
     vertices, directions, length = vertices[grow], directions[grow], length[grow]
+    new_points = points[vertices] + length[:, None] * directions
+    chords = np.broadcast_to(np.asarray(chord, np.float64), (len(points),))
+    if probes.max(initial=0.0) > 0 and chords.max(initial=0.0) > 0:
+        points, new_points = _centred_ends(points, new_points, vertices, directions, length,
+                                           eigen[good][grow], is_normal[good][grow] & ~along_line[grow][:, None],
+                                           grey, iso, spacing, probes, chords)
     new_index = np.full(len(points), -1, np.int64)
     new_index[vertices] = len(points) + np.arange(len(vertices))
-    new_points = points[vertices] + length[:, None] * directions
     a, b = edges[:, 0], edges[:, 1]
     a2, b2 = new_index[a], new_index[b]
     both = (a2 >= 0) & (b2 >= 0)

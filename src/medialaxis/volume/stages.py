@@ -145,7 +145,7 @@ def extension_stage(state: dict[str, Any], grey: Any, iso: float, spacing: np.nd
         state["points"], state["faces"], grey, iso, spacing,
         max_length=1.5 * plate + 2.0 * sample_radius,
         free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
-        probe=0.5 * plate + 2.0 * float(spacing.max()),
+        probe=0.5 * plate + 2.0 * float(spacing.max()), chord=plate,
     )
     state["points"], state["faces"], state["extended_from"] = points, faces, source
     state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
