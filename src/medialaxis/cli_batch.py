@@ -1,7 +1,7 @@
 """Inputs and outputs of ``medialaxis compute`` over many shapes.
 
 ``compute`` takes files, glob patterns (expanded here when the shell did not)
-and folders. A folder of TIFF or DICOM slices is one volume; any other folder
+and folders. A folder of TIFF or DICOM slices, or a Zarr store, is one volume; any other folder
 stands for the shape files in it (images, polygon files, meshes, volumes and
 saved results, by extension), in name order. Each input's outputs go to
 ``--out-dir``, one per ``--format``, named after the input.
@@ -40,6 +40,11 @@ def is_slice_folder(folder: Path) -> bool:
     return bool(files) and all(_suffix(p) in SLICE_SUFFIXES for p in files)
 
 
+def is_zarr_store(folder: Path) -> bool:
+    """A Zarr array or group (an OME-Zarr image among them): one volume."""
+    return folder.suffix.lower() == ".zarr" or any((folder / n).exists() for n in (".zarray", ".zgroup", "zarr.json"))
+
+
 def expand_inputs(items: Sequence[Path]) -> list[Path]:
     """The shapes named by files, glob patterns and folders, in order, each once.
 
@@ -57,7 +62,7 @@ def expand_inputs(items: Sequence[Path]) -> list[Path]:
             if not matches:
                 raise InputFileError(f"no file matches {text!r}")
             out += [p for p in matches if p.is_file() or is_slice_folder(p)]
-        elif item.is_dir() and not is_slice_folder(item):
+        elif item.is_dir() and not is_slice_folder(item) and not is_zarr_store(item):
             files = [p for p in _files(item) if _suffix(p) in SHAPE_SUFFIXES]
             if not files:
                 raise InputFileError(f"no shape file in the folder {text!r} (looked for {' '.join(SHAPE_SUFFIXES)})")

@@ -54,11 +54,12 @@ from medialaxis.volume.blocks import block_grid, finish_block, halo_voxels, medi
 from medialaxis.volume.distance import Grid
 from medialaxis.volume.inputs import VolumeInput, check_spacing
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels
+from medialaxis.volume.ome_zarr import stream_out
 from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness, nominal_thicknesses, plate_summary
 from medialaxis.volume.polygonize import JUNCTION_SPACING, pick_seed
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
 from medialaxis.volume.stages import check_range, dropped_report, mesh_result, stage_metadata
-from medialaxis.volume.stitch import check_streamed, join_pieces, stream_mesh
+from medialaxis.volume.stitch import check_streamed, join_pieces
 from medialaxis.volume.tiles import (
     MeshPlan,
     SheetPart,
@@ -354,7 +355,8 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
                          "blocks": _block_figures(state, counts, folder, medial_seconds, time.perf_counter() - started)})
         shell = shell_of_source(source, state["iso"], state["spacing"])
         if out is not None:
-            vertices, faces = stream_mesh(folder, counts, state["chunks"], out)
+            vertices, faces = stream_out(out, folder, counts, state["chunks"], [i for _, i in state["items"]], source,
+                                         state["spacing"])
             metadata.update({"written": str(out), "vertices": vertices, "faces": faces})
             return MedialAxis(np.zeros((0, 3)), np.zeros(0), metadata=metadata, shape=shell)
         points, radii, kind, faces = join_pieces(folder, [c["index"] for c in counts if c["vertices"] or c["faces"]])

@@ -33,6 +33,7 @@ from medialaxis.volume.chunked import check_out, chunked_midsurface, chunked_vox
 from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
+from medialaxis.volume.ome_zarr import is_ome_zarr_out, write_in_memory
 from medialaxis.volume.plates import PlateThickness, plate_thickness
 from medialaxis.volume.polygonize import Polygonization
 from medialaxis.volume.shell import isosurface_shell
@@ -268,9 +269,10 @@ def midsurface_medial_axis(
         voxels, wider where the picks near the core are not provably the
         whole sheet's (``metadata["mesh_halo"]``).
         Accepted sources: arrays, ``dask.array.Array``, Zarr arrays and
-        stores, ``.npy`` and raw files (memory-mapped), NRRD (raw
-        memory-mapped; gzip/bzip2 decompressed once to a temporary file),
-        NIfTI, TIFF stacks and folders (page by page).
+        stores, OME-Zarr images (level 0, or the level a path names),
+        ``.npy`` and raw files (memory-mapped), NRRD (raw memory-mapped;
+        gzip/bzip2 decompressed once to a temporary file), NIfTI, TIFF
+        stacks and folders (page by page).
     scheduler : None, "threads", "synchronous", dask Client or str
         Where the blocks run: local threads (default), one thread, or a Dask
         cluster (a ``Client`` or an address such as ``"tcp://host:8786"``;
@@ -287,7 +289,8 @@ def midsurface_medial_axis(
         there block by block (the mesh is never whole in one process) and
         returns a result without the mesh: ``metadata["written"]``,
         ``["vertices"]`` and ``["faces"]``; in memory the result is written
-        and returned.
+        and returned. A ``.ome.zarr`` path gets an OME-Zarr image of the wall thickness on the
+        mid-surface's voxels, the mesh in its group ``mesh`` (:mod:`~medialaxis.volume.ome_zarr`).
     spill : str or path, optional
         Folder for the blocks' medial voxels and mesh pieces of the chunked
         route (default: the temporary folder; on a cluster of several
@@ -338,13 +341,16 @@ def midsurface_medial_axis(
             scheduler=scheduler, n_jobs=n_jobs, callback=callback, show_progress=show_progress, out=out, spill=spill,
         )
     check_out(out)
-    result = volume_stages(
+    stages = volume_stages(
         volume, iso=iso, threshold=threshold, thickness=thickness, lam=lam, spacing=spacing, extend=extend,
         remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype, callback=callback,
         show_progress=show_progress,
-    ).result
+    )
+    result = stages.result
     if out is not None:
-        if Path(out).suffix.lower() == ".zarr":
+        if is_ome_zarr_out(out):
+            write_in_memory(out, stages)
+        elif Path(out).suffix.lower() == ".zarr":
             write_zarr_mesh(out, result.points, result.radii, result.vertex_kind, result.faces)
         else:
             result.save(out)

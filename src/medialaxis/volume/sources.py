@@ -5,7 +5,8 @@ header and reads any box of voxels on demand (:meth:`Source.read`), never
 the whole volume: ``.npy`` and raw files and the raw encoding of NRRD are
 memory-mapped for the length of one read, TIFF stacks and folders are read
 page by page, NIfTI through nibabel's array proxy, Zarr stores chunk by
-chunk, and a ``dask.array.Array`` computes only the box. Compressed NRRD
+chunk (an OME-Zarr image at one level: :mod:`~medialaxis.volume.ome_zarr`),
+and a ``dask.array.Array`` computes only the box. Compressed NRRD
 (gzip, bzip2) cannot be read at random: it is decompressed once, slab by
 slab, into a temporary raw file. Sources hold paths, not open files, so they
 travel to the workers of a Dask cluster (which must see the same paths).
@@ -101,7 +102,9 @@ def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None, he
             raise InputFileError(f"no such file or folder: {str(path)!r}")
         name = path.name.lower()
         if is_zarr_folder(path):
-            return ZarrSource(path)
+            from medialaxis.volume.ome_zarr import open_ome_zarr
+
+            return open_ome_zarr(path) or ZarrSource(path)  # an OME-Zarr image's level, or a plain array
         if path.is_dir():
             if any(p.suffix.lower() in (".tif", ".tiff") for p in path.iterdir()):
                 return TiffSource(path)

@@ -122,12 +122,12 @@ def _ply(folder: str, pieces: list[dict[str, Any]], lookup: _Names, tmp: Path, t
 ZARR_ROWS = 1 << 18
 
 
-def _zarr_group(path: Path, total: int, n_faces: int) -> dict[str, Any]:
+def _zarr_group(path: Path, total: int, n_faces: int, zarr_format: int = 3) -> dict[str, Any]:
     """An empty Zarr group at ``path`` with the mesh's arrays (``vertices``, ``faces``, ``radii``, ``vertex_kind``)."""
     from medialaxis._optional import require
 
     zarr = require("zarr", "medialaxis[dask]")
-    group = zarr.open_group(str(path), mode="w")
+    group = zarr.open_group(str(path), mode="w", zarr_format=zarr_format)
     group.attrs.update({"medialaxis": "mid-surface mesh", "n_vertices": int(total), "n_faces": int(n_faces),
                         "radii": "half the local thickness", "vertex_kind": "0 surface, 1 free edge, 2 junction, 3 extension"})
     rows = max(1, min(ZARR_ROWS, max(total, n_faces)))
@@ -137,8 +137,9 @@ def _zarr_group(path: Path, total: int, n_faces: int) -> dict[str, Any]:
             "vertex_kind": group.create_array("vertex_kind", shape=(total,), dtype="i1", chunks=(rows,))}
 
 
-def _zarr(folder: str, pieces: list[dict[str, Any]], lookup: _Names, tmp: Path, total: int, n_faces: int) -> None:
-    arrays = _zarr_group(tmp, total, n_faces)
+def _zarr(folder: str, pieces: list[dict[str, Any]], lookup: _Names, tmp: Path, total: int, n_faces: int,
+          zarr_format: int = 3) -> None:
+    arrays = _zarr_group(tmp, total, n_faces, zarr_format)
     start = first_face = 0
     for c in pieces:
         p = _load(folder, c["index"])
@@ -153,12 +154,12 @@ def _zarr(folder: str, pieces: list[dict[str, Any]], lookup: _Names, tmp: Path, 
 
 
 def write_zarr_mesh(out: str | os.PathLike, points: np.ndarray, radii: np.ndarray, kind: np.ndarray,
-                    faces: np.ndarray) -> None:
+                    faces: np.ndarray, zarr_format: int = 3) -> None:
     """A mesh in memory written as the Zarr group :func:`stream_mesh` streams (atomically)."""
     out = Path(out)
     tmp = _part(out)
     try:
-        arrays = _zarr_group(tmp, len(points), len(faces))
+        arrays = _zarr_group(tmp, len(points), len(faces), zarr_format)
         arrays["vertices"][:], arrays["radii"][:], arrays["vertex_kind"][:] = points, radii, kind
         arrays["faces"][:] = faces
         _replace(tmp, out)
@@ -186,18 +187,22 @@ def check_streamed(out: Any) -> Path:
     return path
 
 
-def stream_mesh(folder: str, counts: list[dict[str, Any]], chunks: tuple[int, int, int], out: str | os.PathLike) -> tuple[int, int]:
+def stream_mesh(folder: str, counts: list[dict[str, Any]], chunks: tuple[int, int, int], out: str | os.PathLike,
+                zarr_format: int | None = None) -> tuple[int, int]:
     """Write the pieces block by block, atomically, to a binary PLY file (the fields of
     :func:`~medialaxis.core.mesh_files.write_ply`) or a Zarr group (``vertices (n, 3)``,
     ``faces (k, 3)`` int64, ``radii (n,)``, ``vertex_kind (n,)`` int8); returns the numbers of
-    vertices and faces. Vertices come block by block, each block's sorted by name."""
-    out = check_streamed(out)
+    vertices and faces. Vertices come block by block, each block's sorted by name.
+    ``zarr_format``: a Zarr group of that format whatever ``out``'s suffix (2 inside an OME-Zarr image)."""
+    out = Path(out) if zarr_format else check_streamed(out)
     pieces, offsets, total, n_faces = _layout(counts)
     lookup = _Names(folder, chunks, offsets)
     tmp = _part(out)
-    write = _zarr if out.suffix.lower() == ".zarr" else _ply
     try:
-        write(folder, pieces, lookup, tmp, total, n_faces)
+        if zarr_format or out.suffix.lower() == ".zarr":
+            _zarr(folder, pieces, lookup, tmp, total, n_faces, zarr_format or 3)
+        else:
+            _ply(folder, pieces, lookup, tmp, total, n_faces)
         _replace(tmp, out)
     finally:
         if tmp.is_dir():
