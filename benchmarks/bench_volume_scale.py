@@ -112,16 +112,20 @@ def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
         ma = mx.medial_axis(path, method="midsurface", chunks=chunks if tool != "memory" else 0, **options)
         out["seconds"] = time.perf_counter() - t0
         # the run's own high-water mark, before the scoring below allocates its samples
-        out["own_peak_gib"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
+        own = resource.getrusage(resource.RUSAGE_SELF)
+        out["own_peak_gib"] = own.ru_maxrss / 2**20
+        out["cpu_seconds"] = own.ru_utime + own.ru_stime  # the client's (or the threads') CPU time
         if client is not None:
-            peaks = client.run(lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20)
-            out["worker_peaks_gib"] = sorted(peaks.values())
+            usage = client.run(lambda: resource.getrusage(resource.RUSAGE_SELF))
+            out["worker_peaks_gib"] = sorted(u.ru_maxrss / 2**20 for u in usage.values())
+            out["cpu_seconds"] += sum(u.ru_utime + u.ru_stime for u in usage.values())
             client.close()
             cluster.close()
         done = os.environ.get("BENCH_DONE")
         if done:
             Path(done).touch()  # the parent stops sampling the tree here
         out["blocks"] = ma.metadata.get("blocks")
+        out["halo"] = ma.metadata.get("halo")
         out["mesh_halo"] = ma.metadata.get("mesh_halo")
         points, faces, radii = (read_ply(str(ply)) if tool == "cluster" else (ma.points, ma.faces, ma.radii))
         rects = ribbed_panel_truth((n, n, n), thickness=THICKNESS, margin=MARGIN)
@@ -258,6 +262,13 @@ def main() -> None:
                   f"{b['sheet_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.2f} MiB and piece "
                   f"{b['piece_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.3f} MiB per sheet block, "
                   f"{b['medial_voxels']} medial voxels, mesh halo {r.get('mesh_halo')}")
+            if "cpu_seconds" in r:
+                halo = max(r.get("halo") or [0])
+                read = (r["chunks"] + 2 * halo) ** 3 * 2  # uint16 voxels each block reads (core and halo)
+                first = r["cpu_seconds"] - b.get("mesh_block_cpu_seconds", 0.0)
+                print(f"  CPU {r['cpu_seconds']:.0f} s in all: the rest (first pass, stitching) {first / b['blocks']:.2f} s CPU per block, "
+                      f"mesh {b.get('mesh_block_cpu_seconds', 0.0) / max(b['sheet_blocks'], 1):.2f} s CPU per sheet block; "
+                      f"each block reads {read / 2**20:.1f} MiB (halo {halo})")
     print(f"\nchunks=min({args.chunks}, size/2), n_jobs={args.jobs}; targets: peak <= 8 GiB at 1024^3, >= 2.6 M voxels/s (goal 5), "
           "p99 <= 1 voxel, >= 98% covered, one piece, thickness within 10% of 8")
 
