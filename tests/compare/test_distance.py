@@ -178,11 +178,15 @@ def test_compiled_distance_is_the_reference_tour_alignment():
 def test_match_tour_pairs_samples_along_both_walks():
     d, pa, pb = match_tour(T_SHAPE, T_SHAPE)
     assert d == 0.0 and np.array_equal(pa, pb) and len(pa) == shape_signature(T_SHAPE).tour.shape[1]
-    d, pa, pb = match_tour(T_SHAPE, _similarity(T_SHAPE, 30, 2, 5, 5, True))
-    assert d < 1e-9 and pa.shape == pb.shape == (len(pa), 2) and len(pa) > 0
-    # Each matched sample of the moved shape is the image of its partner under the similarity.
-    moved = np.array([g.coords[0] for g in _similarity(MultiPoint(pa), 30, 2, 5, 5, True).geoms])
-    assert np.allclose(moved, pb, atol=1e-6 * 20)
+    # L_SHAPE has no symmetry: each matched sample of the moved shape is the image of its partner
+    # under the similarity. T_SHAPE is symmetric about x = 5: its partner is the image of the sample
+    # or of its mirror image (two alignments of distance 0, which one is found turns on rounding).
+    for shape, mirrors in ((L_SHAPE, (lambda p: p,)), (T_SHAPE, (lambda p: p, lambda p: p * [-1, 1] + [10, 0]))):
+        d, pa, pb = match_tour(shape, _similarity(shape, 30, 2, 5, 5, True))
+        assert d < 1e-9 and pa.shape == pb.shape == (len(pa), 2) and len(pa) > 0
+        images = [np.array([g.coords[0] for g in _similarity(MultiPoint(m(pa)), 30, 2, 5, 5, True).geoms])
+                  for m in mirrors]
+        assert any(np.allclose(moved, pb, atol=1e-6 * 20) for moved in images)
 
 
 def test_bad_inputs():

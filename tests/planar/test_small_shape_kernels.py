@@ -282,3 +282,22 @@ def test_dual_edges_kernel_is_the_numpy_version() -> None:
         ours = dual_edges(tri.simplices, tri.neighbors, np.flatnonzero(inside), tri.points, nxt)
         for a, b in zip(ours, dual_edges_reference(tri, inside, nxt)):
             np.testing.assert_array_equal(a, b)
+
+
+def test_boundary_distance_takes_the_ties_the_brute_force_takes() -> None:
+    """The grid's distance is the brute-force reference's: the pieces at the k nearest and every tied sample."""
+    from medialaxis.planar._distance_kernels import boundary_distance_kernel
+    from medialaxis.planar._kernels import nearest_piece_distance, nearest_with_ties
+
+    rng = np.random.default_rng(11)
+    side = np.arange(12.0)
+    square = np.concatenate([np.c_[side, 0 * side], np.c_[12 + 0 * side, side], np.c_[12 - side, 12 + 0 * side],
+                             np.c_[0 * side, 12 - side]])  # a square ring sampled on the integer grid: many ties
+    angle = np.sort(rng.uniform(0, 2 * np.pi, 300))
+    wobbly = np.c_[np.cos(angle), 0.3 * np.sin(angle)] * (1 + 0.1 * np.sin(7 * angle))[:, None]
+    for points, query in ((square, np.r_[rng.uniform(0, 12, (300, 2)), np.mgrid[0:12:0.5, 0:12:0.5].reshape(2, -1).T]),
+                          (wobbly, rng.uniform(-1.2, 1.2, (400, 2)))):
+        n = len(points)
+        nxt, prv = (np.arange(n) + 1) % n, (np.arange(n) - 1) % n
+        expected = nearest_piece_distance(query, points, nxt, prv, nearest_with_ties(query, points, 8))
+        np.testing.assert_array_equal(boundary_distance_kernel(query, points, nxt, prv, 8), expected)

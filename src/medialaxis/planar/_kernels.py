@@ -28,6 +28,7 @@ import math
 import numpy as np
 
 from medialaxis._jit import njit
+from medialaxis.planar._distance_kernels import nearest_in_grid, piece_distance, sample_grid
 
 __all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
            "piece_state_reference", "circumcircles_kernel", "circumcircle", "split_pieces", "split_count",
@@ -123,18 +124,9 @@ def nearest_piece_distance(query, points, nxt, prv, near):  # type: ignore[no-un
     """
     out = np.empty(len(query))
     for i in range(len(query)):
-        qx, qy = query[i, 0], query[i, 1]
         best = np.inf
         for m in range(near.shape[1]):
-            j = near[i, m]
-            for start in (j, prv[j]):
-                ax, ay = points[start, 0], points[start, 1]
-                bx, by = points[nxt[start], 0] - ax, points[nxt[start], 1] - ay
-                px, py = qx - ax, qy - ay
-                t = (px * bx + py * by) / max(bx * bx + by * by, 1e-300)
-                t = min(max(t, 0.0), 1.0)
-                dx, dy = px - t * bx, py - t * by
-                best = min(best, np.sqrt(dx * dx + dy * dy))
+            best = min(best, piece_distance(points, nxt, prv, near[i, m], query[i, 0], query[i, 1]))
         out[i] = best
     return out
 
@@ -272,66 +264,8 @@ def nearest_samples(query, points, k):  # type: ignore[no-untyped-def]
     :func:`nearest_with_ties`). Where sure, ``near[i]`` holds the same set as
     ``cKDTree.query(..., k)``.
     """
-    n = len(points)
-    x0, y0, x1, y1 = np.inf, np.inf, -np.inf, -np.inf
-    for i in range(n):
-        x0, x1 = min(x0, points[i, 0]), max(x1, points[i, 0])
-        y0, y1 = min(y0, points[i, 1]), max(y1, points[i, 1])
-    g = max(1, int(np.sqrt(n / 2.0)))
-    cell = max(x1 - x0, y1 - y0, 1e-300) / g * (1.0 + 1e-9)
-    start = np.zeros(g * g + 1, np.int64)
-    home = np.empty(n, np.int64)
-    for i in range(n):
-        home[i] = min(int((points[i, 0] - x0) / cell), g - 1) * g + min(int((points[i, 1] - y0) / cell), g - 1)
-        start[home[i] + 1] += 1
-    for c in range(g * g):
-        start[c + 1] += start[c]
-    fill = np.empty(g * g, np.int64)
-    for c in range(g * g):
-        fill[c] = start[c]
-    members = np.empty(n, np.int64)
-    for i in range(n):
-        members[fill[home[i]]] = i
-        fill[home[i]] += 1
-    near = np.empty((len(query), k), np.int64)
-    sure = np.ones(len(query), np.bool_)
-    best_d = np.empty(k + 1)
-    best_i = np.empty(k + 1, np.int64)
-    for q in range(len(query)):
-        qx, qy = query[q, 0], query[q, 1]
-        cx = min(max(int(np.floor((qx - x0) / cell)), 0), g - 1)
-        cy = min(max(int(np.floor((qy - y0) / cell)), 0), g - 1)
-        found = 0
-        r = 0
-        while True:
-            for ix in range(max(cx - r, 0), min(cx + r, g - 1) + 1):
-                for iy in range(max(cy - r, 0), min(cy + r, g - 1) + 1):
-                    if max(abs(ix - cx), abs(iy - cy)) != r:
-                        continue  # the ring of cells at distance r only
-                    for m in range(start[ix * g + iy], start[ix * g + iy + 1]):
-                        p = members[m]
-                        d = (points[p, 0] - qx) ** 2 + (points[p, 1] - qy) ** 2
-                        if found == k + 1 and d >= best_d[k]:
-                            continue
-                        j = min(found, k)
-                        while j > 0 and best_d[j - 1] > d:
-                            best_d[j] = best_d[j - 1]
-                            best_i[j] = best_i[j - 1]
-                            j -= 1
-                        best_d[j] = d
-                        best_i[j] = p
-                        found = min(found + 1, k + 1)
-            covered = cx - r <= 0 and cy - r <= 0 and cx + r >= g - 1 and cy + r >= g - 1
-            # any point not yet seen lies beyond the visited block of cells
-            bound = min(qx - (x0 + (cx - r) * cell), x0 + (cx + r + 1) * cell - qx,
-                        qy - (y0 + (cy - r) * cell), y0 + (cy + r + 1) * cell - qy)
-            if covered or (found == k + 1 and bound > 0 and best_d[k] < bound * bound * (1.0 - 1e-9)):
-                break
-            r += 1
-        for j in range(k):
-            near[q, j] = best_i[j]
-        sure[q] = best_d[k] - best_d[k - 1] > 1e-9 * best_d[k]
-    return near, sure
+    x0, y0, cell, g, start, members = sample_grid(points)
+    return nearest_in_grid(query, points, k, x0, y0, cell, g, start, members)
 
 
 @njit(cache=True, nogil=True, inline="always")

@@ -21,9 +21,10 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
+from medialaxis.planar._corner_kernels import corner_piece_state
 from medialaxis.planar._delaunay_kernels import insert_point, insertion_order, scratch
 from medialaxis.planar._inside_kernels import UNSURE, locate_centroid
-from medialaxis.planar._kernels import circumcircle, piece_state, split_count
+from medialaxis.planar._kernels import circumcircle, split_count
 
 __all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp", "insert_round", "refine_round"]
 
@@ -169,12 +170,15 @@ def insert_round(x, y, tv, tn, count, order, hint, near, points, centre, radius,
 
 
 @njit(cache=True, nogil=True)
-def refine_round(tv, count, where, radius, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
-                 ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share):  # type: ignore[no-untyped-def]
+def refine_round(tv, count, where, centre, radius, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
+                 convex, ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share):  # type: ignore[no-untyped-def]
     """The pieces' state, their splits and the new samples of one round, over the ``n = len(nxt)`` vertices.
 
     ``rings_s`` and ``rings_xy`` hold each closed ring's cumulative arc
-    length and vertices, ring ``r`` at ``rings_start[r]:rings_start[r + 1]``.
+    length and vertices, ring ``r`` at ``rings_start[r]:rings_start[r + 1]``,
+    ``convex`` flags its convex vertices (the pieces' state is
+    :func:`medialaxis.planar._corner_kernels.corner_piece_state`, with the
+    triangles' circumcentres ``centre``).
     New samples are placed as :func:`medialaxis.planar.sampling.sample`
     places them and jittered as :func:`medialaxis.planar.delaunay.triangulate`
     does (``(p - lo) / extent + jitter[i]``). Returns ``(m, settled, points,
@@ -184,7 +188,9 @@ def refine_round(tv, count, where, radius, nxt, arc, ring, points, x, y, near, r
     their piece.
     """
     n = len(nxt)
-    conforming, piece_radius = piece_state(tv[:count], where[:count] == 1, radius[:count], nxt)
+    conforming, piece_radius = corner_piece_state(tv[:count], where[:count] == 1, radius[:count], centre[:count], nxt,
+                                                  arc, ring, CORNERS, rings_s, rings_xy, rings_start, convex,
+                                                  tolerance)
     new_arc, new_ring, piece, nxt_out = split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming,
                                                      n, tolerance, min_length, ratio)
     m = len(new_arc)

@@ -4,6 +4,9 @@ The samples start evenly spaced along the rings and are refined piece by
 piece until every boundary piece is a Delaunay edge (the triangulation
 conforms) and each inner circumcentre lies within the tolerance of the
 axis of the sampled shape (:func:`medialaxis.planar.sampling.refine_arcs`).
+Convex corners start with mirrored samples and their triangles, whose
+circumcentres lie on the corner's bisector, do not drive the refinement
+(:mod:`medialaxis.planar.corners`).
 
 Each round inserts only its new samples into the triangulation of the round
 before and tests only the triangles it made (:mod:`medialaxis.planar._refine_kernels`);
@@ -20,10 +23,11 @@ import numpy as np
 import shapely
 
 from medialaxis._progress import progress
+from medialaxis.planar._corner_kernels import corner_piece_state
 from medialaxis.planar._delaunay_kernels import corner_square, drop_corners, insertion_order
-from medialaxis.planar._kernels import piece_state
 from medialaxis.planar._refine_kernels import CORNERS, insert_round, refine_round
 from medialaxis.planar.axis import inner_triangles
+from medialaxis.planar.corners import RingArrays, mirrored_corner_arcs, ring_arrays
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
 from medialaxis.planar.sampling import BoundarySample, Rings, initial_arcs, refine_arcs, sample
 
@@ -33,12 +37,17 @@ __all__ = ["sample_and_triangulate", "rounds_from_scratch", "MAX_REFINEMENTS"]
 MAX_REFINEMENTS = 12
 #: Fewest new samples, as a share of the sample, for another round after the sample conforms.
 SETTLED_SHARE = 0.05
+#: Longest piece, as a share of its inner circumradius (see :func:`medialaxis.planar.sampling.refine_arcs`).
+RATIO = 0.5
 
 
-def _start_arcs(rings: Rings, region: Any, min_length: float) -> list[np.ndarray]:
-    """Pieces about ``sqrt(area) / 8`` long (never below ``min_length``), every vertex a sample."""
+def _start_arcs(
+    rings: Rings, closed: RingArrays, region: Any, tolerance: float, min_length: float
+) -> list[np.ndarray]:
+    """Pieces about ``sqrt(area) / 8`` long (never below ``min_length``), every vertex a sample, corners mirrored."""
     area = max(region.area, 1e-300)
-    return initial_arcs(rings, max(min_length, np.sqrt(area) / 8.0))
+    arcs = initial_arcs(rings, max(min_length, np.sqrt(area) / 8.0))
+    return mirrored_corner_arcs(closed, arcs, tolerance, min_length, RATIO)
 
 
 def sample_and_triangulate(
@@ -61,7 +70,8 @@ def rounds_from_scratch(
     rings: Rings, region: Any, tolerance: float, min_length: float
 ) -> tuple[BoundarySample, Triangulation, np.ndarray]:
     """:func:`sample_and_triangulate` with every round's sample triangulated anew."""
-    arcs: list[np.ndarray] | None = _start_arcs(rings, region, min_length)
+    closed = ring_arrays(rings)
+    arcs: list[np.ndarray] | None = _start_arcs(rings, closed, region, tolerance, min_length)
     settled = False
     locator = rings.locator if region is rings.region else None
     for _ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
@@ -70,8 +80,10 @@ def rounds_from_scratch(
         inside = inner_triangles(tri, region, locator)
         if settled:
             break
-        conforming, radius = piece_state(tri.simplices, inside, tri.radii, smp.next)
-        arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length)
+        conforming, radius = corner_piece_state(tri.simplices, inside, tri.radii, tri.centers, smp.next, smp.arc,
+                                                smp.ring, 0, closed.s, closed.xy, closed.start, closed.convex,
+                                                float(tolerance))
+        arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length, RATIO)
         if arcs is None:
             break
         # Only a handful of pieces near tips were split: triangulate once more and stop.
@@ -84,17 +96,13 @@ def _incremental(
 ) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
     """:func:`rounds_from_scratch`, each round inserting only its new samples; None where the kernel gives up."""
     region, locator = rings.region, rings.locator
-    first = sample(rings, _start_arcs(rings, region, min_length))
+    closed = ring_arrays(rings)
+    first = sample(rings, _start_arcs(rings, closed, region, tolerance, min_length))
     n_real = len(first.points)
     lo = first.points.min(0)
     extent = float((first.points.max(0) - lo).max())
     if n_real < 3 or extent <= 0:
         return None  # the reference raises the error
-    closed = [np.vstack([v, v[:1]]) for v in rings.vertices]
-    rings_xy = np.ascontiguousarray(np.concatenate(closed))
-    rings_s = np.concatenate([np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(c, axis=0), axis=1))])
-                              for c in closed])
-    rings_start = np.concatenate([[0], np.cumsum([len(c) for c in closed])]).astype(np.int64)
     points = np.vstack([np.zeros((CORNERS, 2)), first.points])
     arc = np.concatenate([np.zeros(CORNERS), first.arc])
     ring = np.concatenate([np.full(CORNERS, -1), first.ring]).astype(np.int64)
@@ -124,8 +132,9 @@ def _incremental(
             break
         while True:
             m, settled, points, arc, ring, nxt, x, y, near, batch, hint = refine_round(
-                tv, count, where, radius, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
-                first.ring_length, lo, extent, shaken, float(tolerance), float(min_length), 0.5, SETTLED_SHARE)
+                tv, count, where, centre, radius, nxt, arc, ring, points, x, y, near, closed.s, closed.xy, closed.start,
+                closed.convex, first.ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO,
+                SETTLED_SHARE)
             if m >= 0:
                 break
             shaken = jitter(2 * len(shaken))

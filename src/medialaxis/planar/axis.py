@@ -20,9 +20,10 @@ import numpy as np
 import shapely
 from scipy.spatial import cKDTree
 
+from medialaxis.planar._distance_kernels import boundary_distance_kernel
 from medialaxis.planar._graph_kernels import dual_edges
 from medialaxis.planar._inside_kernels import RegionLocator
-from medialaxis.planar._kernels import nearest_piece_distance, nearest_samples, nearest_with_ties, triangle_centroids
+from medialaxis.planar._kernels import nearest_piece_distance, triangle_centroids
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
 
@@ -109,27 +110,12 @@ def boundary_distance(query: np.ndarray, smp: BoundarySample, tree: cKDTree | No
         return np.empty(0)
     query = np.ascontiguousarray(query, dtype=np.float64)
     k = min(k, len(smp.points))
-    if tree is None and k < len(smp.points):  # the compiled grid; where ties make it unsure, all the tied
-        points = np.ascontiguousarray(smp.points, dtype=np.float64)
-        near, sure = nearest_samples(query, points, k)
-        unsure = np.flatnonzero(~sure)
-        if len(unsure) * len(points) > MAX_TIE_PAIRS:
-            _, idx = smp.tree.query(query[unsure], k=k)
-            near[unsure] = idx.reshape(-1, k)
-        elif len(unsure):
-            out = nearest_piece_distance(query, smp.points, smp.next, smp.prev, near)
-            tied = nearest_with_ties(query[unsure], points, k)
-            out[unsure] = nearest_piece_distance(query[unsure], smp.points, smp.next, smp.prev, tied)
-            return out
-    else:
-        _, idx = (smp.tree if tree is None else tree).query(query, k=k)
-        near = np.ascontiguousarray(idx.reshape(len(query), k), dtype=np.int64)
+    if tree is None and k < len(smp.points):  # the compiled grid, every sample tied with the k-th taken
+        return boundary_distance_kernel(query, np.ascontiguousarray(smp.points, dtype=np.float64),
+                                        np.asarray(smp.next, np.int64), np.asarray(smp.prev, np.int64), k)
+    _, idx = (smp.tree if tree is None else tree).query(query, k=k)
+    near = np.ascontiguousarray(idx.reshape(len(query), k), dtype=np.int64)
     return nearest_piece_distance(query, smp.points, smp.next, smp.prev, near)
-
-
-#: Most (query, sample) pairs :func:`medialaxis.planar._kernels.nearest_with_ties` measures for the
-#: queries the grid is unsure of; beyond, the k-d tree answers them.
-MAX_TIE_PAIRS = 50_000_000
 
 
 def _enclosing_centre(tri_pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

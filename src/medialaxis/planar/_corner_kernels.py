@@ -1,0 +1,268 @@
+"""Compiled piece state of the adaptive sampling that knows convex corners: mirrored corner samples need no refinement.
+
+Near a convex vertex ``v`` of a polygon the medial axis is the bisector of
+its two edges. Samples placed in mirrored pairs, at equal distances from
+``v`` along both edges, have Delaunay triangles whose circumcentres lie on
+that bisector (an isosceles trapezoid is cyclic, its centre on the axis of
+symmetry; the triangle of ``v`` and its two neighbours is isosceles): they
+are points of the medial axis however far apart the samples are. Their small
+circumradius, which makes the rule of
+:func:`medialaxis.planar.sampling.refine_arcs` split the pieces at a corner
+again and again down to ``min_length``, says nothing about the sampling
+error there.
+
+:func:`corner_piece_state` is :func:`medialaxis.planar._kernels.piece_state`
+with two changes:
+
+* *corner triangles* do not count in the radius of their pieces. Each is
+  checked, not assumed: its three samples lie on the two edges of one convex
+  vertex, and its circumcentre lies on the inner side of both edges, projects
+  inside both, and is within ``tolerance / 4`` of their bisector (the bound
+  the split rule keeps elsewhere, ``h**2 / (16 R)`` with pieces over-split by 2);
+* mirrored pieces (the pieces met walking from a convex vertex along both
+  edges while the samples stay at equal distances from it) get the smaller
+  radius of the two and are conforming only if both are, so they are split
+  alike and stay mirrored.
+
+Samples are ``offset .. len(nxt) - 1`` (the incremental kernels keep the
+far corners of the triangulation before them); ``rings_s``, ``rings_xy`` are
+each closed ring's cumulative arc length and vertices, ring ``r`` at
+``rings_start[r]:rings_start[r + 1]``; ``convex`` flags those vertices.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis._jit import njit
+from medialaxis.planar._kernels import piece_state
+
+__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "ERROR_SHARE"]
+
+#: A corner triangle's circumcentre is within this share of the tolerance of the bisector.
+ERROR_SHARE = 0.25
+#: Mirrored samples go in from a corner's nearest samples, each this many times closer to the corner ...
+PROGRESSION = 3.0
+#: ... down to the pair ``2 * REACH * min_length`` apart (a hair above ``lam``, which is ``8 * min_length`` by
+#: default: the pruned axis reaches into the corner up to that pair, as far as with dense samples), and one more.
+REACH = 4.0 * (1.0 + 1e-6)
+
+
+@njit(cache=True, nogil=True)
+def sample_edges(arc, ring, offset, rings_s, rings_start):  # type: ignore[no-untyped-def]
+    """The edge of each sample (its first vertex, numbered in its ring) and whether the sample is that vertex."""
+    n = len(arc)
+    edge = np.full(n, -1, np.int64)
+    at_vertex = np.zeros(n, np.bool_)
+    for i in range(offset, n):
+        lo = rings_start[ring[i]]
+        a, b = 0, rings_start[ring[i] + 1] - lo - 1  # the last j with s[j] <= arc, by bisection
+        while b - a > 1:
+            mid = (a + b) // 2
+            if rings_s[lo + mid] <= arc[i]:
+                a = mid
+            else:
+                b = mid
+        edge[i] = a
+        at_vertex[i] = rings_s[lo + a] == arc[i]
+    return edge, at_vertex
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _touches(edge, at_vertex, i, v, m):  # type: ignore[no-untyped-def]
+    """Sample ``i`` lies on an edge of vertex ``v`` (ring of ``m`` vertices)."""
+    d = (v - edge[i]) % m
+    return d == 0 or d == 1 or (at_vertex[i] and d == m - 1)
+
+
+@njit(cache=True, nogil=True)
+def corner_triangle(a, b, c, centre_x, centre_y, edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance):  # type: ignore[no-untyped-def]
+    """Whether the triangle of samples ``a, b, c`` is a corner triangle (see the module docstring)."""
+    r = ring[a]
+    if ring[b] != r or ring[c] != r:
+        return False
+    lo = rings_start[r]
+    m = rings_start[r + 1] - lo - 1
+    if m < 3:
+        return False
+    for step in range(3):  # the vertices sample a may belong to
+        v = (edge[a] + step - 1) % m
+        if not convex[lo + v] or not (_touches(edge, at_vertex, a, v, m) and _touches(edge, at_vertex, b, v, m)
+                                      and _touches(edge, at_vertex, c, v, m)):
+            continue
+        px, py = rings_xy[lo + (v - 1) % m, 0], rings_xy[lo + (v - 1) % m, 1]
+        vx, vy = rings_xy[lo + v, 0], rings_xy[lo + v, 1]
+        nx, ny = rings_xy[lo + (v + 1) % m, 0], rings_xy[lo + (v + 1) % m, 1]
+        ux, uy = vx - px, vy - py  # the edge into v
+        wx, wy = nx - vx, ny - vy  # the edge out of v
+        l1 = np.sqrt(ux * ux + uy * uy)
+        l2 = np.sqrt(wx * wx + wy * wy)
+        cx, cy = centre_x - vx, centre_y - vy
+        d1 = (uy * cx - ux * cy) / l1  # distances to both edges' lines, positive on the inner (right) side
+        d2 = (wy * cx - wx * cy) / l2
+        f1 = -(ux * cx + uy * cy) / l1  # the feet, from v along each edge
+        f2 = (wx * cx + wy * cy) / l2
+        half_sine = np.sqrt(max(0.5 * (1.0 + (ux * wx + uy * wy) / (l1 * l2)), 0.0))  # sin of half the inner angle
+        if (d1 >= 0.0 and d2 >= 0.0 and 0.0 <= f1 <= l1 and 0.0 <= f2 <= l2
+                and abs(d1 - d2) <= 2.0 * ERROR_SHARE * tolerance * half_sine):
+            return True
+    return False
+
+
+@njit(cache=True, nogil=True)
+def corner_piece_state(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy, rings_start,
+                       convex, tolerance):  # type: ignore[no-untyped-def]
+    """``(conforming, radius)`` of every piece ``(i, nxt[i])``, corner triangles left out and mirrored pieces alike."""
+    edge, at_vertex = sample_edges(arc, ring, offset, rings_s, rings_start)
+    corner = np.zeros(len(simplices), np.bool_)
+    for t in range(len(simplices)):
+        if inside[t] and min(simplices[t, 0], simplices[t, 1], simplices[t, 2]) >= offset:
+            corner[t] = corner_triangle(simplices[t, 0], simplices[t, 1], simplices[t, 2], centres[t, 0],
+                                        centres[t, 1], edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance)
+    counted = inside & ~_whole_circles(corner, inside, centres, radii)
+    conforming, radius = piece_state(simplices, counted, radii, nxt)
+    _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex)
+    return conforming, radius
+
+
+@njit(cache=True, nogil=True)
+def _whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-def]
+    """``corner`` where every inside triangle sharing the circle is a corner triangle too.
+
+    Co-circular samples (a regular sample of a strip, a square arm's end)
+    have several Delaunay triangulations, and which one a triangulation picks
+    turns on rounding: on a shape and its turned copy the same circle can be
+    split into a corner triangle and a triangle that reaches another edge, or
+    the other way. Deciding for the whole circle keeps the sampling, and so
+    the axis, the same under rotations, mirrors and where a ring starts.
+    """
+    rows = np.flatnonzero(inside)
+    order = rows[np.argsort(centres[rows, 0])]
+    out = corner.copy()
+    for i in range(len(order)):
+        t = order[i]
+        eps = 1e-9 * (radii[t] + abs(centres[t, 0]) + abs(centres[t, 1]))
+        for j in range(i + 1, len(order)):
+            u = order[j]
+            if centres[u, 0] - centres[t, 0] > eps:
+                break
+            if (abs(centres[u, 1] - centres[t, 1]) <= eps and abs(radii[u] - radii[t]) <= eps
+                    and not (corner[t] and corner[u])):
+                out[t] = False
+                out[u] = False
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex):  # type: ignore[no-untyped-def]
+    """Give the mirrored pieces at each convex vertex the smaller radius and the conformity of both."""
+    n = len(nxt)
+    prev = np.full(n, -1, np.int64)
+    for i in range(offset, n):
+        prev[nxt[i]] = i
+    changed = True
+    while changed:  # a piece may be mirrored at both its edge's ends: until every pair agrees
+        changed = _mirror_pass(conforming, radius, nxt, prev, arc, ring, offset, edge, at_vertex, rings_s,
+                               rings_start, convex)
+
+
+@njit(cache=True, nogil=True)
+def _mirror_pass(conforming, radius, nxt, prev, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex):  # type: ignore[no-untyped-def]
+    """One pass of :func:`_mirror_pairs` over the convex vertices; whether it changed anything."""
+    n = len(nxt)
+    changed = False
+    for i in range(offset, n):
+        lo = rings_start[ring[i]]
+        m = rings_start[ring[i] + 1] - lo - 1
+        j = edge[i]
+        if not at_vertex[i] or not convex[lo + j]:
+            continue
+        length = rings_s[lo + m]
+        reach = min(rings_s[lo + j + 1] - rings_s[lo + j],  # the shorter of the two edges
+                    rings_s[lo + j] - rings_s[lo + j - 1] if j > 0 else length - rings_s[lo + m - 1])
+        p, q = i, i
+        while True:
+            pn, qn = nxt[p], prev[q]
+            if pn == qn or pn == i or qn == i or pn == q:
+                break
+            out = (arc[pn] - arc[i]) % length
+            back = (arc[i] - arc[qn]) % length
+            if abs(out - back) > 1e-9 * length or out > reach * (1.0 + 1e-9):
+                break
+            low = min(radius[p], radius[qn])
+            both = conforming[p] and conforming[qn]
+            changed = changed or radius[p] != radius[qn] or conforming[p] != conforming[qn]
+            radius[p], radius[qn] = low, low
+            conforming[p], conforming[qn] = both, both
+            p, q = pn, qn
+    return changed
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _gap(a, x, length):  # type: ignore[no-untyped-def]
+    """Distance along the ring from arc position ``x`` to the nearest of the sorted positions ``a``."""
+    k = np.searchsorted(a, x)
+    after = a[k] - x if k < len(a) else a[0] + length - x
+    before = x - a[k - 1] if k > 0 else x - (a[-1] - length)
+    return min(after, before)
+
+
+@njit(cache=True, nogil=True)
+def corner_twins(a, s, xy, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
+    """The twins :func:`medialaxis.planar.corners.mirrored_corner_arcs` adds on one ring, unsorted.
+
+    ``a`` the ring's sorted arc positions (every vertex among them), ``s`` and
+    ``xy`` its cumulative arc length and vertices, closed.
+    """
+    m = len(s) - 1
+    length = s[m]
+    eps = 1e-9 * length
+    twins = np.empty(len(a) + 64 * m)
+    count = 0
+    for j in range(m):
+        p = (j - 1) % m
+        ix, iy = xy[j, 0] - xy[p, 0], xy[j, 1] - xy[p, 1]
+        ox, oy = xy[j + 1, 0] - xy[j, 0], xy[j + 1, 1] - xy[j, 1]
+        if ix * oy - iy * ox >= 0.0:
+            continue  # not convex
+        l_out = s[j + 1] - s[j]
+        l_in = s[j] - s[j - 1] if j > 0 else length - s[m - 1]
+        cos_half = np.sqrt(min(max(0.5 * (1.0 - (ix * ox + iy * oy) / max(l_in * l_out, 1e-300)), 0.0), 1.0))
+        k = np.searchsorted(a, s[j] + eps)  # the first sample after the vertex, the last before it
+        h_out = min((a[k] if k < len(a) else a[0] + length) - s[j], l_out)
+        k_in = np.searchsorted(a, s[j] - eps) - 1
+        h_in = min(s[j] - (a[k_in] if k_in >= 0 else a[-1] - length), l_in)
+        h = min(h_out, h_in)
+        radius = h / (2.0 * max(cos_half, 1e-300))
+        target = max(min(ratio * radius, np.sqrt(16.0 * radius * tolerance)), min_length)
+        if not (h > target and h > 2.0 * min_length):
+            continue
+        sin_half = max(np.sqrt(1.0 - cos_half * cos_half), 1e-300)
+        deepest = REACH * min_length / sin_half  # where the pair is lam = 8 * min_length apart (by default)
+        d = h
+        while count + 6 <= len(twins):  # mirrored pairs in from the nearest samples, the last two about lam apart
+            d = d / PROGRESSION if d / PROGRESSION > 1.5 * deepest else (deepest if d > deepest else deepest / PROGRESSION)
+            if d < h:
+                twins[count] = (s[j] + d) % length
+                twins[count + 1] = (s[j] - d) % length
+                count += 2
+            if d < deepest:
+                break
+        short, sign = (l_out, -1.0) if l_out <= l_in else (l_in, 1.0)
+        reach = max(l_out, l_in) - min_length
+        step = 1 if sign < 0 else -1  # walk the shorter edge away from the vertex
+        i = k if sign < 0 else k_in
+        for _ in range(len(a) + 1):
+            q = a[i % len(a)]
+            d = (q - s[j]) % length if sign < 0 else (s[j] - q) % length
+            if d > short - eps:
+                d = short
+            if d < reach:
+                x = (s[j] + sign * d) % length
+                if _gap(a, x, length) > min_length and x < length:
+                    twins[count] = x
+                    count += 1
+            if d >= short:
+                break
+            i += step
+    return twins[:count]

@@ -1,0 +1,117 @@
+"""Convex corners sampled in mirrored pairs: which triangles are exempt, and what the axis keeps."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from shapely import affinity
+
+from medialaxis.planar._corner_kernels import corner_piece_state, corner_triangle, sample_edges
+from medialaxis.planar._kernels import piece_state
+from medialaxis.planar.corners import ring_arrays
+from medialaxis.planar.pipeline import planar_stages
+from medialaxis.planar.sampling import simplify_rings
+
+# A right-angled corner at (0, 0): the ring runs clockwise (the region on its right), (0, 4) -> (0, 0) -> (6, 0).
+SQUARE = shapely.Polygon([(0, 0), (0, 4), (6, 4), (6, 0)])
+
+
+def _corner_case(offsets: list[float]):
+    """Samples at ``offsets`` along the ring from the corner at (0, 0) (negative: before it)."""
+    rings = simplify_rings(SQUARE, 0.0)
+    closed = ring_arrays(rings)
+    v = rings.vertices[0]
+    corner = int(np.flatnonzero(np.all(v == 0, axis=1))[0])
+    s = closed.s[: len(v) + 1]
+    arc = np.mod(s[corner] + np.asarray(offsets, float), s[-1])
+    ring = np.zeros(len(arc), np.int64)
+    edge, at_vertex = sample_edges(arc, ring, 0, closed.s, closed.start)
+    points = np.c_[np.interp(arc, s, np.r_[v[:, 0], v[0, 0]]), np.interp(arc, s, np.r_[v[:, 1], v[0, 1]])]
+    assert closed.convex[corner]
+    return closed, ring, edge, at_vertex, points
+
+
+def _circumcentre(p: np.ndarray) -> np.ndarray:
+    (ax, ay), (bx, by), (cx, cy) = p
+    d = 2 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    ux = ((ax**2 + ay**2) * (by - cy) + (bx**2 + by**2) * (cy - ay) + (cx**2 + cy**2) * (ay - by)) / d
+    uy = ((ax**2 + ay**2) * (cx - bx) + (bx**2 + by**2) * (ax - cx) + (cx**2 + cy**2) * (bx - ax)) / d
+    return np.array([ux, uy])
+
+
+def test_the_vertex_and_a_mirrored_pair_make_a_corner_triangle_an_unmirrored_pair_does_not() -> None:
+    closed, ring, edge, at_vertex, points = _corner_case([0.0, 0.5, 0.7, -0.5, -0.7, 1.0])
+
+    def exempt(a: int, b: int, c: int, tolerance: float = 1e-3) -> bool:
+        centre = _circumcentre(points[[a, b, c]])
+        return bool(corner_triangle(a, b, c, centre[0], centre[1], edge, at_vertex, ring, closed.xy, closed.start,
+                                    closed.convex, tolerance))
+
+    assert exempt(0, 1, 3)  # the vertex and the pair at 0.5: isosceles, centre on the bisector
+    assert exempt(1, 2, 3) and exempt(2, 3, 4)  # the trapezoid of the pairs at 0.5 and 0.7, either diagonal
+    assert not exempt(0, 1, 4)  # 0.5 and 0.7: centre off the bisector by far more than the tolerance
+    assert exempt(0, 1, 4, tolerance=1.0)  # ... but within a tolerance that large
+    assert exempt(1, 5, 3)  # 0.5, 1.0 against 0.5: the lone sample mirrors one of the pair, centre on the bisector
+    assert not exempt(1, 5, 4)  # 0.5, 1.0 against 0.7: it mirrors neither
+
+
+def test_without_convex_vertices_the_state_is_piece_states() -> None:
+    st = planar_stages(affinity.rotate(SQUARE, 20))
+    smp, tri = st.samples, st.triangulation
+    closed = ring_arrays(st.rings)
+    none = np.zeros_like(closed.convex)
+    got = corner_piece_state(tri.simplices, st.inside, tri.radii, tri.centers, smp.next, smp.arc, smp.ring, 0,
+                             closed.s, closed.xy, closed.start, none, 1e-3)
+    for a, b in zip(got, piece_state(tri.simplices, st.inside, tri.radii, smp.next)):
+        np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("angle", [0, 25])
+@pytest.mark.parametrize("corner", [30.0, 60.0, 90.0, 120.0])
+def test_a_corner_is_sampled_in_mirrored_pairs_and_its_axis_is_the_bisector_up_to_lam(corner: float,
+                                                                                       angle: float) -> None:
+    """A kite with a convex corner of ``corner`` degrees at the origin: samples mirrored, axis on the bisector."""
+    half = np.radians(corner / 2)
+    kite = shapely.Polygon([(0, 0), (3 * np.cos(half), 3 * np.sin(half)), (2.2, 0), (3 * np.cos(half),
+                                                                                    -3 * np.sin(half))])
+    kite = affinity.rotate(kite, angle, origin=(0, 0))
+    st = planar_stages(kite)
+    ma, tol, lam = st.result, st.result.metadata["tolerance"], st.result.metadata["lam"]
+    direction = np.array([np.cos(np.radians(angle)), np.sin(np.radians(angle))])
+    p = st.samples.points
+    near = np.linalg.norm(p, axis=1)
+    side = np.sign(p @ np.array([-direction[1], direction[0]]))
+    close = (near > 0) & (near < 0.5)
+    upper, lower = np.sort(near[close & (side > 0)]), np.sort(near[close & (side < 0)])
+    np.testing.assert_allclose(upper, lower, rtol=0, atol=1e-9)  # the samples near the corner, mirrored
+    assert len(upper) <= 12  # a few pairs, not a refinement down to min_length
+    along = ma.points @ direction
+    across = np.abs(ma.points @ np.array([-direction[1], direction[0]]))
+    on_bisector = along < 0.5
+    assert (across[on_bisector] <= 0.25 * tol).all()  # the axis near the corner is the bisector
+    # ... and it reaches into the corner until its contacts are about lam apart, as dense samples did
+    tip = along[on_bisector].min()
+    assert tip <= lam / (2 * np.sin(half)) / np.cos(half)  # the bisector point whose feet are lam apart
+
+
+T_SHAPE = shapely.Polygon([(0, 0), (10, 0), (10, 2), (6, 2), (6, 8), (4, 8), (4, 2), (0, 2)])
+CROSS = shapely.box(0, 0, 10, 3).union(shapely.box(3, 0, 5, 9))
+
+
+@pytest.mark.parametrize("shape", [T_SHAPE, CROSS, SQUARE])
+@pytest.mark.parametrize("angle", [1.0, 30.0, 137.0])
+def test_co_circular_samples_give_the_same_sampling_turned_or_mirrored(shape: shapely.Polygon, angle: float) -> None:
+    """Strips and square arm ends sampled regularly have co-circular samples, whose Delaunay diagonal turns on
+    rounding: the corner exemption is decided per circle, so a turned (and mirrored) copy is sampled alike."""
+    base = planar_stages(shape)
+    for mirror in (1, -1):
+        def motion(geom, mirror=mirror):  # type: ignore[no-untyped-def]
+            return affinity.scale(affinity.rotate(geom, angle, origin=(0, 0)), mirror, 1, origin=(0, 0))
+
+        moved = planar_stages(motion(shape))
+        assert len(moved.samples.points) == len(base.samples.points)
+        assert len(moved.result.points) == len(base.result.points)
+        expected = shapely.get_coordinates(motion(shapely.MultiPoint(base.result.points)))
+        gap = np.linalg.norm(moved.result.points[:, None, :] - expected[None, :, :], axis=2)
+        assert max(gap.min(0).max(), gap.min(1).max()) < 1e-8  # the same axis, moved (shapes 10 across)
