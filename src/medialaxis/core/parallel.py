@@ -8,7 +8,6 @@ such as ``"tcp://host:8786"``.
 from __future__ import annotations
 
 import os
-import threading
 from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from typing import Any
@@ -65,9 +64,10 @@ def run_tasks(
 ) -> list[Any]:
     """``[fn(item, *args) for item in items]`` in parallel, results in the order of ``items``.
 
-    At most ``n_jobs`` tasks (default: all CPUs) run at once locally. Ctrl-C
-    or a ``callback`` returning ``False`` (called after each task) drops the
-    tasks not yet started, waits for the running ones and raises
+    At most ``n_jobs`` tasks (default: all CPUs) run at once locally, and at
+    most twice as many are queued. Ctrl-C or a ``callback`` returning
+    ``False`` (called after each task) drops the tasks not yet started, waits
+    for the running ones and raises
     :class:`~medialaxis.errors.Cancelled`; a task's error cancels the others
     and is raised as it is.
     """
@@ -82,26 +82,18 @@ def run_tasks(
             results[k] = fn(items[k], *args)
             check_cancel(callback, desc)
         return results
-    stop = threading.Event()
-
-    def guarded(item: Any) -> Any:
-        if stop.is_set():
-            raise Cancelled(f"{desc}: cancelled")
-        return fn(item, *args)
-
     pool = ThreadPoolExecutor(workers)
-    futures = {pool.submit(guarded, item): k for k, item in enumerate(items)}
-    pending = set(futures)
+    todo = iter(enumerate(items))
+    index: dict[Any, int] = {}  # the tasks submitted and not yet collected
     try:
-        bar = progress(range(len(items)), desc=desc, total=len(items), show=show_progress)
-        for _ in bar:
-            done, pending = _next(pending)
-            for fut in done:
-                results[futures[fut]] = fut.result()
+        _top_up(pool, todo, index, 2 * workers, fn, args)
+        for _ in progress(range(len(items)), desc=desc, total=len(items), show=show_progress):
+            fut = _next(index)
+            results[index.pop(fut)] = fut.result()
             check_cancel(callback, desc)
+            _top_up(pool, todo, index, 2 * workers, fn, args)
     except BaseException as exc:
-        stop.set()
-        for fut in pending:
+        for fut in index:
             fut.cancel()
         if isinstance(exc, KeyboardInterrupt):
             raise Cancelled(f"{desc}: cancelled") from exc
@@ -111,13 +103,23 @@ def run_tasks(
     return results
 
 
-def _next(pending: set[Any]) -> tuple[set[Any], set[Any]]:
+def _top_up(pool: ThreadPoolExecutor, todo: Any, index: dict[Any, int], window: int, fn: Callable[..., Any],
+            args: tuple[Any, ...]) -> None:
+    """Submit tasks until ``window`` are in flight: a large batch never queues every task at once, so
+    Ctrl-C drops the rest at once and waiting stays cheap."""
+    while len(index) < window:
+        k, item = next(todo, (None, None))
+        if k is None:
+            return
+        index[pool.submit(fn, item, *args)] = k
+
+
+def _next(index: dict[Any, int]) -> Any:
     """Wait for one more task (a short timeout keeps the main thread responsive to Ctrl-C)."""
     while True:
-        done, rest = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+        done, _ = wait(index, timeout=0.2, return_when=FIRST_COMPLETED)
         if done:
-            first = next(iter(done))
-            return {first}, (rest | done) - {first}
+            return min(done, key=index.__getitem__)
 
 
 def _run_dask(fn: Callable[..., Any], items: Sequence[Any], args: tuple[Any, ...], scheduler: Any, desc: str,

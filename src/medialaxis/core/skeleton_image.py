@@ -75,6 +75,27 @@ def _draw_triangles(coords: np.ndarray, radii: np.ndarray, faces: np.ndarray,
         drawn[pixels] = True
 
 
+def _restore_tips(thin: np.ndarray, index: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """``thin`` with the pixel of each end of the axis put back where thinning took it off a branch's tip.
+
+    Thinning may drop an end pixel that a staircase step left beside two
+    others; the branch then ends a pixel short, and skan reads it shorter
+    and with a larger mean radius. The pixel goes back only where exactly
+    one skeleton pixel touches it, so no junction or loop is made.
+    """
+    degree = np.bincount(edges.ravel(), minlength=len(index))
+    out = thin.copy()
+    upper = np.asarray(thin.shape)
+    for tip in index[degree == 1]:
+        if out[tuple(tip)]:
+            continue
+        lo, hi = np.maximum(tip - 1, 0), np.minimum(tip + 2, upper)
+        window = out[tuple(slice(a, b) for a, b in zip(lo, hi))]
+        if window.sum() == 1:
+            out[tuple(tip)] = True
+    return out
+
+
 def to_image(ma: MedialAxis) -> SkeletonImage:
     """The axis drawn on the grid of the image (or volume) it was computed from.
 
@@ -138,6 +159,6 @@ def to_image(ma: MedialAxis) -> SkeletonImage:
     if not len(ma.faces) and len(ma.edges):
         from skimage.morphology import skeletonize
 
-        drawn = skeletonize(drawn)
+        drawn = _restore_tips(skeletonize(drawn), index, np.asarray(ma.edges, np.int64))
     distance[~drawn] = 0.0
     return SkeletonImage(drawn.astype(bool), distance)
