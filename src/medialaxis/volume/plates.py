@@ -20,7 +20,13 @@ from medialaxis.volume._kernels import adjacent_gaps
 from medialaxis.volume.distance import Features
 
 __all__ = ["PlateThickness", "plate_thickness", "plate_pairs", "plate_summary", "plate_labels", "nominal_thicknesses",
-           "label_shortest", "pair_gaps", "pair_gaps_reference", "pair_cosines", "DEFAULT_MIN_THICKNESS", "ANTIPODAL_COS", "LABEL_RADIUS"]
+           "label_shortest", "pair_gaps", "pair_gaps_reference", "pair_cosines", "DEFAULT_MIN_THICKNESS", "ANTIPODAL_COS", "LABEL_RADIUS",
+           "TUBE_ROUTE"]
+
+#: What a part without plates needs instead of a mid-surface (said by the errors that refuse one).
+TUBE_ROUTE = ("for the curve skeleton of rods and tubes, take their surface, verts, faces = "
+              "skimage.measure.marching_cubes(volume, level)[:2], and call medial_axis(trimesh.Trimesh(verts, faces), "
+              "method='flow')")
 
 
 #: Pairs whose nearest boundary points are within ~18 degrees of opposite
@@ -204,11 +210,7 @@ def plate_summary(gap: np.ndarray, lower: float, upper: float, unit: float) -> P
         if len(gap):
             found = f"; the plates found are {np.min(gap):.3g} to {np.max(gap):.3g} thick (thickness= chooses them)"
         else:
-            found = (
-                "; the part has no plates (rods, tubes and blobs have no two parallel faces): for the curve "
-                "skeleton of rods and tubes, take its surface (skimage.measure.marching_cubes) and use "
-                "method='flow' on that mesh"
-            )
+            found = f"; the part has no plates (rods, tubes and blobs have no two parallel faces): {TUBE_ROUTE}"
         raise EmptyShapeError(f"no plate of the part is between {lower:g} and {upper:g} thick{found}")
     return PlateThickness(float(np.median(gap[inside])), lower, float(upper), None, ranged=True)
 

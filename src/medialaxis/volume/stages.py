@@ -17,12 +17,12 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core.result import MedialAxis
-from medialaxis.errors import InvalidInputError, MedialAxisWarning
+from medialaxis.errors import EmptyShapeError, InvalidInputError, MedialAxisWarning
 from medialaxis.volume.dents import bent_vertices
 from medialaxis.volume.dents import remove_dents as _remove_dents
 from medialaxis.volume.extension import extend_mesh
 from medialaxis.volume.medial import MedialVoxels
-from medialaxis.volume.plates import PlateThickness
+from medialaxis.volume.plates import TUBE_ROUTE, PlateThickness
 from medialaxis.volume.polygonize import BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, polygonize
 
 __all__ = ["polygonize_stage", "dents_stage", "extension_stage", "assemble", "mesh_result", "stage_metadata", "dropped_report",
@@ -155,7 +155,16 @@ def extension_stage(state: dict[str, Any], grey: Any, iso: float, spacing: np.nd
 def mesh_result(points: np.ndarray, radii: np.ndarray, kind: np.ndarray, faces: np.ndarray, metadata: dict[str, Any],
                 shell: Any) -> MedialAxis:
     """The mid-surface result; faces in the order of their rows (vertices are in pick order), so that
-    the order does not depend on how the mesh was built, whole or by blocks."""
+    the order does not depend on how the mesh was built, whole or by blocks.
+
+    Raises :class:`~medialaxis.errors.EmptyShapeError` when no triangle is
+    left: a rod's or a tube's plate-crossing pairs run across its width, but
+    they make a line, not a sheet.
+    """
+    if len(faces) == 0:
+        raise EmptyShapeError(
+            f"no mid-surface: the {len(points)} medial points found make no sheet (rods, tubes and blobs have no "
+            f"plates); {TUBE_ROUTE}")
     faces = faces[np.lexsort(faces.T[::-1])]
     edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
     return MedialAxis(points, radii, edges, faces, extras={"thickness": 2.0 * radii, "vertex_kind": kind},
