@@ -114,3 +114,17 @@ def test_shrinking_balls_of_a_sphere_and_a_capsule_are_their_medial_balls():
     mesh = trimesh.creation.icosphere(subdivisions=4, radius=2.0)
     _, radii, _ = shrinking_balls(mesh.vertices, mesh.vertex_normals)
     assert radii.max() <= 2.0 + 1e-9 and np.median(radii) > 1.9
+
+
+def test_only_contacts_on_the_sphere_count_for_its_span():
+    from medialaxis.mesh.medial_candidates import ON_SPHERE, _spans
+
+    # a unit sphere at the origin touching a slab's two sides at (0, 0, -1) and (0, 0, 1), and the
+    # same with its upper contact 5% of the radius off the sphere: it touches one side only
+    centres = np.zeros((2, 3))
+    contacts = np.array([[[0, 0, -1], [0, 0, 1], [0.6, 0, -0.8], [0, 0.6, -0.8]],
+                         [[0, 0, -1], [0, 0, 1.05], [0.6, 0, -0.8], [0, 0.6, -0.8]]], float)
+    radii = np.ones(2)
+    assert ON_SPHERE < 0.05
+    assert _spans(centres, contacts).tolist() == [True, True]
+    assert _spans(centres, contacts, radii).tolist() == [True, False]
