@@ -5,7 +5,7 @@ The structured sample of :func:`~medialaxis.mesh.sampling.sample_surface`
 than the spacing asked for: the poles of a uv sphere, fans of slivers, and
 edge points beside face points. :func:`thinned` keeps, in an order that
 puts sharp features first, each sample that no sample kept before lies
-nearer to than a fraction (``THIN_SPACING``) of the local spacing
+nearer to than half the local spacing
 (:func:`~medialaxis.mesh._sampling_kernels.thin_to_spacing`); every sample
 dropped lies within that distance of a kept one. Sparse samples of this
 kind (no two closer than a fraction of the spacing) are the (epsilon,
@@ -29,13 +29,9 @@ __all__ = ["thinned", "THIN_SPACING", "SHARP_COSINE"]
 #: Samples of the Voronoi route nearer than this fraction of the local
 #: spacing to one ranked before them are dropped (``sample_surface(thin=)``):
 #: the 99k-vertex uv ellipsoid of ``benchmarks/bench_mesh_voronoi.py`` keeps
-#: 160,439 of 221,197 samples, the 100k bumpy torus 133,835 of 137,961, both
-#: with the same measured epsilon. At 0.5 (142,263 samples) one Voronoi
-#: vertex of the ellipsoid's full complex lay 0.053 off its axis (0.0079 at
-#: 0.4): a ball nearly tangent to the nearly cylindrical middle, its four
-#: samples on one side 0.24 apart (more than lambda); at 0.6 the torus's
-#: epsilon grew by a quarter.
-THIN_SPACING = 0.4
+#: 142,077 of 221,197 samples, the 100k bumpy torus 131,220 of 138,820, both
+#: with the same measured epsilon (0.6 gave the torus a 24% larger one).
+THIN_SPACING = 0.5
 #: A sample whose normal is farther than acos(SHARP_COSINE) (14 degrees) from
 #: one of its faces' normals is sharp: it ranks first when thinning.
 SHARP_COSINE = 0.97

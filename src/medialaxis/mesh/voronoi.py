@@ -127,7 +127,7 @@ def voronoi_medial_axis(
         a plate's two sides are three spacings apart:
         :func:`~medialaxis.mesh.sampling.thin_part_count`). The mesh
         vertices are included where no sample ranked before them (sharp
-        ones, face points) lies within 0.4 of the spacing
+        ones, face points) lies within half the spacing
         (:mod:`medialaxis.mesh.sampling_thin`): a dense mesh's crowded
         vertices add no samples.
     simplify : int or float, optional
