@@ -125,11 +125,8 @@ def voronoi_medial_axis(
         Target number of surface samples. Default ``max(20000,
         n_vertices)``, more for a mostly thin part (up to 250,000, so that
         a plate's two sides are three spacings apart:
-        :func:`~medialaxis.mesh.sampling.thin_part_count`). The mesh
-        vertices are included where no sample ranked before them (sharp
-        ones, face points) lies within half the spacing
-        (:mod:`medialaxis.mesh.sampling_thin`): a dense mesh's crowded
-        vertices add no samples.
+        :func:`~medialaxis.mesh.sampling.thin_part_count`); the mesh
+        vertices are always included.
     simplify : int or float, optional
         Reduce the medial mesh by quadric error minimisation on spheres
         (:func:`medialaxis.mesh.qmat.simplify_medial_mesh`): an ``int`` is the
