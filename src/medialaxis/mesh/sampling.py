@@ -55,10 +55,6 @@ THIN_SLACK = 1.25
 THIN_SAMPLES = 250_000
 #: Spacing adapts to local feature size within this ratio (finest : coarsest).
 ADAPTIVE_RANGE = 4.0
-#: A coarse circumcentre stands for a medial point when the vector from
-#: each of its four samples to it is within acos(POLE_COSINE) (75.5 degrees)
-#: of the sample's normal (:func:`lfs_estimate`).
-POLE_COSINE = 0.25
 #: Cell of the grids that thin the medial points of the local feature size
 #: estimate, relative to their radius (see :func:`lfs_estimate`).
 LFS_CELL = 0.05
@@ -166,8 +162,7 @@ def face_spacing_for_count(areas: np.ndarray, relative: np.ndarray, count: int) 
 
 
 def sample_surface(
-    mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None = None, *, limit: int = MAX_SURFACE_SAMPLES,
-    thin: float = 0.0,
+    mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None = None, *, limit: int = MAX_SURFACE_SAMPLES
 ) -> SurfaceSample:
     """Sample a mesh with a target spacing per face.
 
@@ -181,21 +176,12 @@ def sample_surface(
         Precomputed pseudo-normals.
     limit : int
         Most samples made; more is refused before any is made.
-    thin : float
-        When positive, a sample nearer than ``thin`` times the local spacing
-        (the finest of the faces it lies on) to a sample ranked before it is
-        dropped (:func:`~medialaxis.mesh.sampling_thin.thinned`):
-        samples on sharp vertices and edges rank first,
-        the sharpest first, then face points, edge points and vertices;
-        points of one face do not thin each other. Crowded vertices (the
-        poles of a uv sphere, fans of slivers) and the edge and face points
-        beside them then add no samples beyond the spacing asked for.
 
     Returns
     -------
     SurfaceSample
         Every vertex, edge points at the finer spacing of the edge's two
-        faces, and interior face points (those left by ``thin``).
+        faces, and interior face points.
     """
     pn = pseudo_normals(mesh) if normals is None else normals
     v = np.asarray(mesh.vertices, np.float64)
@@ -223,14 +209,9 @@ def sample_surface(
     points = np.concatenate([v, ep, fp])
     normal = np.concatenate([pn.vertex, pn.edge[eo], pn.face[fo]])
     face = np.concatenate([vertex_face, edge_face[eo], fo])
-    if thin > 0.0:
-        from medialaxis.mesh.sampling_thin import thinned
-
-        first = thinned(pn, f, spacing, edge_h, eo, fo, points, thin)
-    else:
-        # Drop coincident samples (within 1e-9 of the spacing): the Delaunay step would join them by slivers.
-        grid = np.round(points / (1e-9 * float(np.min(spacing)))).astype(np.int64)
-        first = first_of_rows(grid)
+    # Drop coincident samples (within 1e-9 of the spacing): the Delaunay step would join them by slivers.
+    grid = np.round(points / (1e-9 * float(np.min(spacing)))).astype(np.int64)
+    first = first_of_rows(grid)
     return SurfaceSample(points[first], normal[first], face[first])
 
 
@@ -289,12 +270,10 @@ def lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
     area = np.asarray(mesh.area_faces, np.float64)
     h = face_spacing_for_count(area, np.ones(len(area)), count)
     # About ``count`` points are wanted; far more means needle-like faces.
-    coarse = sample_surface(mesh, h, normals, limit=len(mesh.vertices) + 100 * count)
-    one = first_of_rows(np.floor(coarse.points / h[0]).astype(np.int64))
-    dt = tetrahedralise(coarse.points[one])
+    points = sample_surface(mesh, h, normals, limit=len(mesh.vertices) + 100 * count).points
+    dt = tetrahedralise(points[first_of_rows(np.floor(points / h[0]).astype(np.int64))])
     diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
     medial = (dt.longest >= 2.0 * h[0]) & (dt.radii < diag) & (6.0 * dt.volume > 1e-6 * h[0] ** 3)
-    medial[medial] = _pole_like(dt, np.flatnonzero(medial), coarse.normals[one])
     if medial.sum() < 4:
         medial = dt.radii < diag
     by_radius = np.flatnonzero(medial)[np.argsort(dt.radii[medial], kind="stable")]
@@ -305,23 +284,6 @@ def lfs_estimate(mesh: Any, count: int, normals: PseudoNormals) -> cKDTree:
     # the smallest ball of each cell (the nearest to the surface); a sliding-midpoint tree without
     # shrunk node boxes answers these queries from afar fastest (the torus's faces 0.54 -> 0.34 s)
     return cKDTree(centres[first_of_rows(key)], balanced_tree=False, compact_nodes=False)
-
-
-def _pole_like(dt: Any, tets: np.ndarray, normals: np.ndarray) -> np.ndarray:
-    """Whether each circumcentre lies along the normals of its four samples, within ``POLE_COSINE``.
-
-    A medial ball touches the surface where the normal points at its centre
-    (Amenta, Choi, Kolluri, "The power crust", Proc. ACM Symposium on Solid
-    Modeling and Applications, 2001, doi:10.1145/376957.376986: the poles).
-    Four nearly co-circular samples of a flat patch span a thin tetrahedron
-    whose circumcentre lies on the surface, beside them: taken as a medial
-    point, it made the local feature size there 0.005 on a flattened
-    icosphere whose true one is near 0.2.
-    """
-    corner = dt.points[dt.simplices[tets]]
-    rel = dt.centres[tets][:, None, :] - corner
-    along = np.abs(np.einsum("ijk,ijk->ij", rel, normals[dt.simplices[tets]]))
-    return np.all(along >= POLE_COSINE * np.linalg.norm(rel, axis=2), axis=1)  # type: ignore[no-any-return]
 
 
 def adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:

@@ -48,7 +48,6 @@ from medialaxis.mesh.sampling import (
     sample_surface,
     thin_part_count,
 )
-from medialaxis.mesh.sampling_thin import THIN_SPACING
 from medialaxis.mesh.signed_distance import SignedDistance
 from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, euler_characteristic, medial_complex
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
@@ -260,7 +259,7 @@ def voronoi_medial_axis(
             spacing = adaptive_spacing(work, tree, count)
             if samples is None:  # enough for the plates of a thin part
                 count, spacing = thin_part_count(work, spacing, count, normals)
-            smp = sample_surface(work, spacing, normals, thin=THIN_SPACING)
+            smp = sample_surface(work, spacing, normals)
         except MedialAxisError:
             pairs = crossing_pairs(work)  # a surface through itself: its solid rather than what it broke
             if not len(pairs):
