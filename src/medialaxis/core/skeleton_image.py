@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from medialaxis.core import graph
 from medialaxis.errors import InvalidInputError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -83,7 +84,7 @@ def _restore_tips(thin: np.ndarray, index: np.ndarray, edges: np.ndarray) -> np.
     and with a larger mean radius. The pixel goes back only where exactly
     one skeleton pixel touches it, so no junction or loop is made.
     """
-    degree = np.bincount(edges.ravel(), minlength=len(index))
+    degree = graph.degree(len(index), edges)
     out = thin.copy()
     upper = np.asarray(thin.shape)
     for tip in index[degree == 1]:

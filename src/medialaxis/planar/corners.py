@@ -55,9 +55,9 @@ class RingArrays:
 
 
 def ring_arrays(rings: Rings) -> RingArrays:
-    """The closed rings of ``rings`` with their arc lengths (as :func:`medialaxis.planar.sampling.sample` has them)."""
-    closed = [np.vstack([v, v[:1]]) for v in rings.vertices]
-    s = [np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(c, axis=0), axis=1))]) for c in closed]
+    """The closed rings of ``rings`` with their arc lengths (:attr:`~medialaxis.planar.sampling.Rings.arc_lengths`, as
+    :func:`medialaxis.planar.sampling.sample` reads them) and convex vertices, as the compiled kernels take them."""
+    closed, s = rings.closed, rings.arc_lengths
     start = np.concatenate([[0], np.cumsum([len(c) for c in closed])]).astype(np.int64)
     xy = np.ascontiguousarray(np.concatenate(closed))
     row = np.arange(len(xy))

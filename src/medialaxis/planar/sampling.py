@@ -42,6 +42,16 @@ class Rings:
     region: Any
 
     @functools.cached_property
+    def closed(self) -> list[np.ndarray]:
+        """Each ring's vertices with its first repeated at the end."""
+        return [np.vstack([v, v[:1]]) for v in self.vertices]
+
+    @functools.cached_property
+    def arc_lengths(self) -> list[np.ndarray]:
+        """Each closed ring's cumulative arc length at its vertices (0 first, the perimeter last)."""
+        return [np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(c, axis=0), axis=1))]) for c in self.closed]
+
+    @functools.cached_property
     def locator(self) -> RegionLocator:
         """The compiled inside test of ``region`` (built once, used every round)."""
         return RegionLocator(self.region)
@@ -133,16 +143,10 @@ def simplify_rings(region: Any, tolerance: float) -> Rings:
     return Rings(_rings_of(simple), simple)
 
 
-def _cumulative(v: np.ndarray) -> np.ndarray:
-    closed = np.vstack([v, v[:1]])
-    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(closed, axis=0), axis=1))])
-
-
 def initial_arcs(rings: Rings, max_length: float) -> list[np.ndarray]:
     """Arc positions of the first sample: every vertex, edges cut to ``max_length``."""
     arcs = []
-    for v in rings.vertices:
-        s = _cumulative(v)
+    for s in rings.arc_lengths:
         seg = np.diff(s)
         count = np.maximum(1, np.ceil(seg / max_length)).astype(np.int64)
         owner = np.repeat(np.arange(len(seg)), count)
@@ -190,9 +194,7 @@ def sample(rings: Rings, arcs: list[np.ndarray]) -> BoundarySample:
     """Points at the given arc positions (sorted, in ``[0, perimeter)``) of each ring."""
     pts, ring_id, arc, nxt, lengths = [], [], [], [], []
     n0 = 0
-    for r, (v, a) in enumerate(zip(rings.vertices, arcs)):
-        s = _cumulative(v)
-        closed = np.vstack([v, v[:1]])
+    for r, (closed, s, a) in enumerate(zip(rings.closed, rings.arc_lengths, arcs)):
         p = np.c_[np.interp(a, s, closed[:, 0]), np.interp(a, s, closed[:, 1])]
         pts.append(p)
         arc.append(a)
