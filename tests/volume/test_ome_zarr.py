@@ -2,9 +2,10 @@
 
 The input is written here with zarr and the NGFF metadata by hand, as the
 specification lays them out (https://ngff.openmicroscopy.org/0.4/): a channel
-axis of size 1, a 2-level pyramid, an anisotropic scale. The reference reader
-(``ome-zarr``) checks the output where it is installed; the fields the
-specification requires are checked everywhere.
+axis of size 1, a 2-level pyramid, an anisotropic scale; and by ome-zarr's own
+writer, as users make such files. The reference reader (``ome-zarr``, in the
+test extra) reads the output; the fields the specification requires are
+checked too.
 """
 
 
@@ -139,3 +140,18 @@ def test_the_cli_reads_an_ome_zarr_level(scan, tmp_path):
     folder, _ = scan
     assert main(["compute", str(folder / "t.ome.zarr" / "1"), "--method", "midsurface", "-o", str(tmp_path / "a.json")]) == 0
     assert json.loads((tmp_path / "a.json").read_text())["metadata"]["spacing"] == [3.0, 2.0, 2.0]
+
+
+def test_an_image_written_by_ome_zarr_gives_the_mesh_of_its_array(scan, tmp_path):
+    """A file made the way users make them: ome-zarr's own writer (NGFF 0.4, a pyramid, physical scale)."""
+    from ome_zarr.format import FormatV04
+    from ome_zarr.writer import write_image
+
+    folder, volume = scan
+    group = zarr.open_group(str(tmp_path / "w.ome.zarr"), mode="w", zarr_format=2)
+    write_image(volume, group, scale_factors=[2], axes="zyx", fmt=FormatV04(),
+                scale=dict(zip("zyx", SPACING)))
+    ome = mx.medial_axis(str(tmp_path / "w.ome.zarr"), method="midsurface", chunks=24)
+    npy = mx.medial_axis(str(folder / "t.npy"), method="midsurface", chunks=24, spacing=SPACING)
+    assert ome.metadata["spacing"] == list(SPACING)
+    assert np.array_equal(ome.points, npy.points) and np.array_equal(ome.faces, npy.faces)
