@@ -125,11 +125,12 @@ def test_duplicated_vertices_of_a_closed_mesh():
     assert mx.medial_axis(soup, method="flow").n_components == 1
 
 
-def test_open_meshes_are_refused_with_counts():
-    open_box = trimesh.creation.box()
-    open_box = trimesh.Trimesh(open_box.vertices, open_box.faces[:-1], process=False)
-    with pytest.raises(mx.InvalidInputError, match="3 open edges, 0 edges shared by more than two faces"):
-        load_mesh(open_box)
+def test_open_meshes_bounding_no_solid_are_refused_with_counts():
+    bowl = trimesh.creation.icosphere(2).slice_plane([0, 0, 0], [0, 0, -1])  # half a sphere, open at the rim
+    bowl.merge_vertices()
+    rim = len(trimesh.grouping.group_rows(bowl.edges_sorted, require_count=1))
+    with pytest.raises(mx.InvalidInputError, match=rf"bounds no solid: its 1 holes \({rim} open edges"):
+        load_mesh(bowl)
 
 
 def test_solids_touching_along_an_edge_are_taken_apart_not_refused():

@@ -382,14 +382,24 @@ def test_scale_and_rigid_motion_equivariance(capsule_mesh):
     assert off_a <= 0.1 * 0.5 and off_b <= 0.1 * 0.5
 
 
-def test_rejects_a_large_hole_and_caps_it_on_request(box_mesh):
-    open_mesh = trimesh.Trimesh(box_mesh.vertices, box_mesh.faces[1:], process=False)  # half a side missing
-    with pytest.raises(InvalidInputError, match=r"not watertight \(3 open edges.*1 holes, the largest .* pass repair=True"):
-        voronoi_medial_axis(open_mesh)
-    with pytest.warns(MedialAxisWarning, match="closed 1 holes"):
-        ma = voronoi_medial_axis(open_mesh, repair=True, samples=5000)
+def test_a_large_hole_is_capped_where_the_winding_number_decides_the_solid(box_mesh):
+    # half a side missing: a hole across most of the box, but the rest of the surface still decides
+    # inside and outside (Jacobson et al. 2013), as libigl's winding-number segmentation would
+    open_mesh = trimesh.Trimesh(box_mesh.vertices, box_mesh.faces[1:], process=False)
+    with pytest.warns(MedialAxisWarning, match=r"closed 1 holes .*undecided over \d"):
+        ma = voronoi_medial_axis(open_mesh, samples=5000)
     assert any("closed 1 holes" in r for r in ma.metadata["repairs"])
     assert ma.metadata["mesh_volume"] == pytest.approx(box_mesh.volume, rel=1e-12)  # the missing face, exactly
+    assert ma.betti == (1, 0, 0)
+
+
+def test_an_open_bowl_bounds_no_solid_and_is_capped_on_request():
+    bowl = trimesh.creation.icosphere(3).slice_plane([0, 0, 0], [0, 0, -1])  # open along the equator
+    with pytest.raises(InvalidInputError, match=r"bounds no solid: its 1 holes .*undecided over \d+%.*repair=True"):
+        voronoi_medial_axis(bowl)
+    with pytest.warns(MedialAxisWarning, match="closed 1 holes"):
+        ma = voronoi_medial_axis(bowl, repair=True, samples=5000)
+    assert ma.metadata["mesh_volume"] == pytest.approx(bowl.convex_hull.volume, rel=1e-9)  # capped by its rim's plane
 
 
 def test_a_scan_with_small_holes_gets_the_solid_its_winding_number_defines():

@@ -145,7 +145,10 @@ def flow_skeleton(
     node_spacing : float, optional
         Spacing of the skeleton nodes (length); default ``s / 2``.
     repair : bool
-        Close small holes before refusing an open mesh.
+        Cap the holes of an open mesh even where its winding number leaves
+        the solid undecided (without it, holes are capped where the rest of
+        the surface decides inside and outside, and the mesh is refused
+        otherwise: :func:`medialaxis.mesh.inputs.load_mesh`).
 
     Returns
     -------

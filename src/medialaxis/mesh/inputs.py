@@ -228,8 +228,13 @@ def _take_out_degenerate(work: Any, repairs: list[str]) -> Any:
     return work
 
 
-#: Holes up to this fraction of the mesh's size across are closed without ``repair=True``.
+#: Holes up to this fraction of the mesh's size across are capped at once; larger ones where the
+#: open surface's winding number decides the solid (:func:`medialaxis.mesh.holes.undecided_share`).
 SMALL_HOLE = 0.1
+#: A mesh whose winding number is undecided over more than this share of what caps enclose bounds no solid
+#: (open sheets and shells without a bottom: 0.89-1 on the real models, 0.43 for a hemisphere; scans with
+#: holes, as the Stanford bunny's: at most 0.17).
+UNDECIDED_SOLID = 0.25
 
 
 def _paired(faces: np.ndarray) -> bool:
@@ -261,7 +266,7 @@ def _touching_solids(work: Any, crowded: int, repairs: list[str], found: dict[st
 
 def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, int]) -> Any:
     """The open ``work`` with its holes capped (:mod:`medialaxis.mesh.holes`): small ones always, any with ``repair``."""
-    from medialaxis.mesh.holes import boundary_loops, cap_holes
+    from medialaxis.mesh.holes import boundary_loops, cap_holes, undecided_share
 
     crowded, open_edges = _edge_defects(work)
     refusal = (f"the mesh is not watertight ({open_edges} open edges, {crowded} edges shared by more than two "
@@ -279,14 +284,22 @@ def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, i
     vertices = np.asarray(work.vertices)
     size = float(np.linalg.norm(np.ptp(vertices, axis=0)))
     across = max(float(np.linalg.norm(np.ptp(vertices[loop], axis=0))) for loop in loops)
+    capped_vertices, capped_faces = cap_holes(vertices, np.asarray(work.faces), loops)
+    decided = ""
     if across > SMALL_HOLE * size and not repair:
-        raise InvalidInputError(
-            f"{refusal}: {len(loops)} holes, the largest {across:.3g} across ({100 * across / size:.0f}% of the "
-            f"mesh's size); close them first or pass repair=True to cap them"
-        )
-    vertices, faces = cap_holes(vertices, np.asarray(work.faces), loops)
+        share = undecided_share(vertices, np.asarray(work.faces), capped_vertices, capped_faces)
+        if share > UNDECIDED_SOLID:
+            raise InvalidInputError(
+                f"the mesh is not watertight and bounds no solid: its {len(loops)} holes ({open_edges} open edges, the "
+                f"largest {across:.3g} across, {100 * across / size:.0f}% of its size) leave its winding number "
+                f"undecided over {100 * share:.0f}% of what caps would enclose; close them first or pass repair=True "
+                "to cap them anyway"
+            )
+        decided = f" (its winding number is undecided over {100 * share:.1f}% of the solid)"
     found["holes"] = len(loops)
-    done = f"closed {len(loops)} holes ({open_edges} open edges), the largest {across:.3g} across, with flat caps"
+    vertices, faces = capped_vertices, capped_faces
+    done = (f"closed {len(loops)} holes ({open_edges} open edges), the largest {across:.3g} across, with flat caps"
+            + decided)
     repairs.append(done)
     warnings.warn(f"the mesh is not watertight: {done}; the solid is the one its winding number defines",
                   MedialAxisWarning, stacklevel=4)
@@ -302,9 +315,12 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
     watertight : bool
         Require a closed (watertight) surface bounding a positive volume.
     repair : bool
-        Close the holes of a non-watertight mesh whatever their size
-        (holes up to ``SMALL_HOLE`` of the mesh's size are closed anyway,
-        with a warning); the repair is reported.
+        Cap the holes of a non-watertight mesh even where its winding number
+        leaves the solid undecided. Without it, holes up to ``SMALL_HOLE`` of
+        the mesh's size, and larger ones where the open surface's winding
+        number decides the solid (undecided over at most
+        ``UNDECIDED_SOLID`` of it), are capped with a warning; the repair is
+        reported either way.
     crossing : bool
         Look for crossing faces on a watertight mesh and take the surface of
         its solid by winding number where there are (:func:`resolve_solid`;

@@ -153,8 +153,10 @@ def voronoi_medial_axis(
         tetrahedra (:mod:`medialaxis.mesh.voronoi_complex`). ``"lambda"``:
         Algorithm 5 literally, only the facets of at least ``lam``.
     repair : bool
-        Cap the holes of a non-watertight mesh whatever their size (holes up
-        to a tenth of the mesh's size are capped anyway).
+        Cap the holes of an open mesh even where its winding number leaves
+        the solid undecided (without it, holes are capped where the rest of
+        the surface decides inside and outside, and the mesh is refused
+        otherwise: :func:`medialaxis.mesh.inputs.load_mesh`).
     rng : int or numpy.random.Generator
         Seed of the random check points used to measure epsilon.
     compact : bool
