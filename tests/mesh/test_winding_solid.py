@@ -19,6 +19,7 @@ pytest.importorskip("manifold3d")
 
 from medialaxis.mesh._winding_kernels import winding_numbers, winding_numbers_reference  # noqa: E402
 from medialaxis.mesh.arrangement import solid_surface  # noqa: E402
+from medialaxis.mesh.inputs import load_mesh  # noqa: E402
 
 
 def _parts(name: str) -> list:
@@ -226,3 +227,30 @@ def test_a_flat_shell_bounds_no_solid_and_is_refused_with_the_reason():
     flat = trimesh.Trimesh(np.vstack([tri, tri]), [[0, 1, 2], [3, 5, 4]], process=False)  # a face and its reverse
     with pytest.raises(InvalidInputError, match="bounds no solid"):
         solid_surface(flat.vertices, flat.faces)
+
+
+def _open_end(part, top: bool):
+    """``part`` without the faces of its top (or bottom) disc: a rim left open there."""
+    z = part.triangles_center[:, 2]
+    end = np.isclose(z, z.max() if top else z.min()) & np.isclose(np.abs(part.face_normals[:, 2]), 1.0)
+    return trimesh.Trimesh(part.vertices, part.faces[~end])
+
+
+def test_a_lid_set_in_a_pots_opening_closes_it_as_manifold3d_unites_them():
+    # as the Utah teapot: the pot open at the top, the lid open at the bottom, both rims in one plane and
+    # the lid's inside the pot's; their caps would overlap in that plane with opposite orientations
+    pot = trimesh.creation.cylinder(radius=1.0, height=2.0, sections=32)  # z from -1 to 1
+    lid = trimesh.creation.cylinder(radius=0.8, height=0.5, sections=24)
+    lid.apply_translation([0, 0, 1.25])  # z from 1 to 1.5
+    union = trimesh.boolean.union([pot, lid], engine="manifold")
+    both = trimesh.util.concatenate([_open_end(pot, top=True), _open_end(lid, top=False)])
+    assert not both.is_watertight
+    with pytest.warns(mx.MedialAxisWarning, match="not watertight: closed 2 holes"):
+        solid = load_mesh(both).mesh
+    assert solid.is_watertight and solid.is_winding_consistent
+    assert solid.volume == pytest.approx(union.volume, rel=1e-6)
+    assert solid.euler_number == union.euler_number == 2
+    assert np.abs(trimesh.proximity.signed_distance(union, solid.vertices)).max() < 1e-6
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mx.MedialAxisWarning)
+        assert mx.medial_axis(both, samples=8000).betti == (1, 0, 0)

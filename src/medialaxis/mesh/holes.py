@@ -74,11 +74,21 @@ def boundary_loops(faces: np.ndarray) -> list[np.ndarray] | None:
 
 
 def cap_holes(vertices: np.ndarray, faces: np.ndarray, loops: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """The surface with each loop closed by a fan from its centroid (a new vertex per hole; triangles only for 3)."""
+    """The surface with each loop closed by a fan from its centroid (a new vertex per hole; triangles only for 3).
+
+    Coplanar holes nested in one another and running opposite ways (a lid
+    set in a pot's opening, as the Utah teapot's) are closed together by
+    the ring between them (:func:`_rings`): their two fans would overlap
+    with opposite orientations in a plane, where no cut is exact.
+    """
     v = [np.asarray(vertices, np.float64)]
     new = [np.asarray(faces, np.int64)]
+    rings, inside = _rings(v[0], loops)
+    new.extend(rings)
     n = len(vertices)
-    for loop in loops:
+    for k, loop in enumerate(loops):
+        if k in inside:
+            continue
         nxt = np.roll(loop, -1)
         if len(loop) == 3:
             new.append(loop[::-1][None, :])
@@ -87,6 +97,55 @@ def cap_holes(vertices: np.ndarray, faces: np.ndarray, loops: list[np.ndarray]) 
         new.append(np.column_stack([nxt, loop, np.full(len(loop), n)]))  # v -> u against the faces' u -> v
         n += 1
     return np.vstack(v), np.vstack(new)
+
+
+def _rings(vertices: np.ndarray, loops: list[np.ndarray]) -> tuple[list[np.ndarray], set[int]]:
+    """Triangles of the rings between coplanar loops nested the opposite way, and the loops they close.
+
+    Each ring is the outer loop's polygon less the loops within it, in the
+    loops' common plane (to ``1e-9`` of the mesh's size), triangulated by
+    shapely's constrained Delaunay triangulation (no new vertices) and
+    oriented as the outer loop's cap.
+    """
+    import shapely
+
+    size = float(np.linalg.norm(np.ptp(vertices, axis=0))) or 1.0
+    planes = []
+    for loop in loops:
+        points = vertices[loop]
+        centre = points.mean(axis=0)
+        _, spread, axes = np.linalg.svd(points - centre, full_matrices=False)
+        planes.append((centre, axes, spread[2] / np.sqrt(len(loop)) <= 1e-9 * size and len(loop) > 3))
+    out: list[np.ndarray] = []
+    closed: set[int] = set()
+    for k, (centre, axes, flat) in enumerate(planes):
+        if not flat or k in closed:
+            continue
+        normal, frame = axes[2], axes[:2].T
+        outer = shapely.Polygon((vertices[loops[k]] - centre) @ frame)
+        coplanar = [j for j, (c, a, f) in enumerate(planes)
+                    if j != k and f and j not in closed and abs(abs(a[2] @ normal) - 1.0) <= 1e-12
+                    and abs((c - centre) @ normal) <= 1e-9 * size]
+        inner = {j: shapely.Polygon((vertices[loops[j]] - centre) @ frame) for j in coplanar}
+        within = [j for j, p in inner.items() if outer.is_valid and p.is_valid and p.within(outer)
+                  and shapely.is_ccw(p.exterior) != shapely.is_ccw(outer.exterior)]
+        if not within:
+            continue
+        ring = shapely.Polygon(outer.exterior, [inner[j].exterior for j in within])
+        corners = np.concatenate([loops[j] for j in [k, *within]])
+        index = {tuple(xy): int(i) for xy, i in zip((vertices[corners] - centre) @ frame, corners)}
+        try:
+            triangles = np.array([[index[tuple(xy)] for xy in np.asarray(t.exterior.coords)[:3]]
+                                  for t in shapely.constrained_delaunay_triangles(ring).geoms], np.int64)
+        except KeyError:  # a point the triangulation moved: fans instead
+            continue
+        u, w, x = (vertices[triangles[:, i]] for i in range(3))
+        along = np.cross(w - u, x - u) @ normal
+        flip = (along > 0) == shapely.is_ccw(outer.exterior)  # the cap runs against its loop
+        triangles[flip] = triangles[flip][:, ::-1]
+        out.append(triangles)
+        closed.update([k, *within])
+    return out, closed
 
 
 def undecided_share(vertices: np.ndarray, faces: np.ndarray, capped_vertices: np.ndarray, capped_faces: np.ndarray,
