@@ -37,9 +37,9 @@ within ``tolerance`` of what it replaces, keeping its topology:
   sheets (it falls back to the link condition otherwise);
 - given the surface's signed distance, a round's collapses are kept only
   while the spheres interpolated over the edges and triangles they make
-  reach at most ``tolerance`` out of the solid (sampled ``LATTICE_SPACING``
-  tolerances apart in centre and radius); the others are refused until
-  their neighbourhood changes. Without it a chain of merges, each within the tolerance, drifts:
+  reach at most ``tolerance`` out of the solid (sampled
+  :data:`~medialaxis.mesh.compact_inside.LATTICE_SPACING` tolerances apart
+  in centre and radius); the others are refused until their neighbourhood changes. Without it a chain of merges, each within the tolerance, drifts:
   kitten's compact complex reached 1.63% of the diagonal out of the
   surface, twice its tolerance;
 - collapses run in rounds: each round takes, cheapest first, edges whose
@@ -67,8 +67,9 @@ from scipy.spatial import cKDTree
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers, void_faces
 from medialaxis.core.result import MedialAxis
-from medialaxis.mesh._compact_kernels import costs, lattice, link_ok, select, structure
+from medialaxis.mesh._compact_kernels import costs, link_ok, moves, select, structure
 from medialaxis.mesh._rows import first_of_rows
+from medialaxis.mesh.compact_inside import CHUNK, collapses_inside
 
 __all__ = [
     "Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE", "RULES",
@@ -76,15 +77,6 @@ __all__ = [
 
 #: Default tolerance of the compact complex, times the measured sampling density epsilon.
 COMPACT_TOLERANCE = 1.0
-
-#: Input balls (nearest centres) whose emptiness bounds an interpolated sphere's reach before the surface is searched.
-NEAR_BALLS = 4
-
-#: Spacing of the spheres sampled over new edges and triangles (in centre and radius), times the tolerance.
-LATTICE_SPACING = 2.0
-
-#: Rows (spheres, triangles) whose temporaries are made at once: memory bounded whatever the complex's size.
-CHUNK = 65_536
 
 #: Most rounds of collapses (each halves the remaining candidates or more in practice).
 MAX_ROUNDS = 400
@@ -150,6 +142,7 @@ def compact_complex(
     tolerance: float,
     rule: str = "link condition",
     signed: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    all_edges: np.ndarray | None = None,
 ) -> Compacted:
     """Contract the complex while it stays within ``tolerance`` (see the module docstring).
 
@@ -176,7 +169,9 @@ def compact_complex(
         ``near`` (q, k) (their contacts show where to search). A round's
         collapses are kept only while the spheres interpolated over the
         edges and triangles they make reach at most ``tolerance`` out of it
-        (:func:`_inside`).
+        (:func:`~medialaxis.mesh.compact_inside.collapses_inside`).
+    all_edges : (e, 2) int64 ndarray, optional
+        Every edge of the complex, as :func:`complex_edges` gives them (made if not given).
 
     Returns
     -------
@@ -193,11 +188,11 @@ def compact_complex(
     alive = np.ones(n, bool)
     centres = None if signed is None else cKDTree(spheres[:, :3], balanced_tree=False, compact_nodes=False)  # 8x faster: crowded axes
     blocked = np.empty(0, np.int64)
-    all_edges, _ = complex_edges(faces, edges, n)
+    all_edges = complex_edges(faces, edges, n)[0] if all_edges is None else all_edges
     rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
-        star = ok = cand = src = dst = cost = move = None  # the last round's, freed before this one's are made
+        star = ok = cand = src = dst = cost = None  # the last round's, freed before this one's are made
         ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
         tri_count = np.diff(apex_ptr)
         ok = link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
@@ -205,7 +200,7 @@ def compact_complex(
         if not len(cand):
             break
         star = (ptr, idx, eid, apex_ptr, apex)
-        src, dst, cost, move = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2, star)
+        src, dst, cost = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2, star)
         within = np.flatnonzero(cost <= tolerance)
         if len(blocked):
             key = all_edges[cand[within], 0] * n + all_edges[cand[within], 1]
@@ -215,18 +210,18 @@ def compact_complex(
         order = within[np.lexsort((src[within], cost[within]))]
         chosen = np.flatnonzero(select(order, src, dst, ptr, idx, n, apart))
         if signed is not None:
-            chosen, refused, touched = _inside(chosen, src, dst, faces, all_edges, spheres, signed, centres, tolerance)
+            chosen, refused, touched = collapses_inside(chosen, src, dst, faces, all_edges, spheres, signed, centres, tolerance)
             stale = np.isin(blocked // n, touched) | np.isin(blocked % n, touched)
             pairs = np.sort(np.c_[src[refused], dst[refused]], axis=1)
             blocked = np.union1d(blocked[~stale], pairs[:, 0] * n + pairs[:, 1])
             if not len(chosen):
                 continue
-        j, i = src[chosen], dst[chosen]
+        j, i = src[chosen], dst[chosen]  # no vertex in two merges: i and j are apart
+        moved[i] = np.maximum(moved[i], moves(all_edges, j, i, spheres, qa, qb, qc, count, moved, tri_count != 2, star))
         qa[i] += qa[j]
         qb[i] += qb[j]
         qc[i] += qc[j]
         count[i] += count[j]
-        moved[i] = np.maximum(moved[i], move[chosen])
         alive[j] = False
         to = np.arange(n)
         to[j] = i
@@ -256,66 +251,11 @@ def _flat(faces: np.ndarray) -> np.ndarray:
     return (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
 
 
-def _inside(
-    chosen: np.ndarray, src: np.ndarray, dst: np.ndarray, faces: np.ndarray, edges: np.ndarray,
-    spheres: np.ndarray, signed: Callable[[np.ndarray, np.ndarray], np.ndarray], centres: cKDTree, tolerance: float,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The collapses ``src -> dst`` of ``chosen`` whose new edges and triangles stay inside the surface.
-
-    The spheres interpolated over every edge and triangle the round's
-    collapses change are sampled ``LATTICE_SPACING`` tolerances apart (in
-    centre and radius); a sphere ``(x, r)`` reaches ``r + signed(x, near)`` out of the
-    surface, at most ``tolerance`` for a kept collapse;
-    the collapses that made an edge or triangle failing this are refused,
-    and the rest tested again. Returns the kept collapses, the refused ones
-    and the vertices whose stars the kept ones change.
-    """
-    n = len(spheres)
-    refused = np.zeros(len(src), bool)
-    moving = np.zeros(n, bool)
-    moving[src[chosen]] = True
-    # all that may change, an edge as a triangle (a, b, b); CHUNK of them at a time: 2M on the first
-    # round of a 40k-vertex torus's complex, whose sample arrays took 0.3 GB at once
-    prims = (faces[moving[faces].any(axis=1)], edges[moving[edges].any(axis=1)][:, [0, 1, 1]])
-    while True:
-        to = np.arange(n)
-        to[src[chosen]] = dst[chosen]
-        deep, touched = [np.empty((0, 3), np.int64)], [np.empty(0, np.int64)]
-        for part in (p[lo : lo + CHUNK] for p in prims for lo in range(0, len(p), CHUNK)):
-            after = to[part]
-            flat = (after[:, 0] == after[:, 1]) | (after[:, 2] == after[:, 0]) | ((after[:, 1] == after[:, 2]) & (part[:, 1] != part[:, 2]))
-            changed = (after != part).any(axis=1) & ~flat
-            touched.append(unique_ints(after[changed]))
-            deep.append(part[changed][_reaching_out(after[changed], part[changed], spheres, signed, centres, tolerance)])
-        deep_prims = np.concatenate(deep)
-        if not len(deep_prims):
-            return chosen, np.flatnonzero(refused), unique_ints(np.concatenate(touched))
-        culprit = np.isin(src[chosen], deep_prims)
-        refused[chosen[culprit]] = True
-        chosen = chosen[~culprit]
-
-
-def _reaching_out(
-    after: np.ndarray, before: np.ndarray, spheres: np.ndarray, signed: Callable[[np.ndarray, np.ndarray], np.ndarray],
-    centres: cKDTree, tolerance: float,
-) -> np.ndarray:
-    """Which primitives ``after`` (replacing ``before``) carry a sphere reaching more than ``tolerance`` out."""
-    samples, owner = lattice(spheres, after, np.c_[after, before], LATTICE_SPACING * tolerance, tolerance)  # corners old and new
-    k = min(NEAR_BALLS, len(spheres))
-    near, which = centres.query(samples[:, :3], k=k, workers=-1)
-    near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
-    far = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1) > tolerance
-    samples, owner = samples[far], owner[far]
-    deep = samples[:, 3] + signed(samples[:, :3], which[far]) > tolerance if len(samples) else np.zeros(0, bool)
-    return unique_ints(owner[deep])
-
-
-def _components_and_euler(n: int, faces: np.ndarray, edges: np.ndarray) -> tuple[int, int]:
-    """Connected components and Euler characteristic of a complex (both cheap, unlike b1 and b2)."""
+def _components_and_euler(n: int, faces: np.ndarray, all_edges: np.ndarray) -> tuple[int, int]:
+    """Components and Euler characteristic of a complex, given all its edges (both cheap, unlike b1 and b2)."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
-    all_edges, _ = complex_edges(np.asarray(faces, np.int64).reshape(-1, 3), edges, n)
     graph = coo_matrix((np.ones(len(all_edges)), (all_edges[:, 0], all_edges[:, 1])), shape=(n, n))
     return int(connected_components(graph, directed=False)[0]), int(n - len(all_edges) + len(faces))
 
@@ -380,11 +320,13 @@ def compact_medial_axis(
     :func:`compact_complex`).
     """
     contacts = ma.extras["contacts"] if "contacts" in ma.extras else ma.points[:, None, :]
-    components, chi = _components_and_euler(len(ma.points), ma.faces, ma.edges)
+    all_edges = complex_edges(np.asarray(ma.faces, np.int64).reshape(-1, 3), ma.edges, len(ma.points))[0]
+    components, chi = _components_and_euler(len(ma.points), ma.faces, all_edges)
     voids = None if shells is None else shells - components
     target = None if voids is None or voids < 0 or components + voids < chi else (components, components + voids - chi, voids)
     for mode in RULES:
-        c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, rule=mode, signed=signed)
+        c = compact_complex(ma.points, ma.radii, ma.faces, ma.edges, contacts, tolerance, rule=mode, signed=signed,
+                            all_edges=all_edges)
         betti = betti_numbers(len(c.keep), c.edges, c.faces)
         if target is None:
             if (betti[0], betti[0] - betti[1] + betti[2]) == (components, chi):
