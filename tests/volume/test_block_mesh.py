@@ -139,3 +139,16 @@ def test_certain_picks_of_a_window_are_the_whole_sheets(seed, cut, reach):
     assert np.array_equal(w_picked[certain], picked[rows][certain])
     assert certain[w_vox[:, 2] < cut - 4 * reach - 2].mean() > 0.5 if (w_vox[:, 2] < cut - 4 * reach - 2).any() else True
     assert np.array_equal(certain, K.subsample_certainty_reference(w_vox, w_order, w_radius, spacing, band, near_band))
+
+
+def test_a_block_without_free_edge_rays_marches_none():
+    # a block whose sheet has no free-edge vertex asks for chords along no ray (it raised on 1024^3 panels)
+    from medialaxis.volume.blocks import BlockSampler
+    from medialaxis.volume.extension import centre_on_chords, march_to_iso
+    from medialaxis.volume.sources import ArraySource
+
+    grey = np.full((8, 8, 8), 3000.0)
+    none = np.zeros((0, 3))
+    for sampled in (grey, BlockSampler(ArraySource(grey), (4, 4, 4), 1000.0)):
+        assert march_to_iso(sampled, 2000.0, np.ones(3), none, none, 4.0, 0.25).shape == (0,)
+        assert centre_on_chords(sampled, 2000.0, np.ones(3), none, none, np.zeros(0), np.zeros(0)).shape == (0,)

@@ -139,3 +139,22 @@ def test_a_progress_bar_counts_the_blocks(small16, capsys):
     mx.medial_axis(small16, method="voxels", chunks=24, n_jobs=2, show_progress=True)
     err = capsys.readouterr().err
     assert "medial voxels" in err and "/18 " in err  # 40 x 64 x 56 in blocks of 24: 2 x 3 x 3 blocks
+
+
+def test_the_shell_keeps_only_every_steps_voxels_of_the_planes_it_reads():
+    import tracemalloc
+
+    from medialaxis.volume.sources import ArraySource
+
+    volume = np.zeros((128, 1024, 1024), np.uint8)  # pages never written cost nothing
+    volume[40:80, 300:700, 300:700] = 200
+    tracemalloc.start()
+    try:
+        shell = chunked.shell_of_source(ArraySource(volume), 100.0, np.ones(3))
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    lo, hi = shell.vertices.min(axis=0), shell.vertices.max(axis=0)
+    assert np.all(np.abs(lo - (40, 300, 300)) <= 8) and np.all(np.abs(hi - (80, 700, 700)) <= 8)  # one step: 8
+    # 16 planes read (every 8th), each kept as 128 x 128 floats: 1 MiB; whole planes would hold 64 MiB
+    assert peak < 16 * 2**20, peak / 2**20

@@ -172,7 +172,8 @@ class BlockScan:
     Attributes
     ----------
     gaps : (g,) float64 ndarray
-        Lengths of the plate-crossing pairs owned by the core (lower voxel in it).
+        Lengths of the plate-crossing pairs owned by the core (lower voxel in it);
+        empty once spilled (:meth:`plate_gaps` reads them).
     depth : float
         Largest distance to the boundary in the core (0 without foreground).
     lo, hi : (3,) int64 ndarray or None
@@ -204,16 +205,25 @@ class BlockScan:
     spilled: str | None = None
 
     def spill(self, folder: str) -> BlockScan:
-        """The same scan with its pairs in a file of ``folder`` (the first pass of a large volume keeps
-        about 130 bytes per marked voxel until lam is known: 1 GiB at 1024^3 in memory)."""
+        """The same scan with its pairs and gaps in a file of ``folder`` (the first pass of a large volume keeps
+        about 130 bytes per marked voxel until lam is known: 1 GiB at 1024^3 in memory, and 8 bytes
+        per plate-crossing pair: 120 MB at 2048^3)."""
         if self.pairs is None or len(self.pairs.gap) == 0:
             return self
         handle, path = tempfile.mkstemp(suffix=".npz", dir=folder)
         os.close(handle)
         arrays = {f.name: getattr(self.pairs, f.name) for f in dataclasses.fields(MedialPairs)
                   if getattr(self.pairs, f.name) is not None}
-        np.savez(path, voxels=self.voxels, distance=self.distance, owned=self.owned, **arrays)
-        return dataclasses.replace(self, pairs=None, voxels=None, distance=None, owned=None, spilled=path)
+        np.savez(path, gaps=self.gaps, voxels=self.voxels, distance=self.distance, owned=self.owned, **arrays)
+        return dataclasses.replace(self, gaps=np.zeros(0), pairs=None, voxels=None, distance=None, owned=None,
+                                   spilled=path)
+
+    def plate_gaps(self) -> np.ndarray:
+        """``gaps``, read from the spill file when they wait there (before :meth:`restored` removes it)."""
+        if self.spilled is None:
+            return self.gaps
+        with np.load(self.spilled) as data:
+            return data["gaps"]
 
     def restored(self) -> BlockScan:
         """The scan with its pairs read back from its file (removed)."""

@@ -50,12 +50,13 @@ from medialaxis.core.scene3d import Surface
 from medialaxis.core.validate import check_number
 from medialaxis.errors import EmptyShapeError, InvalidInputError
 from medialaxis.volume.block_iso import block_iso
+from medialaxis.volume.block_plates import block_plates
 from medialaxis.volume.blocks import block_grid, finish_block, halo_voxels, medial_block, scan_block
 from medialaxis.volume.distance import Grid
 from medialaxis.volume.inputs import VolumeInput, check_spacing
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels
 from medialaxis.volume.ome_zarr import stream_out
-from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness, nominal_thicknesses, plate_summary
+from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness
 from medialaxis.volume.polygonize import JUNCTION_SPACING, pick_seed
 from medialaxis.volume.sources import Source, is_zarr_folder, open_source
 from medialaxis.volume.stages import check_range, dropped_report, mesh_result, stage_metadata
@@ -134,9 +135,7 @@ def _plates(scans: list[Any], thickness: Any, lam: Any, spacing: np.ndarray) -> 
         lower, upper = DEFAULT_MIN_THICKNESS * unit, np.inf
     else:
         lower, upper = check_range(thickness)
-    gaps = np.concatenate([s.gaps for s in scans])
-    plates = plate_summary(gaps, lower, upper, unit)
-    nominal = nominal_thicknesses(gaps, lower, unit)
+    plates, nominal = block_plates(scans, lower, upper, unit)  # one block's gaps in memory at a time
     if len(nominal) > 1:
         return plates, lam_value, nominal
     return plates, (DEFAULT_LAM_RATIO * plates.value if lam_value is None else lam_value), None
@@ -287,7 +286,9 @@ def shell_of_source(source: Source, iso: float, spacing: np.ndarray, cells: int 
 
     step = max(1, math.ceil(max(source.shape) / cells))
     Z, Y, X = source.shape
-    planes = [np.asarray(source.read((slice(z, z + 1), slice(0, Y), slice(0, X))), np.float32)[0, ::step, ::step]
+    # each plane subsampled into its own array: a strided view would keep the whole plane alive
+    # (128 planes of 2048^2 float32 held 2 GiB in the client)
+    planes = [np.array(source.read((slice(z, z + 1), slice(0, Y), slice(0, X)))[0, ::step, ::step], np.float32)
               for z in range(0, Z, step)]
     grey = np.stack(planes)
     mask = grey > iso

@@ -99,6 +99,8 @@ def march_to_iso(grey: np.ndarray, iso: float, spacing: np.ndarray, start: np.nd
     -------
     (k,) float64 ndarray
     """
+    if len(start) == 0:  # a block without such rays (its samples cannot be reshaped per ray)
+        return np.zeros(0)
     ts = np.arange(0.0, max_length + step, step)
     pts = start[:, None, :] + ts[None, :, None] * direction[:, None, :]
     idx = (pts / spacing).reshape(-1, 3).T

@@ -237,12 +237,23 @@ def plate_labels(features: Features, p: np.ndarray, q: np.ndarray, gap: np.ndarr
 def _nominal(gap: np.ndarray, unit: float) -> np.ndarray:
     """The part's nominal plate thicknesses: the peaks of the histogram of
     plate-crossing pair lengths that hold at least ``NOMINAL_SHARE`` of them."""
+    edges = nominal_edges(float(gap.min()), float(gap.max()), unit)
+    return nominal_peaks(np.histogram(gap, edges)[0], edges, unit)
+
+
+def nominal_edges(shortest: float, longest: float, unit: float) -> np.ndarray:
+    """Bin edges of the histogram of pair lengths from ``shortest`` to ``longest`` (quarter-voxel bins)."""
+    step = 0.25 * unit
+    return np.arange(shortest - 2 * step, longest + 3 * step, step)
+
+
+def nominal_peaks(counts: np.ndarray, edges: np.ndarray, unit: float) -> np.ndarray:
+    """The nominal thicknesses from the histogram ``counts`` of pair lengths over ``edges`` (:func:`nominal_edges`)."""
     from scipy.ndimage import gaussian_filter1d
     from scipy.signal import find_peaks
 
     step = 0.25 * unit
-    edges = np.arange(gap.min() - 2 * step, gap.max() + 3 * step, step)
-    hist = gaussian_filter1d(np.histogram(gap, edges)[0].astype(np.float64), 2.0)
+    hist = gaussian_filter1d(np.asarray(counts).astype(np.float64), 2.0)
     peaks, _ = find_peaks(hist, prominence=NOMINAL_SHARE * hist.sum() * step / unit)
     return np.sort(0.5 * (edges[peaks] + edges[peaks + 1]))
 
