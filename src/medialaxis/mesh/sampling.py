@@ -15,13 +15,12 @@ set of check points on the surface to the nearest sample.
 from __future__ import annotations
 
 import dataclasses
-import warnings
 from typing import Any
 
 import numpy as np
 from scipy.spatial import cKDTree
 
-from medialaxis.errors import InvalidInputError, MedialAxisWarning, ResourceLimitError
+from medialaxis.errors import InvalidInputError, ResourceLimitError
 from medialaxis.mesh._rows import first_of_rows
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
@@ -328,8 +327,8 @@ def local_thickness(points: np.ndarray, normals: np.ndarray, cap: np.ndarray) ->
                               max_radius=0.5 * np.asarray(cap, np.float64))[1]
 
 
-def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoNormals) -> tuple[int, np.ndarray]:
-    """``count`` and ``spacing``, or more samples where the surface is mostly thin for them.
+def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoNormals) -> tuple[int, np.ndarray, str]:
+    """``count`` and ``spacing``, or more samples where the surface is mostly thin for them, and a warning.
 
     The per-face ``spacing`` of :func:`adaptive_spacing` for ``count``
     samples follows the coarse medial points of :func:`lfs_estimate`, which
@@ -338,8 +337,11 @@ def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoN
     (:func:`local_thickness`) sees them. Where the spacing is at most the
     thickness over ``THIN_RATIO`` on ``THIN_SHARE`` of the surface (up to
     ``THIN_SLACK``), both are kept; otherwise the count grows as needed,
-    up to ``THIN_SAMPLES`` (with a warning naming the count that would do),
-    and the spacing shrinks with it.
+    up to ``THIN_SAMPLES`` (then the text returned last, a warning for the
+    caller to give, names the count that would do; it is empty otherwise),
+    and the spacing shrinks with it. No warning is given here: the Voronoi
+    route runs this on a second thread, beside the Delaunay insertion of the
+    sample it keeps on most meshes.
     """
     area = np.asarray(mesh.area_faces, np.float64)
     h = face_spacing_for_count(area, np.ones(len(area)), max(count // 8, 2000))
@@ -348,12 +350,11 @@ def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoN
     thickness = local_thickness(coarse.points, coarse.normals, 2.0 * THIN_RATIO * at)  # a ball far out is slow to query
     need = float(np.percentile(THIN_RATIO * at / np.maximum(thickness, 1e-300), 100 * THIN_SHARE))
     if need <= THIN_SLACK:
-        return count, spacing
+        return count, spacing, ""
     wanted = int(min(np.ceil(count * need**2), MAX_SAMPLES))
-    if wanted > THIN_SAMPLES:
-        warnings.warn(
-            f"the mesh is mostly thin for its size (a quarter of its surface is under "
-            f"{np.percentile(thickness, 25):.3g} thick): {THIN_SAMPLES} samples are taken where about {wanted} "
-            f"would keep all its sheets; pass samples={wanted} for them", MedialAxisWarning, stacklevel=3)
+    note = (
+        f"the mesh is mostly thin for its size (a quarter of its surface is under "
+        f"{np.percentile(thickness, 25):.3g} thick): {THIN_SAMPLES} samples are taken where about {wanted} "
+        f"would keep all its sheets; pass samples={wanted} for them" if wanted > THIN_SAMPLES else "")
     grown = min(wanted, THIN_SAMPLES)
-    return grown, spacing * np.sqrt(count / grown)
+    return grown, spacing * np.sqrt(count / grown), note

@@ -26,7 +26,6 @@ from typing import Any, Literal
 
 import numpy as np
 
-from medialaxis._jit import Beside
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import (
@@ -39,18 +38,16 @@ from medialaxis.mesh._voronoi_kernels import tet_centroids
 from medialaxis.mesh.crossings import crossing_pairs, shell_labels, solid_betti
 from medialaxis.mesh.inner_set import inner_tets
 from medialaxis.mesh.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
+from medialaxis.mesh.sample_delaunay import tetrahedralised_sample
 from medialaxis.mesh.sampling import (
     adaptive_spacing,
     lfs_estimate,
-    measure_epsilon,
     pseudo_normals,
     sample_count,
     sample_surface,
-    thin_part_count,
 )
 from medialaxis.mesh.signed_distance import SignedDistance
 from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, euler_characteristic, medial_complex
-from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
 
@@ -66,17 +63,6 @@ VOLUME_TOLERANCE = 2e-3
 #: reach further into a ball empty of samples; 2 allows for epsilon being
 #: measured on random points, from below).
 EMPTY_BALL_SLACK = 2.0
-
-
-def _beside_delaunay(
-    work: Any, points: np.ndarray, rng: np.random.Generator, tree: Any, normals: Any
-) -> tuple[np.ndarray, float, float, SignedDistance | None]:
-    """What needs the sample but not its Delaunay: the crossing faces, epsilon, the signed distance."""
-    pairs = crossing_pairs(work)
-    if len(pairs):
-        return pairs, 0.0, 0.0, None  # the sample is of the wrong surface: the caller starts again
-    eps, eps_lfs = measure_epsilon(work, points, rng, 100_000, lambda x: tree.query(x, workers=-1)[0])
-    return pairs, eps, eps_lfs, SignedDistance(work, normals)
 
 
 def _solid_of(src: MeshInput, pairs: np.ndarray, force: bool = False) -> MeshInput:
@@ -195,7 +181,7 @@ def voronoi_medial_axis(
         usually larger than the shape, hence the practical default ``lam``),
         ``euler_characteristic``, ``n_filling_faces``, ``timings`` (seconds
         per step; ``epsilon`` is the wait for the work done beside the Delaunay
-        insertion: the crossing check, epsilon, the closest-point structure),
+        insertion: the thin-part check, the crossing check, epsilon, the closest-point structure),
         ``delaunay_share`` and ``defects`` (crossings, holes). The compact complex keeps a subset
         of these points (extras follow them) and adds ``compact`` (the
         collapse rule that ran), ``compact_tolerance``, ``full_points`` and
@@ -259,9 +245,18 @@ def voronoi_medial_axis(
         try:
             tree = lfs_estimate(work, max(count // 8, 2000), normals)
             spacing = adaptive_spacing(work, tree, count)
-            if samples is None:  # enough for the plates of a thin part
-                count, spacing = thin_part_count(work, spacing, count, normals)
             smp = sample_surface(work, spacing, normals)
+            timings["sampling"] = time.perf_counter() - t0
+            # with the default count, the check for thin parts runs beside the Delaunay insertion of the
+            # sample it keeps on most meshes
+            dt, more, pairs, eps, eps_lfs, sd = tetrahedralised_sample(
+                work, smp, rng, tree, normals, (count, spacing) if samples is None else None, timings)
+            if more is not None and more[2]:
+                warnings.warn(more[2], MedialAxisWarning, stacklevel=2)
+            if more is not None and (more[0] != count or not np.array_equal(more[1], spacing)):
+                count, spacing = more[0], more[1]  # more samples, for the plates of a thin part
+                smp = sample_surface(work, spacing, normals)
+                dt, _, pairs, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings)
         except MedialAxisError:
             pairs = crossing_pairs(work)  # a surface through itself: its solid rather than what it broke
             if not len(pairs):
@@ -269,22 +264,10 @@ def voronoi_medial_axis(
             src = _solid_of(src, pairs)
             work = src.mesh
             continue
-        timings["sampling"] = time.perf_counter() - t0
-
-        # the crossing check, epsilon and the closest-point structure run on the core the serial
-        # Delaunay insertion leaves idle (about 0.6 s of the uv ellipsoid's 10.5)
-        t0 = time.perf_counter()
-        side = Beside(_beside_delaunay, work, smp.points, rng, tree, normals)
-        try:
-            dt = tetrahedralise(smp.points)
-        except MedialAxisError:
-            if not len(side.result()[0]):
-                raise
+        if isinstance(dt, MedialAxisError):
+            if not len(pairs):
+                raise dt
             dt = None
-        timings["delaunay"] = time.perf_counter() - t0
-        t0 = time.perf_counter()
-        pairs, eps, eps_lfs, sd = side.result()
-        timings["epsilon"] = time.perf_counter() - t0
         if not len(pairs):
             t0 = time.perf_counter()
             inner = inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
