@@ -23,7 +23,8 @@ within 1 voxel of the mesh, components, median thickness.
 * ours on a Dask ``LocalCluster`` of worker processes (``--workers 1 2``),
   the mesh streamed to a PLY file (``out=``): the largest process's own
   high-water mark (the client's and each worker's, from the processes
-  themselves) and the tree's sampled peak until the axis is done.
+  themselves; the client's alone in its own column) and the tree's sampled peak until
+  the axis is done. The PLY's SHA-256 compares runs bit for bit.
 
 Usage::
 
@@ -34,6 +35,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import resource
@@ -139,6 +141,7 @@ def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
         out["thickness"] = float(np.median(2 * radii))
         out["iso"] = ma.metadata["iso"]
         if ply.exists():
+            out["mesh_sha256"] = hashlib.sha256(ply.read_bytes()).hexdigest()  # runs compared bit for bit
             ply.unlink()
     elif tool == "kimimaro":
         import kimimaro
@@ -191,6 +194,7 @@ def measure(tool: str, path: Path, n: int, chunks: int, jobs: int, timeout: floa
     result = json.loads(stdout.strip().splitlines()[-1])
     # ours: the process's high-water mark when the axis was done (scoring comes after), and for a
     # cluster the largest of the client's and the workers' own; peers: the sampled peak of the tree
+    result["client_peak_gib"] = result.get("own_peak_gib")  # the client alone (the process that stitches)
     result["peak_gib"] = max([result.pop("own_peak_gib", peak / 2**30), *result.get("worker_peaks_gib", [])])
     result["tree_gib"], result["sampled_largest_gib"] = peak / 2**30, largest / 2**30
     return result
@@ -239,8 +243,8 @@ def main() -> None:
             rows.append(r)
             print(json.dumps(r), flush=True)
     print()
-    print("| size | tool | seconds | M voxels/s | largest process GiB | tree GiB | p99 (vox) | covered | pieces | euler | thickness |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| size | tool | seconds | M voxels/s | largest process GiB | client GiB | tree GiB | p99 (vox) | covered | pieces | euler | thickness |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     name = {"chunked": "ours, chunks={}, {} threads", "memory": "ours, in memory", "kimimaro": "kimimaro",
             "cluster": "ours, chunks={}, LocalCluster of {} workers"}
     for r in rows:
@@ -250,8 +254,9 @@ def main() -> None:
             continue
         acc = (f"{r['p99']:.2f} | {100 * r['covered']:.1f}% | {r['components']} | {r['euler']} | {r['thickness']:.2f}"
                if "p99" in r else "- | - | - | - | -")
+        client = "-" if r.get("client_peak_gib") is None else f"{r['client_peak_gib']:.2f}"
         print(f"| {r['size']}^3 | {label} | {r['seconds']:.1f} | {r['mvox_per_s']:.2f} | {r['peak_gib']:.2f} | "
-              f"{r['tree_gib']:.2f} | {acc} |")
+              f"{client} | {r['tree_gib']:.2f} | {acc} |")
     for r in rows:
         b = r.get("blocks")
         if b:

@@ -27,7 +27,8 @@ extension rays read the grey values around their ends block by block.
 
 Memory: each running block holds its box (chunk plus halo) at about 40 bytes
 per voxel plus the per-voxel arrays of its foreground, and then its window of
-the sheet; the client holds the blocks' counts, and without ``out=`` the mesh.
+the sheet; the client holds the blocks' counts (their pair lengths one block at a time:
+:mod:`~medialaxis.volume.block_plates`), one plane of the shell, and without ``out=`` the mesh.
 """
 
 from __future__ import annotations
