@@ -195,15 +195,6 @@ def test_solids_touching_along_an_edge_are_kept_apart_as_manifold3d_keeps_them()
     assert len(solid.split(only_watertight=False)) == len(union.split(only_watertight=False)) == 2
 
 
-def test_a_fin_on_an_edge_bounds_no_solid_and_is_refused_with_the_reason():
-    box = _box([0, 0, 0], [1, 1, 1])
-    u, v = box.edges_unique[0]
-    fin = trimesh.Trimesh(np.vstack([box.vertices, [[2.0, 2.0, 2.0]]]),
-                          np.vstack([box.faces, [[u, v, len(box.vertices)]]]), process=False)
-    with pytest.raises(mx.MedialAxisError, match="do not pair up in opposite directions"):
-        mx.medial_axis(fin, method="flow")
-
-
 def test_holes_touching_at_a_vertex_are_capped_each_on_its_own():
     from medialaxis.mesh.inputs import load_mesh
 

@@ -23,7 +23,22 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["winding_numbers", "winding_numbers_reference", "winding_numbers_without"]
+__all__ = ["solid_angle", "winding_numbers", "winding_numbers_reference", "winding_numbers_without"]
+
+
+@njit(cache=True, nogil=True)
+def solid_angle(x, y, z, triangles, t):  # type: ignore[no-untyped-def]
+    """Signed solid angle of triangle ``t`` of ``triangles`` at ``(x, y, z)`` (Van Oosterom and Strackee)."""
+    ax, ay, az = triangles[t, 0, 0] - x, triangles[t, 0, 1] - y, triangles[t, 0, 2] - z
+    bx, by, bz = triangles[t, 1, 0] - x, triangles[t, 1, 1] - y, triangles[t, 1, 2] - z
+    cx, cy, cz = triangles[t, 2, 0] - x, triangles[t, 2, 1] - y, triangles[t, 2, 2] - z
+    la = np.sqrt(ax * ax + ay * ay + az * az)
+    lb = np.sqrt(bx * bx + by * by + bz * bz)
+    lc = np.sqrt(cx * cx + cy * cy + cz * cz)
+    det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
+    den = (la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (ax * cx + ay * cy + az * cz) * lb
+           + (bx * cx + by * cy + bz * cz) * la)
+    return 2.0 * np.arctan2(det, den)
 
 
 @njit(cache=True, nogil=True)
@@ -31,18 +46,8 @@ def _at(x, y, z, triangles, skip):  # type: ignore[no-untyped-def]
     """Sum of the solid angles of the triangles but ``skip`` at ``(x, y, z)``, over 4 pi."""
     total = 0.0
     for t in range(triangles.shape[0]):
-        if t == skip:
-            continue
-        ax, ay, az = triangles[t, 0, 0] - x, triangles[t, 0, 1] - y, triangles[t, 0, 2] - z
-        bx, by, bz = triangles[t, 1, 0] - x, triangles[t, 1, 1] - y, triangles[t, 1, 2] - z
-        cx, cy, cz = triangles[t, 2, 0] - x, triangles[t, 2, 1] - y, triangles[t, 2, 2] - z
-        la = np.sqrt(ax * ax + ay * ay + az * az)
-        lb = np.sqrt(bx * bx + by * by + bz * bz)
-        lc = np.sqrt(cx * cx + cy * cy + cz * cz)
-        det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)
-        den = (la * lb * lc + (ax * bx + ay * by + az * bz) * lc + (ax * cx + ay * cy + az * cz) * lb
-               + (bx * cx + by * cy + bz * cz) * la)
-        total += 2.0 * np.arctan2(det, den)
+        if t != skip:
+            total += solid_angle(x, y, z, triangles, t)
     return total / (4.0 * np.pi)
 
 

@@ -165,8 +165,8 @@ def undecided_share(vertices: np.ndarray, faces: np.ndarray, capped_vertices: np
     from medialaxis.mesh.crossings import winding_numbers
 
     v = np.asarray(capped_vertices, np.float64)
-    lo, hi = v.min(axis=0), v.max(axis=0)
-    sample = qmc.scale(qmc.Sobol(3, seed=seed).random(points), lo, np.maximum(hi, lo + 1e-300))
+    pad = 0.01 * float(np.linalg.norm(np.ptp(v, axis=0)))  # a flat mesh's box has a side of zero
+    sample = qmc.scale(qmc.Sobol(3, seed=seed).random(points), v.min(axis=0) - pad, v.max(axis=0) + pad)
     opened = winding_numbers(sample, np.asarray(vertices, np.float64)[np.asarray(faces)])
     caps = winding_numbers(sample, v[np.asarray(capped_faces)[len(faces):]])
     whole = opened + caps

@@ -24,6 +24,7 @@ from medialaxis.errors import (
     MedialAxisWarning,
     UnsupportedFormatError,
 )
+from medialaxis.mesh.contour import contoured
 
 __all__ = ["MeshInput", "load_mesh", "resolve_solid", "signed_volume", "MESH_EXTENSIONS"]
 
@@ -146,17 +147,20 @@ def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: n
     if not len(pairs) and nested is None and not force:
         return work
     vertices = np.asarray(work.vertices)
-    surface = solid_surface(vertices, np.asarray(work.faces), coordinate_accuracy(vertices))
+    try:
+        surface = solid_surface(vertices, np.asarray(work.faces), coordinate_accuracy(vertices))
+    except InvalidInputError as error:  # no face kept, or none at the coordinates' accuracy
+        return contoured(work, f"the surface passes through itself ({len(pairs)} pairs of crossing faces) and {error}",
+                         repairs, found)
     if force and not (surface.cut_faces or surface.dropped_faces or surface.flipped_faces):
         return work
     solid = type(work)(surface.vertices, surface.faces, process=False)
     if not _closed(solid) or not solid.is_winding_consistent:
         crowded, open_edges = _edge_defects(solid)
-        raise InvalidInputError(
-            f"the surface passes through itself ({len(pairs)} pairs of crossing faces) and the surface of the solid its "
-            f"winding number defines is not a closed manifold ({open_edges} open edges, {crowded} edges of more than "
-            "two faces: sheets within the accuracy of the coordinates); fix it (e.g. a mesh boolean union) first"
-        )
+        return contoured(work, f"the surface passes through itself ({len(pairs)} pairs of crossing faces) and the "
+                         f"surface of the solid its winding number defines is not a closed manifold ({open_edges} open "
+                         f"edges, {crowded} edges of more than two faces: sheets within the accuracy of the "
+                         "coordinates)", repairs, found)
     what = (f"the surface passes through itself ({len(pairs)} pairs of faces cross)" if len(pairs)
             else f"shell {nested} lies inside another shell's solid (nested or overlapping shells)" if nested is not None
             else "the surface passes through itself (where faces meet at a vertex or an edge)")
@@ -174,6 +178,12 @@ def _edge_defects(mesh: Any) -> tuple[int, int]:
     """Edges shared by more than two faces, and open edges (one face)."""
     shared = np.bincount(mesh.edges_unique_inverse, minlength=len(mesh.edges_unique))
     return int((shared > 2).sum()), int((shared == 1).sum())
+
+
+def _area(vertices: np.ndarray, faces: np.ndarray) -> float:
+    """Area of the triangles ``faces`` of ``vertices``."""
+    t = vertices[faces]
+    return float(np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1).sum() / 2)
 
 
 def _closed(mesh: Any) -> bool:
@@ -228,6 +238,8 @@ def _take_out_degenerate(work: Any, repairs: list[str]) -> Any:
     return work
 
 
+#: Caps larger than this share of a mesh's area do not repair it: its solid is contoured (:mod:`.contour`).
+SOUP_CAPS = 0.5
 #: Holes up to this fraction of the mesh's size across are capped at once; larger ones where the
 #: open surface's winding number decides the solid (:func:`medialaxis.mesh.holes.undecided_share`).
 SMALL_HOLE = 0.1
@@ -255,8 +267,8 @@ def _touching_solids(work: Any, crowded: int, repairs: list[str], found: dict[st
     surface = solid_surface(vertices, np.asarray(work.faces), coordinate_accuracy(vertices))
     solid = type(work)(surface.vertices, surface.faces, process=False)
     if not _closed(solid):
-        raise InvalidInputError(f"the mesh has {crowded} edges of more than two faces around which the surface of "
-                                "its solid (by winding number) is not a closed manifold; split them first")
+        return contoured(work, f"the mesh has {crowded} edges of more than two faces around which the surface of its "
+                         "solid (by winding number) is not a closed manifold", repairs, found)
     found["shared_edges"] = crowded
     done = f"{crowded} edges of more than two faces (solids touching along them) kept apart, one side per solid"
     repairs.append(done)
@@ -269,18 +281,17 @@ def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, i
     from medialaxis.mesh.holes import boundary_loops, cap_holes, undecided_share
 
     crowded, open_edges = _edge_defects(work)
-    refusal = (f"the mesh is not watertight ({open_edges} open edges, {crowded} edges shared by more than two "
-               "faces); close it first")
     if crowded:
         if open_edges or not _paired(np.asarray(work.faces)):
-            raise InvalidInputError(refusal + ": its edges of more than two faces do not pair up in opposite directions, "
-                                    "so no solid is defined there")
+            return contoured(work, f"the mesh is not watertight ({open_edges} open edges, {crowded} edges of more than "
+                             "two faces that do not pair up in opposite directions)", repairs, found)
         return _touching_solids(work, crowded, repairs, found)
     if not work.is_winding_consistent:  # trimesh's fix_winding works on open surfaces too
         require("trimesh", "medialaxis[mesh]").repair.fix_winding(work)
     loops = boundary_loops(np.asarray(work.faces))
     if not loops:
-        raise InvalidInputError(refusal + " (its holes touch one another at vertices)")
+        return contoured(work, f"the mesh is not watertight ({open_edges} open edges; three holes or more touch at a "
+                         "vertex)", repairs, found)
     vertices = np.asarray(work.vertices)
     size = float(np.linalg.norm(np.ptp(vertices, axis=0)))
     across = max(float(np.linalg.norm(np.ptp(vertices[loop], axis=0))) for loop in loops)
@@ -296,6 +307,9 @@ def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, i
                 "to cap them anyway"
             )
         decided = f" (its winding number is undecided over {100 * share:.1f}% of the solid)"
+    elif not repair and _area(capped_vertices, capped_faces[len(work.faces):]) > SOUP_CAPS * work.area:
+        return contoured(work, f"the mesh is not watertight ({open_edges} open edges in {len(loops)} holes whose caps "
+                         f"would be more than {SOUP_CAPS:.0%} of its area: a triangle soup)", repairs, found)
     found["holes"] = len(loops)
     vertices, faces = capped_vertices, capped_faces
     done = (f"closed {len(loops)} holes ({open_edges} open edges), the largest {across:.3g} across, with flat caps"
