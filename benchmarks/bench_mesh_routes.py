@@ -39,11 +39,15 @@ voronoi refused 15, one timeout, Betti right 34 of 41 computed. On 3d4de6d
 Betti right 21 of 23 (seahorse (1,7,0) for (1,9,0); ogre, open and crossing
 in 9,090 face pairs, (1,17,4) for (5,16,0)), median 4.2 s; check half (30)
 refused 7 (gt-sphere-soup, a triangle soup, bounds no solid once each
-triangle is capped), Betti right 23 of 23, median 6.0 s. Refusals left:
-holes over the small-hole limit (alligator, stanford-bunny, lion, beetle,
-chipped-torus), caps that cross the surface (teapot), edges of three or more
-faces that do not pair up (truck, gt-hand-shells), crossings of open
-unoriented meshes (orc, beast).
+triangle is capped), Betti right 23 of 23, median 6.0 s. On 1765008-7a9341a
+(holes capped where the winding number decides, a lid's ring, contoured
+solids; the five models those changed re-run on 7a9341a): tuning half
+refused 1 (truck: winding number undecided over 29%), Betti right 24 of 26
+(seahorse, ogre as before), median 7.9 s; check half refused 2 (alligator,
+beetle: open shells, undecided over 89-100%), Betti right 26 of 28 (beast
+(8,138,15) for (29,56,4) and orc (1,5,5) for (1,6,6), open, crossing and
+unoriented, refused before; both with the warning that names the solid's
+Betti numbers), median 7.5 s, on a machine at load 8-14.
 
 Run it single-threaded and one model at a time so as to share the machine::
 
