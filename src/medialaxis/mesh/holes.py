@@ -103,29 +103,33 @@ def _rings(vertices: np.ndarray, loops: list[np.ndarray]) -> tuple[list[np.ndarr
     """Triangles of the rings between coplanar loops nested the opposite way, and the loops they close.
 
     Each ring is the outer loop's polygon less the loops within it, in the
-    loops' common plane (to ``1e-9`` of the mesh's size), triangulated by
-    shapely's constrained Delaunay triangulation (no new vertices) and
-    oriented as the outer loop's cap.
+    loops' common plane (to the coordinates' accuracy, at least ``1e-9`` of
+    the mesh's size), triangulated by shapely's constrained Delaunay
+    triangulation (no new vertices) and oriented as the outer loop's cap.
     """
     import shapely
 
+    from medialaxis.mesh.degenerate import coordinate_accuracy
+
     size = float(np.linalg.norm(np.ptp(vertices, axis=0))) or 1.0
+    tol = max(1e-9 * size, coordinate_accuracy(vertices))
     planes = []
     for loop in loops:
         points = vertices[loop]
         centre = points.mean(axis=0)
         _, spread, axes = np.linalg.svd(points - centre, full_matrices=False)
-        planes.append((centre, axes, spread[2] / np.sqrt(len(loop)) <= 1e-9 * size and len(loop) > 3))
+        flat = len(loop) > 3 and spread[2] / np.sqrt(len(loop)) <= tol
+        planes.append((centre, axes, flat, points.min(axis=0) - tol, points.max(axis=0) + tol))
     out: list[np.ndarray] = []
     closed: set[int] = set()
-    for k, (centre, axes, flat) in enumerate(planes):
+    for k, (centre, axes, flat, low, high) in enumerate(planes):
         if not flat or k in closed:
             continue
         normal, frame = axes[2], axes[:2].T
         outer = shapely.Polygon((vertices[loops[k]] - centre) @ frame)
-        coplanar = [j for j, (c, a, f) in enumerate(planes)
-                    if j != k and f and j not in closed and abs(abs(a[2] @ normal) - 1.0) <= 1e-12
-                    and abs((c - centre) @ normal) <= 1e-9 * size]
+        coplanar = [j for j, (c, a, f, lo, hi) in enumerate(planes)
+                    if j != k and f and j not in closed and np.all(lo >= low) and np.all(hi <= high)
+                    and np.linalg.norm(np.cross(a[2], normal)) <= 10 * tol / size and abs((c - centre) @ normal) <= tol]
         inner = {j: shapely.Polygon((vertices[loops[j]] - centre) @ frame) for j in coplanar}
         within = [j for j, p in inner.items() if outer.is_valid and p.is_valid and p.within(outer)
                   and shapely.is_ccw(p.exterior) != shapely.is_ccw(outer.exterior)]
