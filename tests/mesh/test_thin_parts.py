@@ -6,6 +6,8 @@ Betti numbers from its construction.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -47,3 +49,17 @@ def test_an_extruded_l_plate_with_a_hole_keeps_its_tunnel(tmp_path):
     ma = mx.medial_axis(tmp_path / "l.stl")
     assert ma.betti == (1, 1, 0)  # genus 1: the hole
     assert np.abs(ma.points[:, 2] - 0.15).max() < 0.05
+
+
+def test_a_thin_part_capped_below_its_count_is_warned_about_once(tmp_path, monkeypatch):
+    # the thin-part check runs beside the Delaunay insertion; its warning still comes once, from the call
+    import medialaxis.mesh.sampling as sampling
+
+    trimesh.creation.box(extents=(10.0, 10.0, 0.2)).export(tmp_path / "plate.stl")
+    monkeypatch.setattr(sampling, "THIN_SAMPLES", 30_000)  # the plate wants about 55,000
+    with pytest.warns(mx.MedialAxisWarning, match="mostly thin") as caught:
+        ma = mx.medial_axis(tmp_path / "plate.stl", lam=0.05)
+    thin = [w for w in caught if "mostly thin" in str(w.message)]
+    assert len(thin) == 1 and int(re.search(r"samples=(\d+)", str(thin[0].message)).group(1)) > 30_000
+    assert thin[0].filename != sampling.__file__  # the caller's line, not the thread's
+    assert 30_000 <= ma.metadata["n_samples"] < 40_000  # grown to the cap, not to what it wanted
