@@ -203,8 +203,7 @@ def worker(path: str, method: str, check_points: int) -> dict:
     out["betti_seconds"] = round(time.perf_counter() - t0, 2)
     out["points"] = int(len(ma.points))
     out["faces"] = int(len(ma.faces)) if getattr(ma, "faces", None) is not None else 0
-    if method == "voronoi":
-        out["solid"] = solid_topology(path)
+    out["solid"] = solid_topology(path)  # flow too: a flow-only run has the loader's solid as its truth
     if method == "voronoi" and check_points:
         mesh = trimesh.load(path, force="mesh", process=False)
         if mesh.volume < 0:  # faces pointing inward (the loader turns them too)
