@@ -313,6 +313,10 @@ def test_collapse_kernels_match_python_and_keep_euler():
     ref = collapse_facets.py_func(ptr, sides, sptr, rows[order], length, protected)
     assert all(np.array_equal(a, b) for a, b in zip(out, ref))
     assert out[0].sum() == 1 and out[0][4]
+    # priorities not in ascending order (the kernel sorts them; ascending ones it takes as they come)
+    shuffled = np.random.default_rng(0).permutation(9).astype(float)
+    mixed = collapse_facets(ptr, sides, sptr, rows[order], shuffled, protected)
+    assert all(np.array_equal(a, b) for a, b in zip(mixed, collapse_facets.py_func(ptr, sides, sptr, rows[order], shuffled, protected)))
     end_arr = np.array(sorted(ends, key=ends.get))
     used = np.zeros(len(ends), bool)
     used[sides[4 * 4 : 5 * 4]] = True

@@ -10,9 +10,9 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.core._kernels import peel_leaves_kernel
+from medialaxis.core._kernels import find_root, peel_leaves_kernel
 
-__all__ = ["collapse_facets", "collapse_free_sides"]
+__all__ = ["collapse_facets", "collapse_free_sides", "spanning_forest_edges"]
 
 _ONE = np.uint64(1)
 
@@ -84,8 +84,14 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
         count[facet_sides[k]] += 1
     facet_alive = np.ones(n_facets, np.bool_)
     side_alive = np.ones(n_sides, np.bool_)
-    # candidates by rank in (length, index) order; the next one is the smallest rank set
-    order = np.argsort(length, kind="mergesort")
+    # candidates by rank in (length, index) order; the next one is the smallest rank set. The
+    # caller numbers the facets in that order already: then the (stable) sort is the identity
+    ascending = True
+    for f in range(1, n_facets):
+        if not length[f] >= length[f - 1]:
+            ascending = False
+            break
+    order = np.arange(n_facets) if ascending else np.argsort(length, kind="mergesort")
     rank = np.empty(n_facets, np.int64)
     for r in range(n_facets):
         rank[order[r]] = r
@@ -169,3 +175,17 @@ def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: 
     # the leaf peeling of the planar pruning: a side a remaining facet uses is never removed
     peel_leaves_kernel(ptr, inc, inc, degree, side_ends, ~side_used, alive)
     return alive
+
+
+@njit(cache=True, nogil=True)
+def spanning_forest_edges(parent, edge_ij, candidates, drop):  # type: ignore[no-untyped-def]
+    """Kruskal over ``candidates`` (edge indices, in order): set ``drop[k]`` for each edge joining two trees.
+
+    ``parent`` is a union-find forest over the points (its last entry, a
+    root, stands for the border: it stays a root, as the larger index).
+    """
+    for k in candidates:
+        a, b = find_root(parent, edge_ij[k, 0]), find_root(parent, edge_ij[k, 1])
+        if a != b:
+            drop[k] = True
+            parent[min(a, b)] = max(a, b)

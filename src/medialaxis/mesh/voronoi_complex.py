@@ -29,10 +29,9 @@ from typing import Literal
 
 import numpy as np
 
-from medialaxis.core._kernels import find_root
 from medialaxis.core.arrays import unique_ints
 from medialaxis.errors import InvalidInputError
-from medialaxis.mesh._collapse_kernels import collapse_facets, collapse_free_sides
+from medialaxis.mesh._collapse_kernels import collapse_facets, collapse_free_sides, spanning_forest_edges
 from medialaxis.mesh._ring_kernels import (
     csr_transpose,
     flagged_sides,
@@ -233,11 +232,7 @@ def open_cells(
     candidates = candidates[np.argsort(length[candidates], kind="stable")]
     parent = np.where(buried, np.arange(n), n)  # n: the border, one set
     parent = np.append(parent, n)
-    for k in candidates:
-        a, b = find_root(parent, edge_ij[k, 0]), find_root(parent, edge_ij[k, 1])
-        if a != b:
-            drop[k] = True
-            parent[min(a, b)] = max(a, b)  # the border (n) stays a root
+    spanning_forest_edges(parent, edge_ij, candidates, drop)  # the border (n) stays a root
     return drop
 
 
