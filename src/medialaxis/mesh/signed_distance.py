@@ -148,11 +148,20 @@ class SignedDistance:
         *found, _ = self._exact(points, k, budget)
         return self._signed(points, *found)
 
-    def _exact(self, points: np.ndarray, k: int, budget: int) -> tuple[np.ndarray, ...]:
-        """:meth:`exact`'s distance, closest point, face and region, and the faces tested beyond the first ``k`` per point."""
+    def prepare_exact(self, tree: bool = False) -> None:
+        """Build now what :meth:`exact` needs (the faces' centroid k-d tree; with ``tree``, :func:`face_tree`).
+
+        The Voronoi route calls it on the core its Delaunay insertion leaves idle.
+        """
         if not hasattr(self, "_centroid_tree"):
             self._centroid_tree = cKDTree(self.spheres[0])
             self._reach = float(self.spheres[1].max())
+        if tree and not hasattr(self, "_face_tree"):
+            self._face_tree = face_tree(self.spheres[0], *self.corners)
+
+    def _exact(self, points: np.ndarray, k: int, budget: int) -> tuple[np.ndarray, ...]:
+        """:meth:`exact`'s distance, closest point, face and region, and the faces tested beyond the first ``k`` per point."""
+        self.prepare_exact()
         k = min(k, len(self.faces))
         n = len(points)
         tested = np.zeros(n, np.int64)
@@ -164,8 +173,7 @@ class SignedDistance:
             found = self._closest(part, near, rings=False)
             todo = np.flatnonzero((centroid_dist[:, -1] - self._reach < found[0]) & (k < len(self.faces)))
             if len(todo):
-                if not hasattr(self, "_face_tree"):
-                    self._face_tree = face_tree(self.spheres[0], *self.corners)
+                self.prepare_exact(tree=True)
                 sub = [np.ascontiguousarray(a[todo]) for a in found]
                 tested[lo + todo] = closest_in_tree(
                     np.ascontiguousarray(part[todo]), self._tri, self._sphere, self._face_tree, *sub
