@@ -124,3 +124,15 @@ def test_centerlines_cli_writes_a_layer_other_tools_read(tmp_path, lakes):
     assert main(["centerlines", str(source), "-o", str(out)]) == 0
     back = gpd.read_file(out)
     assert len(back) == 30 and back.crs.to_epsg() == 3857 and {"width_min", "width_mean", "width_max"} <= set(back.columns)
+
+
+def test_branch_lines_are_the_axis_to_shapely_gives(layer):
+    from medialaxis.gis.features import branch_lines
+
+    shapes = [*layer.geometry, shapely.Point(0, 0).buffer(5.0), shapely.box(0, 0, 100, 10)]
+    for shape in shapes:
+        ma = mx.medial_axis(shape, detour=1.0)
+        lines, reference = branch_lines(ma), ma.to_shapely()
+        assert lines.geom_type == "MultiLineString" and len(lines.geoms) == len(reference.geoms)
+        assert lines.equals_exact(reference, 0.0)
+    assert branch_lines(mx.medial_axis(shapes[-2])).is_empty  # a disc: its centre, no branch

@@ -13,10 +13,11 @@ from typing import Any
 import numpy as np
 
 from medialaxis.api import medial_axis
+from medialaxis.core.graph import branches
 from medialaxis.errors import InvalidInputError
 from medialaxis.gis.network import STATION_COLUMNS, branch_stations
 
-__all__ = ["DETOUR", "WIDTH_COLUMNS", "KINDS", "axis_widths", "feature_axis", "run_chunk"]
+__all__ = ["DETOUR", "WIDTH_COLUMNS", "KINDS", "axis_widths", "branch_lines", "feature_axis", "run_chunk"]
 
 #: Columns added to the layer: twice the smallest, mean (over the axis
 #: length) and largest radius along each feature's axis.
@@ -47,6 +48,22 @@ def axis_widths(ma: Any) -> tuple[float, float, float]:
     return float(2 * r.min()), mean, float(2 * r.max())
 
 
+def branch_lines(ma: Any) -> Any:
+    """The axis's branches as one MultiLineString: :meth:`MedialAxis.to_shapely`, built in two vectorised calls.
+
+    The same branches in the same order (:func:`medialaxis.core.graph.branches`),
+    without a shapely object per branch on the way: a layer's per-feature cost.
+    """
+    import shapely
+
+    chains = branches(len(ma.points), ma.edges)
+    if not chains:
+        return shapely.MultiLineString()
+    nodes = np.concatenate(chains)
+    parts = np.repeat(np.arange(len(chains)), [len(c) for c in chains])
+    return shapely.multilinestrings(shapely.linestrings(ma.points[nodes], indices=parts))
+
+
 def feature_axis(index: Any, geom: Any, options: dict[str, Any]) -> Any:
     """The medial axis of one polygon feature (None for an empty or missing geometry)."""
     if geom is None or geom.is_empty:
@@ -61,8 +78,8 @@ def _lines(index: Any, geom: Any, options: dict[str, Any]) -> tuple[Any, tuple[f
     ma = feature_axis(index, geom, options)
     if ma is None:
         return None, (np.nan,) * 3
-    lines = ma.to_shapely()
-    return (lines if len(lines.geoms) else None), axis_widths(ma)
+    lines = branch_lines(ma)
+    return (None if lines.is_empty else lines), axis_widths(ma)
 
 
 def _stations(index: Any, geom: Any, options: dict[str, Any], step: float | None) -> dict[str, np.ndarray]:
