@@ -136,3 +136,18 @@ def test_branch_lines_are_the_axis_to_shapely_gives(layer):
         assert lines.geom_type == "MultiLineString" and len(lines.geoms) == len(reference.geoms)
         assert lines.equals_exact(reference, 0.0)
     assert branch_lines(mx.medial_axis(shapes[-2])).is_empty  # a disc: its centre, no branch
+
+
+def test_branch_chains_walk_as_the_graph_branches_do():
+    from medialaxis.core.graph import branches
+    from medialaxis.gis._kernels import branch_chains
+
+    rng = np.random.default_rng(34)
+    graphs = [np.array([[0, 1], [1, 2], [2, 0]]), np.array([[0, 0], [0, 1]]), np.empty((0, 2), np.int64)]
+    graphs += [rng.integers(0, n, size=(m, 2)) for n, m in [(5, 4), (12, 15), (40, 39), (60, 90)] for _ in range(10)]
+    for edges in graphs:
+        n = int(edges.max()) + 2 if len(edges) else 3
+        nodes, part = branch_chains(n, np.ascontiguousarray(edges, np.int64))
+        chains = branches(n, edges)
+        assert [list(c) for c in chains] == [list(nodes[part == k]) for k in range(len(chains))]
+        assert len(np.unique(part)) == len(chains)

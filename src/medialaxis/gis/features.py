@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 
 from medialaxis.api import medial_axis
-from medialaxis.core.graph import branches
 from medialaxis.errors import InvalidInputError
+from medialaxis.gis._kernels import branch_chains
 from medialaxis.gis.network import STATION_COLUMNS, branch_stations
 
 __all__ = ["DETOUR", "WIDTH_COLUMNS", "KINDS", "axis_widths", "branch_lines", "feature_axis", "run_chunk"]
@@ -49,19 +49,18 @@ def axis_widths(ma: Any) -> tuple[float, float, float]:
 
 
 def branch_lines(ma: Any) -> Any:
-    """The axis's branches as one MultiLineString: :meth:`MedialAxis.to_shapely`, built in two vectorised calls.
+    """The axis's branches as one MultiLineString: :meth:`MedialAxis.to_shapely` in two vectorised shapely calls.
 
-    The same branches in the same order (:func:`medialaxis.core.graph.branches`),
-    without a shapely object per branch on the way: a layer's per-feature cost.
+    The same branches in the same order and direction
+    (:func:`medialaxis.gis._kernels.branch_chains`, compiled), without a
+    shapely object per branch on the way: a layer's per-feature cost.
     """
     import shapely
 
-    chains = branches(len(ma.points), ma.edges)
-    if not chains:
+    nodes, part = branch_chains(len(ma.points), np.asarray(ma.edges, np.int64).reshape(-1, 2))
+    if not len(nodes):
         return shapely.MultiLineString()
-    nodes = np.concatenate(chains)
-    parts = np.repeat(np.arange(len(chains)), [len(c) for c in chains])
-    return shapely.multilinestrings(shapely.linestrings(ma.points[nodes], indices=parts))
+    return shapely.multilinestrings(shapely.linestrings(ma.points[nodes], indices=part))
 
 
 def feature_axis(index: Any, geom: Any, options: dict[str, Any]) -> Any:

@@ -176,10 +176,11 @@ def prune_graph(
         n_comp = int(label.max()) + 1
         has_edge = np.zeros(n_comp, bool)
         has_edge[label[kept.ravel()]] = True
-        best = np.full(n_comp, -1, np.int64)
-        order = np.lexsort((-radii, label))
-        first = np.r_[True, label[order][1:] != label[order][:-1]]
-        best[label[order][first]] = order[first]
-        lonely = best[~has_edge]
-        keep_nodes[lonely[lonely >= 0]] = True
+        if not has_edge.all():  # the node of largest radius of each component left without an edge
+            best = np.full(n_comp, -1, np.int64)
+            order = np.lexsort((-radii, label))
+            first = np.r_[True, label[order][1:] != label[order][:-1]]
+            best[label[order][first]] = order[first]
+            lonely = best[~has_edge]
+            keep_nodes[lonely[lonely >= 0]] = True
     return compact(n, kept, keep_nodes)
