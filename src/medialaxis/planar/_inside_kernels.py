@@ -157,7 +157,7 @@ class RegionLocator:
         parts = []
         for ring in shapely.get_rings(shapely.get_parts(region)):
             xy = shapely.get_coordinates(ring)
-            parts.append(np.c_[xy[:-1], xy[1:]])
+            parts.append(np.hstack((xy[:-1], xy[1:])))
         self.segments = np.ascontiguousarray(np.concatenate(parts) if parts else np.empty((0, 4)))
         ys = self.segments[:, 1::2]
         self.y0 = float(ys.min()) if len(ys) else 0.0

@@ -102,11 +102,10 @@ class BoundarySample:
 
 def _rings_of(geom: Any) -> list[np.ndarray]:
     rings = []
-    for poly in shapely.get_parts(geom):
-        for ring in [poly.exterior, *poly.interiors]:
-            xy = np.asarray(ring.coords)[:-1]
-            if len(xy) >= 3:
-                rings.append(xy)
+    for ring in shapely.get_rings(shapely.get_parts(geom)):  # each polygon's exterior, then its interiors
+        xy = shapely.get_coordinates(ring)[:-1]
+        if len(xy) >= 3:
+            rings.append(xy)
     return rings
 
 
@@ -195,7 +194,7 @@ def sample(rings: Rings, arcs: list[np.ndarray]) -> BoundarySample:
     pts, ring_id, arc, nxt, lengths = [], [], [], [], []
     n0 = 0
     for r, (closed, s, a) in enumerate(zip(rings.closed, rings.arc_lengths, arcs)):
-        p = np.c_[np.interp(a, s, closed[:, 0]), np.interp(a, s, closed[:, 1])]
+        p = np.column_stack((np.interp(a, s, closed[:, 0]), np.interp(a, s, closed[:, 1])))
         pts.append(p)
         arc.append(a)
         lengths.append(s[-1])

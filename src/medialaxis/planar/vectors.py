@@ -22,7 +22,7 @@ NEAR_DUPLICATE = 1e-9
 def validate_polygonal(geom: Any, where: str) -> tuple[Any, str | None]:
     if geom.geom_type not in ("Polygon", "MultiPolygon", "GeometryCollection"):
         raise InvalidInputError(f"{where}: expected a Polygon or MultiPolygon, got a {geom.geom_type}")
-    coords = shapely.get_coordinates(geom)
+    coords, given = shapely.get_coordinates(geom), geom
     if len(coords) == 0 or geom.is_empty:
         raise EmptyShapeError(f"{where}: the geometry is empty")
     check_coordinates(coords, where)
@@ -41,12 +41,15 @@ def validate_polygonal(geom: Any, where: str) -> tuple[Any, str | None]:
         raise EmptyShapeError(f"{where}: the polygon has zero area")
     # Vertices a hair apart (a ring closed with a rounding error, 1e-15 off its start) make a
     # degenerate Delaunay triangle whose circle is not a medial disc: merge them.
-    extent = float(np.ptp(shapely.get_coordinates(geom), axis=0).max())
+    if geom is not given:
+        coords = shapely.get_coordinates(geom)  # repaired or collected above
+    extent = float(np.ptp(coords, axis=0).max())
     try:
         merged = shapely.remove_repeated_points(geom, NEAR_DUPLICATE * extent)
     except shapely.errors.GEOSException:  # a ring that would collapse: kept as it is
         merged = geom
-    if merged.is_valid and not merged.is_empty and merged.area > 0:
+    merged_some = shapely.get_num_coordinates(merged) != len(coords)  # else the geometry as it was
+    if merged_some and merged.is_valid and not merged.is_empty and merged.area > 0:
         geom = merged
     return shapely.normalize(geom), repaired
 
