@@ -128,3 +128,55 @@ def test_only_contacts_on_the_sphere_count_for_its_span():
     assert ON_SPHERE < 0.05
     assert _spans(centres, contacts).tolist() == [True, True]
     assert _spans(centres, contacts, radii).tolist() == [True, False]
+
+
+def _core_spheres(angles_deg, radius=0.3):
+    """Spheres on the core circle (radius 1) of a torus of tube ``radius``: its medial spheres."""
+    a = np.radians(np.asarray(angles_deg, float))
+    return np.c_[np.cos(a), np.sin(a), np.zeros(len(a)), np.full(len(a), radius)]
+
+
+def test_a_chord_across_a_bend_is_split_by_the_inscribed_sphere():
+    """Medial spheres 60 degrees apart on a torus's core circle (R = 1, r = 0.3): the chord between two
+    holds interpolated spheres reaching out of the tube on the inside of the bend (at its middle, 0.866
+    from the axis: 0.134 nearer the hole than the core, yet still of radius 0.3). The split puts there
+    the inscribed sphere of radius 0.3 - 0.134; the inner equator point 0.134 deep is then 20 times less deep."""
+    from medialaxis.mesh.envelope import envelope_gap
+    from medialaxis.mesh.signed_distance import SignedDistance
+    from medialaxis.mesh.simplify_split import split_at
+
+    mesh = trimesh.creation.torus(major_radius=1.0, minor_radius=0.3, major_sections=256, minor_sections=64)
+    spheres = _core_spheres(np.arange(0, 360, 60))
+    ring = np.c_[np.arange(6), (np.arange(6) + 1) % 6]
+    p = 0.7 * np.array([np.cos(np.radians(30)), np.sin(np.radians(30)), 0.0])  # inner equator, between 0 and 60
+    before = envelope_gap(p[None], spheres[:, :3], spheres[:, 3], ring, np.zeros((0, 3), np.int64))[0]
+    assert before == pytest.approx(-(1 - np.cos(np.radians(30))), abs=1e-9)
+    grown, curve, faces = split_at(p, spheres, ring, np.zeros((0, 3), np.int64), SignedDistance(mesh))
+    mid = np.cos(np.radians(30)) * np.array([np.cos(np.radians(30)), np.sin(np.radians(30)), 0.0])
+    assert len(grown) == 7 and np.allclose(grown[6, :3], mid, atol=1e-9)
+    assert grown[6, 3] == pytest.approx(0.3 - (1 - np.cos(np.radians(30))), abs=2e-3)  # faceted tube
+    assert {tuple(sorted(e)) for e in curve.tolist()} == {(1, 2), (2, 3), (3, 4), (4, 5), (0, 5), (0, 6), (1, 6)}
+    after = envelope_gap(p[None], grown[:, :3], grown[:, 3], curve, faces)[0]
+    assert 0.0 > after > 0.05 * before  # the halves still bend a little: 0.006 deep
+
+
+def test_a_split_keeps_the_topology_of_the_medial_mesh():
+    """A thin triangle along the chord (corners at 0, 60 and 30 degrees on the core): the deepest point
+    lies on its side, which is split with the triangle on it; the others split into three. The Euler
+    characteristic (an independent count of vertices, edges and faces) stays that of a disc."""
+    from medialaxis.mesh.signed_distance import SignedDistance
+    from medialaxis.mesh.simplify_split import split_at
+
+    mesh = trimesh.creation.torus(major_radius=1.0, minor_radius=0.3, major_sections=256, minor_sections=64)
+    spheres = _core_spheres([0, 60, 30])
+    faces = np.array([[0, 1, 2]])
+    p = 0.7 * np.array([np.cos(np.radians(30)), np.sin(np.radians(30)), 0.0])
+    grown, curve, split = split_at(p, spheres, np.zeros((0, 2), np.int64), faces, SignedDistance(mesh))
+
+    def euler(n, f):
+        edges = {tuple(sorted(e)) for t in f.tolist() for e in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))}
+        return n - len(edges) + len(f)
+
+    assert len(grown) == 4 and len(curve) == 0
+    assert len(split) in (2, 3) and euler(len(grown), split) == euler(3, faces) == 1
+    assert np.all(np.isin([0, 1, 2, 3], split))

@@ -12,8 +12,11 @@ along the radius). Edges are collapsed cheapest first; the merged sphere
 minimises the sum of the two quadrics (kept near the two it replaces), and
 the quadrics add. Collapses alone leave the tips of limbs and fins without a
 sphere, so for ``simplify=n`` a quarter of the spheres is kept back and then
-placed where the surface is farthest from the interpolated spheres
-(:func:`medialaxis.mesh.simplify_cover.cover_repair`). The result is judged by the two-sided Hausdorff
+placed where the surface is farthest from the interpolated spheres, or, where
+the interpolated spheres of a large triangle or edge reach out of the surface
+(a surface point inside them deeper than the farthest one outside is far),
+split there by an inscribed sphere
+(:func:`medialaxis.mesh.simplify_cover.cover_repair`, :mod:`medialaxis.mesh.simplify_split`). The result is judged by the two-sided Hausdorff
 distance between the input surface and the boundary of the union of the
 spheres interpolated over the simplified mesh (vertices, edges and
 triangles), as Q-MAT does, computed on the exact envelope
@@ -340,5 +343,5 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any, medial
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
     curve = np.array(curve, np.int64).reshape(-1, 2)
     if repair:
-        centres, radii, curve = cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
+        centres, radii, curve, out_faces = cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
     return centres, radii, curve, out_faces

@@ -20,8 +20,9 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.mesh.envelope import envelope_gap
+from medialaxis.mesh.simplify_split import split_at
 
-__all__ = ["cover_repair", "PATCH_GAP", "PATCH_SHARE"]
+__all__ = ["cover_repair", "PATCH_GAP", "PATCH_SHARE", "SPLIT_GAIN"]
 
 #: In ``mode="medial"``, a surface point that no medial candidate reaches within this share of its
 #: gap gets the shrinking ball there instead (a patch: convex corners, where the medial spheres shrink
@@ -31,6 +32,9 @@ PATCH_GAP = 0.9
 #: In ``mode="medial"``, at most this share of :func:`cover_repair`'s spheres are patches (the worst gaps
 #: first), then such points are passed over. kitten: 0.1: 1.19% / 97% medial, 0.2: 1.01 / 94%, 0.4: 0.93 / 90%.
 PATCH_SHARE = 0.2
+
+#: A split is kept when the surface point it was made for lies at most this share as deep as before.
+SPLIT_GAIN = 0.8
 
 _ONE_EDGE, _NO_FACES = np.array([[0, 1]], np.int64), np.zeros((0, 3), np.int64)
 
@@ -57,25 +61,46 @@ def _medial_ball(p: np.ndarray, n: np.ndarray, tree: cKDTree, samples: np.ndarra
 def cover_repair(
     centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, sample: Any, extra: int,
     medial: Any = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Add ``extra`` spheres where the surface is farthest outside the interpolated spheres.
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Add ``extra`` spheres where the surface is farthest outside the interpolated spheres, or deepest inside.
 
-    Each new sphere is the medial ball touching that surface point (a
+    Each step takes the worse of the two errors at the surface samples. Outside:
+    the new sphere is the medial ball touching the farthest surface point (a
     shrinking ball among the surface samples, so it reaches tips the lambda
     pruning cut), joined by an edge to the sphere with the least power
     distance to its centre (the one it overlaps most): a hanging edge, so the
-    topology stays the collapsed mesh's. The gaps are exact
-    (:func:`medialaxis.mesh.envelope.envelope_gap`).
+    topology stays the collapsed mesh's. Inside (with ``medial``'s exact
+    signed distance): the triangle or edge whose interpolated sphere holds the
+    deepest surface point is split there by an inscribed sphere
+    (:func:`~medialaxis.mesh.simplify_split.split_at`). The gaps are exact
+    (:func:`medialaxis.mesh.envelope.envelope_gap`). Returns ``(centres,
+    radii, curve, faces)``.
     """
     x, normals = sample.points, sample.normals
     sample_tree = cKDTree(x)
+    signed = None if medial is None else medial.signed
+    spheres = np.c_[centres, radii]
+    curve, faces = np.asarray(curve, np.int64).reshape(-1, 2), np.asarray(faces, np.int64).reshape(-1, 3)
     gap = envelope_gap(x, centres, radii, curve, faces)
-    c_list, r_list, e_list = [centres], [radii], [curve]
-    n = len(centres)
+    settled = np.zeros(len(x), bool)  # passed over: no sphere or split helps there
+    goal = len(spheres) + extra
     patches = passed = 0
     start = float(radii.max()) * 2.0 if len(radii) else 1.0
-    while n < len(centres) + extra:  # a point whose medial ball is empty is passed over, not counted
-        w = int(np.argmax(gap))
+    while len(spheres) < goal:  # a point whose medial ball is empty is passed over, not counted
+        w, d = int(np.argmax(gap)), int(np.argmin(gap))
+        if signed is not None and -gap[d] > max(gap[w], 0.0):
+            split = split_at(x[d], spheres, curve, faces, signed, medial)
+            trial = None if split is None else _gap_after(x, gap, spheres, curve, faces, *split)
+            if trial is None or -trial[d] > SPLIT_GAIN * -gap[d]:  # no split lowers it: passed over
+                settled[sample_tree.query(x[d], k=min(16, len(x)))[1]] = True
+                gap[settled] = 0.0
+                passed += 1
+                if passed > extra:
+                    break
+                continue
+            spheres, curve, faces = split
+            gap = np.where(settled, 0.0, trial)
+            continue
         if gap[w] <= 0:
             break
         c, r = medial.cover(x[w]) if medial is not None else (x[w], -np.inf)
@@ -84,19 +109,40 @@ def cover_repair(
                 passed += 1
                 if passed > extra:  # what is left is out of the candidates' reach
                     break
-                gap[sample_tree.query(x[w], k=min(16, len(x)))[1]] = 0.0
+                settled[sample_tree.query(x[w], k=min(16, len(x)))[1]] = True
+                gap[settled] = 0.0
                 continue
             patches += 1
             c, r = _medial_ball(x[w], normals[w], sample_tree, x, start)
         if r <= 0.0:
+            settled[w] = True
             gap[w] = 0.0
             continue
-        all_c, all_r = np.concatenate(c_list), np.concatenate(r_list)
-        link = int(np.argmin(((all_c - c) ** 2).sum(axis=1) - all_r**2))
-        c_list.append(c[None])
-        r_list.append(np.array([r]))
-        e_list.append(np.array([[link, n]]))
-        cone = envelope_gap(x, np.array([all_c[link], c]), np.array([all_r[link], r]), _ONE_EDGE, _NO_FACES)
-        gap = np.minimum(gap, cone)
-        n += 1
-    return np.concatenate(c_list), np.concatenate(r_list), np.concatenate(e_list).astype(np.int64)
+        link = int(np.argmin(((spheres[:, :3] - c) ** 2).sum(axis=1) - spheres[:, 3] ** 2))
+        spheres = np.r_[spheres, [np.r_[c, r]]]
+        curve = np.r_[curve, [[link, len(spheres) - 1]]]
+        cone = envelope_gap(x, spheres[[link, -1], :3], spheres[[link, -1], 3], _ONE_EDGE, _NO_FACES)
+        gap = np.where(settled, 0.0, np.minimum(gap, cone))
+    return spheres[:, :3], spheres[:, 3], curve, faces
+
+
+def _rows_not_in(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The rows of ``a`` (index tuples) that ``b`` lacks."""
+    have = set(map(tuple, b.tolist()))
+    return a[[tuple(r) not in have for r in a.tolist()]] if len(a) else a
+
+
+def _gap_after(
+    x: np.ndarray, gap: np.ndarray, spheres: np.ndarray, curve: np.ndarray, faces: np.ndarray,
+    new_spheres: np.ndarray, new_curve: np.ndarray, new_faces: np.ndarray,
+) -> np.ndarray:
+    """:func:`envelope_gap` of the split mesh, computed again only where the primitives it removed were the nearest."""
+    gone_c, gone_f = _rows_not_in(curve, new_curve), _rows_not_in(faces, new_faces)
+    made_c, made_f = _rows_not_in(new_curve, curve), _rows_not_in(new_faces, faces)
+    c, r = new_spheres[:, :3], new_spheres[:, 3]
+    out = np.minimum(gap, envelope_gap(x, c, r, made_c, made_f))
+    was = envelope_gap(x, spheres[:, :3], spheres[:, 3], gone_c, gone_f)
+    again = was <= gap + 1e-12 * max(1.0, float(np.abs(gap).max()))
+    if again.any():
+        out[again] = envelope_gap(x[again], c, r, new_curve, new_faces)
+    return out
