@@ -139,7 +139,7 @@ def test_branch_lines_are_the_axis_to_shapely_gives(layer):
 
 
 def test_branch_chains_walk_as_the_graph_branches_do():
-    from medialaxis.core.graph import branches
+    from medialaxis.core.graph import branches, branches_reference
     from medialaxis.gis._kernels import branch_chains
 
     rng = np.random.default_rng(34)
@@ -150,4 +150,5 @@ def test_branch_chains_walk_as_the_graph_branches_do():
         nodes, part = branch_chains(n, np.ascontiguousarray(edges, np.int64))
         chains = branches(n, edges)
         assert [list(c) for c in chains] == [list(nodes[part == k]) for k in range(len(chains))]
+        assert [list(c) for c in chains] == [list(c) for c in branches_reference(n, edges)]  # the Python twin
         assert len(np.unique(part)) == len(chains)

@@ -123,3 +123,34 @@ def branch_walks(indptr, nbrs, eids, deg, edges):  # type: ignore[no-untyped-def
                 if phase == 1:
                     break
     return nodes[:n_nodes], offsets[: n_chains + 1]
+
+
+@njit(cache=True, nogil=True)
+def neighbour_lists(n, edges):  # type: ignore[no-untyped-def]
+    """CSR ``(indptr, neighbours, edge ids)`` and degrees of a multigraph by a counting sort.
+
+    The order of a stable sort of both edge ends (at each node, the edges
+    it is the first end of, in edge order, then those it is the second end
+    of), as :func:`medialaxis.core.graph.branches_reference` builds them with
+    ``np.argsort``: each edge listed at both ends, a self-loop twice.
+    """
+    m = edges.shape[0]
+    indptr = np.zeros(n + 1, np.int64)
+    for side in range(2):
+        for e in range(m):
+            indptr[edges[e, side] + 1] += 1
+    for i in range(n):
+        indptr[i + 1] += indptr[i]
+    deg = np.empty(n, np.int64)
+    for i in range(n):
+        deg[i] = indptr[i + 1] - indptr[i]
+    fill = indptr[:-1].copy()
+    nbrs = np.empty(2 * m, np.int64)
+    eids = np.empty(2 * m, np.int64)
+    for side in range(2):  # first ends, then second ends, each in edge order: a stable sort of both
+        for e in range(m):
+            a = edges[e, side]
+            nbrs[fill[a]] = edges[e, 1 - side]
+            eids[fill[a]] = e
+            fill[a] += 1
+    return indptr, nbrs, eids, deg

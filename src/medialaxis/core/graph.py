@@ -85,9 +85,13 @@ def branches(n: int, edges: np.ndarray) -> list[np.ndarray]:
     component that is a pure loop is returned once, closed (first index
     repeated last).
     """
-    edges, deg, indptr, nbrs, eids = _neighbour_lists(n, edges)
-    from medialaxis.core._kernels import branch_walks  # numba loads on first use, not with the graph helpers
+    from medialaxis.core._kernels import (  # numba loads on first use, not with the graph helpers
+        branch_walks,
+        neighbour_lists,
+    )
 
+    edges = np.ascontiguousarray(np.asarray(edges, dtype=np.int64).reshape(-1, 2))
+    indptr, nbrs, eids, deg = neighbour_lists(n, edges)
     nodes, offsets = branch_walks(indptr, nbrs, eids, deg, edges)
     return np.split(nodes, offsets[1:-1]) if len(offsets) > 1 else []
 
