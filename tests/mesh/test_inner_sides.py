@@ -1,4 +1,4 @@
-"""The inner tetrahedra of the Voronoi route: sides checked against the nearest sample, buried samples opened."""
+"""The inner tetrahedra of the Voronoi route: sides checked against the nearest sample, buried samples opened, small cavities filled."""
 
 from __future__ import annotations
 
@@ -6,7 +6,8 @@ import numpy as np
 import trimesh
 from scipy.spatial import cKDTree
 
-from medialaxis.mesh._voronoi_kernels import nearest_other_sample
+import medialaxis as mx
+from medialaxis.mesh._voronoi_kernels import nearest_other_sample, small_cavities
 from medialaxis.mesh.signed_distance import SignedDistance
 from medialaxis.mesh.voronoi_complex import medial_complex, open_cells
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
@@ -70,3 +71,35 @@ def test_a_buried_sample_does_not_close_a_void():
     edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(len(dt.simplices)), 0.0)
     dropped = open_cells(dt, inner, edge_ij, np.ones(len(edge_ij), bool), length)
     assert dropped.sum() == 1 and (edge_ij[dropped] == len(points) - 1).any()
+
+
+def test_a_cavity_of_one_tetrahedron_is_found_by_its_volume():
+    rng = np.random.default_rng(5)
+    dt = tetrahedralise(rng.random((400, 3)))
+    hull = (dt.neighbors < 0).any(1)
+    deep = np.flatnonzero(~hull & ~hull[dt.neighbors].any(1))[0]  # no neighbour on the hull either
+    inner = np.ones(len(dt.simplices), bool)
+    inner[deep] = False
+    inner[np.flatnonzero(hull)[0]] = False  # an outer tetrahedron on the hull is no cavity
+    share = dt.volume[deep] / dt.longest[deep] ** 3
+    assert np.flatnonzero(small_cavities(dt.neighbors, inner, dt.volume, dt.longest, 1.01 * share)).tolist() == [deep]
+    assert not small_cavities(dt.neighbors, inner, dt.volume, dt.longest, 0.99 * share).any()
+
+
+def test_a_noisy_uv_ellipsoid_has_no_cavity():
+    # a uv ellipsoid (160 x 160, 3:1:1) whose vertices moved along it by a tenth of their shortest edge:
+    # sliver tetrahedra on the crowded pole caps, a hair outside and enclosed by others a hair inside,
+    # were 5 cavities of the medial complex; the solid (a ball, by the mesh's own Euler characteristic) has none
+    mesh = trimesh.creation.uv_sphere(radius=1.0, count=[160, 160])
+    mesh.apply_scale([3.0, 1.0, 1.0])
+    rng = np.random.default_rng(0)
+    shortest = np.full(len(mesh.vertices), np.inf)
+    for k in range(2):
+        np.minimum.at(shortest, mesh.edges_unique[:, k], mesh.edges_unique_length)
+    move = rng.normal(size=mesh.vertices.shape) * 0.1 * shortest[:, None]
+    move -= np.einsum("ij,ij->i", move, mesh.vertex_normals)[:, None] * mesh.vertex_normals
+    noisy = trimesh.Trimesh(mesh.vertices + move, mesh.faces, process=False)
+    assert noisy.is_watertight and noisy.euler_number == 2
+    ma = mx.medial_axis(noisy, method="voronoi", compact=False)
+    # b1 is not asserted: one extra cycle through the pole cap is left (see the issue-31 notes)
+    assert ma.betti[0] == 1 and ma.betti[2] == 0

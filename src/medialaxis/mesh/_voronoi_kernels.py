@@ -6,6 +6,7 @@ the Delaunay tetrahedra, :func:`tet_centroids` their centroids and
 :func:`all_edge_rings` walks the tetrahedra around every Delaunay edge (the
 Voronoi facets); :func:`minor_star_groups` finds the tetrahedra that pinch
 the union of the inner ones at a sample point (:func:`~medialaxis.mesh.voronoi_complex.unpinch`);
+:func:`small_cavities` finds the cavities of that union too small for the sampling;
 :func:`collapse_facets` and :func:`collapse_free_sides` collapse the dual
 complex through free faces (:func:`~medialaxis.mesh.voronoi_complex.medial_complex`).
 """
@@ -18,7 +19,7 @@ from medialaxis._jit import njit, prange
 from medialaxis.core._kernels import find_root
 from medialaxis.mesh._ring_kernels import csr_transpose
 
-__all__ = ["all_edge_rings", "minor_star_groups", "nearest_other_sample", "tet_centroids", "tet_geometry"]
+__all__ = ["all_edge_rings", "minor_star_groups", "nearest_other_sample", "small_cavities", "tet_centroids", "tet_geometry"]
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -350,3 +351,62 @@ def minor_star_groups(simplices, neighbors, flag, volume, n_points, hull, writte
                 if active[simplices[t, c]] and find_root(parent, 4 * rank[t] + c) != best[simplices[t, c]]:
                     minor[t] = True
     return minor
+
+
+@njit(cache=True, nogil=True)
+def small_cavities(neighbors, inner, volume, longest, share):  # type: ignore[no-untyped-def]
+    """Outer tetrahedra of cavities of the inner set whose volume is at most ``share`` times their longest edge cubed.
+
+    A cavity is a group of outer tetrahedra, joined through shared
+    triangles, that does not reach the convex hull (a tetrahedron with a
+    ``-1`` neighbour): the union of the inner ones encloses it.
+
+    Returns
+    -------
+    (t,) bool ndarray
+    """
+    n_tets = neighbors.shape[0]
+    label = np.full(n_tets, -1, np.int64)
+    stack = np.empty(n_tets, np.int64)
+    top = 0
+    for t in range(n_tets):  # the outside: everything reached from the hull
+        if not inner[t] and (neighbors[t, 0] < 0 or neighbors[t, 1] < 0 or neighbors[t, 2] < 0 or neighbors[t, 3] < 0):
+            label[t] = 0
+            stack[top] = t
+            top += 1
+    while top > 0:
+        top -= 1
+        t = stack[top]
+        for k in range(4):
+            nb = neighbors[t, k]
+            if nb >= 0 and not inner[nb] and label[nb] < 0:
+                label[nb] = 0
+                stack[top] = nb
+                top += 1
+    fill = np.zeros(n_tets, np.bool_)
+    members = np.empty(n_tets, np.int64)
+    n_cav = 0
+    for seed in range(n_tets):
+        if inner[seed] or label[seed] >= 0:
+            continue
+        n_cav += 1
+        label[seed] = n_cav
+        stack[0], top, n_members = seed, 1, 0
+        size, reach = 0.0, 0.0
+        while top > 0:
+            top -= 1
+            t = stack[top]
+            members[n_members] = t
+            n_members += 1
+            size += volume[t]
+            reach = max(reach, longest[t])
+            for k in range(4):
+                nb = neighbors[t, k]
+                if nb >= 0 and not inner[nb] and label[nb] < 0:
+                    label[nb] = n_cav
+                    stack[top] = nb
+                    top += 1
+        if size <= share * reach**3:
+            for i in range(n_members):
+                fill[members[i]] = True
+    return fill
