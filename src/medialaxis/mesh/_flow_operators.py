@@ -28,6 +28,7 @@ __all__ = [
     "plane_normals",
     "robust_poles",
     "on_voxel_grid",
+    "grid_frames",
 ]
 
 #: Cotangent weights are clipped to ``[0, MAX_COT]``: negative weights (obtuse
@@ -46,6 +47,9 @@ GRID_CANDIDATES, GRID_SAMPLE = 24, 20_000
 #: Median tilt (degrees) of the one-ring normals from the fitted planes' that makes a grid surface a staircase:
 #: 11-22 on marching-cubes rods, spheres and tori; 0 on a thin CAD plate refined on a lattice.
 STAIRCASE_TILT = 5.0
+#: Pairs of mesh edges whose cross products vote for the axes of a turned grid
+#: (:func:`grid_frames`), the share of the votes an axis needs, and the axes tried.
+FRAME_PAIRS, FRAME_VOTES, FRAME_AXES = 4000, 0.02, 6
 
 
 def unique_pairs(pairs: np.ndarray) -> np.ndarray:
@@ -316,8 +320,49 @@ def on_voxel_grid(points: np.ndarray, share: float = LATTICE_SHARE) -> bool:
     return bool(np.mean(count == 2) >= share)
 
 
+def grid_frames(points: np.ndarray, faces: np.ndarray) -> list[np.ndarray]:
+    """Rotations (rows: axes) that may turn the vertices back onto the voxel grid they were meshed on.
+
+    A marching-cubes vertex lies on a grid edge, so a mesh edge joining two
+    vertices on the same grid plane is exactly perpendicular to that plane's
+    axis, and the cross product of two such edges is the axis, however the
+    surface was turned after meshing (a scanner's direction cosines). The
+    cross products of ``FRAME_PAIRS`` random pairs of mesh edges vote; the
+    ``FRAME_AXES`` directions with at least ``FRAME_VOTES`` of the votes
+    (on a smooth or scanned surface, none: its products all differ) give
+    the frames, orthogonal pairs first found first. The caller checks each
+    with :func:`on_voxel_grid`.
+    """
+    edges = unique_edges(np.asarray(faces, np.int64))
+    if len(edges) < 100:
+        return []
+    vec = points[edges[:, 1]] - points[edges[:, 0]]
+    rng = np.random.default_rng(0)
+    i, j = rng.integers(0, len(vec), (2, FRAME_PAIRS))
+    cross = np.cross(vec[i], vec[j])
+    size = np.linalg.norm(cross, axis=1)
+    keep = size > 0.1 * np.linalg.norm(vec[i], axis=1) * np.linalg.norm(vec[j], axis=1)  # not nearly parallel
+    axis = cross[keep] / size[keep, None]
+    axis *= np.where(axis[np.arange(len(axis)), np.abs(axis).argmax(axis=1)] < 0, -1.0, 1.0)[:, None]
+    _, first, votes = np.unique(np.round(axis * 1e7).astype(np.int64), axis=0, return_index=True, return_counts=True)
+    top = np.argsort(-votes, kind="stable")[:FRAME_AXES]
+    axes = axis[first[top[votes[top] >= FRAME_VOTES * len(axis)]]]
+    frames = []
+    for a in range(len(axes)):
+        for b in range(a + 1, len(axes)):
+            if abs(float(axes[a] @ axes[b])) < 1e-6:
+                frames.append(np.stack([axes[a], axes[b], np.cross(axes[a], axes[b])]))
+    return frames
+
+
+def _snapped(points: np.ndarray) -> np.ndarray:
+    """Coordinates rounded to 1e-9 of the largest: turned back onto a grid, equal ones differ by rounding."""
+    quantum = 1e-9 * max(float(np.abs(points).max()), 1e-300)
+    return np.round(points / quantum) * quantum
+
+
 def robust_poles(
-    points: np.ndarray, normals: np.ndarray, *, max_radius: float, edge_length: float
+    points: np.ndarray, normals: np.ndarray, *, max_radius: float, edge_length: float, faces: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`pole_targets`, along :func:`plane_normals` on a voxel staircase (:func:`on_voxel_grid`).
 
@@ -329,9 +374,13 @@ def robust_poles(
     planes' by more than ``STAIRCASE_TILT`` at the median) the balls are
     aimed along the fitted planes' normals and ignore the vertices within
     twice the fit's reach (the steps); elsewhere along the vertex normals,
-    ignoring two edge lengths.
+    ignoring two edge lengths. With ``faces``, a staircase turned after
+    meshing is recognized too (:func:`grid_frames`).
     """
-    if not on_voxel_grid(points):
+    grid = on_voxel_grid(points) or (
+        faces is not None and any(on_voxel_grid(_snapped(points @ frame.T)) for frame in grid_frames(points, faces))
+    )
+    if not grid:
         return pole_targets(points, normals, max_radius=max_radius, ignore=2.0 * edge_length)
     fitted = plane_normals(points, normals)
     tilt = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", fitted, normals), -1.0, 1.0)))

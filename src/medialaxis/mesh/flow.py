@@ -229,7 +229,7 @@ def flow_skeleton(
     normals = ops.vertex_normals(p0, faces)
     diag = float(np.linalg.norm(p0.max(axis=0) - p0.min(axis=0)))
     edge_length = float(np.linalg.norm(p0[edges[:, 0]] - p0[edges[:, 1]], axis=1).mean())
-    poles, pole_radius = ops.robust_poles(p0, normals, max_radius=0.5 * diag, edge_length=edge_length)
+    poles, pole_radius = ops.robust_poles(p0, normals, max_radius=0.5 * diag, edge_length=edge_length, faces=faces)
     s = float(np.median(pole_radius[use]))
     if not s > 0:
         raise ComputationError("could not estimate the thickness of the mesh (all inner-ball radii are zero)")
