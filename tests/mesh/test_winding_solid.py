@@ -98,6 +98,21 @@ def test_the_solid_surface_is_the_union_manifold3d_computes(name):
     assert np.abs(trimesh.proximity.signed_distance(union, solid.vertices)).max() < 1e-6
 
 
+@pytest.mark.parametrize("name", ["spheres", "capsules", "nested", "ring", "tilted"])
+def test_the_fast_winding_tree_gives_the_same_solid(name, monkeypatch):
+    # many patches on a large mesh are judged through the tree (arrangement.EXACT_TERMS); forced here
+    import medialaxis.mesh.arrangement as arrangement
+
+    parts = _parts(name)
+    soup = trimesh.util.concatenate(parts)
+    exact = solid_surface(soup.vertices, soup.faces)
+    monkeypatch.setattr(arrangement, "EXACT_TERMS", 0)
+    s = solid_surface(soup.vertices, soup.faces)
+    assert np.array_equal(s.faces, exact.faces) and np.array_equal(s.vertices, exact.vertices)
+    union = trimesh.boolean.union(parts, engine="manifold")
+    assert trimesh.Trimesh(s.vertices, s.faces).volume == pytest.approx(union.volume, rel=1e-6)
+
+
 def test_both_methods_take_the_solid_of_overlapping_parts_and_say_so():
     parts = _parts("cross")
     soup = trimesh.util.concatenate(parts)

@@ -23,7 +23,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["solid_angle", "winding_numbers", "winding_numbers_reference", "winding_numbers_without"]
+__all__ = ["own_terms", "solid_angle", "winding_numbers", "winding_numbers_reference", "winding_numbers_without"]
 
 
 @njit(cache=True, nogil=True)
@@ -66,6 +66,15 @@ def winding_numbers_without(points, triangles, skip):  # type: ignore[no-untyped
     out = np.empty(points.shape[0])
     for p in prange(points.shape[0]):
         out[p] = _at(points[p, 0], points[p, 1], points[p, 2], triangles, skip[p])
+    return out
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def own_terms(points, triangles, which):  # type: ignore[no-untyped-def]
+    """Each point's term of its own triangle (``which[p]``) in a winding number, the solid angle over 4 pi."""
+    out = np.empty(points.shape[0])
+    for p in prange(points.shape[0]):
+        out[p] = solid_angle(points[p, 0], points[p, 1], points[p, 2], triangles, which[p]) / (4.0 * np.pi)
     return out
 
 

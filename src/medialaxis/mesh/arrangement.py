@@ -49,6 +49,10 @@ TOLERANCE = 1e-9
 #: Where the winding number on a piece is ambiguous (a coplanar face over
 #: it), it is taken this fraction of the piece's inradius in front and behind.
 OFFSET = 0.05
+#: Solid-angle terms (patches times faces) summed one by one at most; beyond, the
+#: patches' winding numbers come through the fast winding tree (Barill et al. 2018):
+#: 70 s -> 2 s on a uv ellipsoid of 198,912 faces crossing in 20,704 pairs at its poles.
+EXACT_TERMS = 200_000_000
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,10 +115,15 @@ def _sides(tri: np.ndarray, parent: np.ndarray, all_tri: np.ndarray, beside: np.
     half-integer (a coplanar face over the piece, a gap), the winding
     number is taken a fraction of the inradius behind and in front.
     """
-    from medialaxis.mesh._winding_kernels import winding_numbers_without
+    from medialaxis.mesh._fast_winding_kernels import WindingTree
+    from medialaxis.mesh._winding_kernels import own_terms, winding_numbers_without
 
     c = tri.mean(axis=1)
-    mean = winding_numbers_without(c, np.ascontiguousarray(all_tri), np.ascontiguousarray(parent, np.int64))
+    all_tri, parent = np.ascontiguousarray(all_tri, np.float64), np.ascontiguousarray(parent, np.int64)
+    if len(c) * len(all_tri) <= EXACT_TERMS:
+        mean = winding_numbers_without(c, all_tri, parent)
+    else:  # the tree's leaves sum the same terms exactly near each centroid, its own face's among them
+        mean = WindingTree(all_tri)(c) - own_terms(c, all_tri, parent)
     behind, front = mean + 0.5, mean - 0.5
     off = (np.abs(mean - np.floor(mean) - 0.5) > 0.25) | beside
     if off.any():
