@@ -25,6 +25,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.core.result import MedialAxis
+from medialaxis.mesh._simplify_kernels import PENDING, kd_build, snap_many
 
 __all__ = ["MedialCandidates", "shrinking_balls", "SPAN", "ON_SPHERE", "SNAP", "DEPTH"]
 
@@ -119,7 +120,7 @@ class MedialCandidates:
     samples of its Delaunay tetrahedron, on its sphere). One whose contacts
     span 90 degrees or more as seen from its centre touches two sides of the
     surface: it stands for the medial axis. Collapsed spheres are replaced by
-    the candidate nearby of least quadric error (:meth:`snap`); spheres
+    the candidate nearby of least quadric error (:meth:`snap_all`); spheres
     added where the surface is farthest out are the candidate balls
     reaching nearest to it (:meth:`cover`).
     """
@@ -138,11 +139,12 @@ class MedialCandidates:
         self.start = 1.5 * float(radii.max()) if len(radii) else None
         self.spheres = np.c_[centres, radii][ok]
         self.tree = cKDTree(self.spheres) if len(self.spheres) else None
+        self.kd = kd_build(self.spheres)  # the snaps' (compiled)
         touch = contacts[ok]
         self.contact_tree = cKDTree(touch.reshape(-1, 3)) if len(self.spheres) else None
         self.per = touch.shape[1]
         self.signed = signed
-        self.state = np.zeros(len(self.spheres), np.int8)  # 1: its radius is its centre's depth, -1: not, 0: not asked
+        self.state = np.zeros(len(self.spheres), np.int8)  # 1: its radius is its centre's depth, -1: not, 0: not asked, 2: pending
 
     def _valid(self, index: np.ndarray) -> np.ndarray:
         """Which of the candidates ``index`` are inscribed: the centre's depth within ``DEPTH`` of the radius.
@@ -159,26 +161,28 @@ class MedialCandidates:
             self.state[ask] = np.where(np.abs(depth - r) <= DEPTH * r, 1, -1)
         return self.state[index] > 0
 
-    def snap(self, s: np.ndarray, qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
-        """The candidate among the ``SNAP`` nearest ``s`` in (centre, radius) of least quadric error."""
-        if self.tree is None:
-            return s
-        for k in (SNAP, 4 * SNAP):
-            near = np.atleast_1d(self.tree.query(s, k=min(k, len(self.spheres)))[1])
-            ok = self._valid(near)
-            if ok.any() or k >= len(self.spheres):
-                break
-        t = self.spheres[near[ok] if ok.any() else near]
-        cost = np.einsum("ki,ij,kj->k", t, qa, t) - 2.0 * t @ qb
-        return t[int(np.argmin(cost))].copy()
-
     def snap_all(self, spheres: np.ndarray, qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
-        """:meth:`snap` of each of ``spheres`` with its quadric ``(qa[i], qb[i])``, the candidates asked in one batch."""
+        """Each of ``spheres`` snapped to the candidate of least quadric error ``(qa[i], qb[i])``.
+
+        Among the ``SNAP`` candidates nearest in (centre, radius) that are
+        inscribed (:meth:`_valid`), else among ``4 SNAP``, else all of these
+        (:func:`~medialaxis.mesh._simplify_kernels.snap_one`).
+        """
         if self.tree is None or not len(spheres):
             return spheres.copy()
-        near = self.tree.query(spheres, k=min(SNAP, len(self.spheres)))[1].reshape(len(spheres), -1)
-        self._valid(near.ravel())
-        return np.array([self.snap(s, a, b) for s, a, b in zip(spheres, qa, qb)]).reshape(-1, 4)
+        index = snap_many(spheres, qa, qb, self.spheres, self.state, self.kd, SNAP)
+        while not self.settle():  # again where a candidate taken before it was asked is not inscribed
+            again = np.flatnonzero(self.state[index] < 0)
+            index[again] = snap_many(spheres[again], qa[again], qb[again], self.spheres, self.state, self.kd, SNAP)
+        return self.spheres[index]
+
+    def settle(self) -> bool:
+        """Ask the candidates the snaps took before asking (``PENDING``); whether all are inscribed."""
+        pending = np.flatnonzero(self.state == PENDING)
+        if not len(pending):
+            return True
+        self.state[pending] = 0
+        return bool(self._valid(pending).all())
 
     def cover(self, x: np.ndarray) -> tuple[np.ndarray, float]:
         """The candidate ball reaching nearest to ``x`` among those touching the surface near it.

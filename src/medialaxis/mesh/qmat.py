@@ -34,18 +34,17 @@ balls (a torus at 40 spheres: 60% of the spheres touch two sides).
 
 from __future__ import annotations
 
-import heapq
 import time
 from typing import Any
 
 import numpy as np
 
-from medialaxis._jit import njit
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
+from medialaxis.mesh._simplify_kernels import collapse, kd_build
 from medialaxis.mesh.compact import sphere_quadrics
 from medialaxis.mesh.envelope import surface_sample, two_sided_distance
-from medialaxis.mesh.medial_candidates import MedialCandidates
+from medialaxis.mesh.medial_candidates import SNAP, MedialCandidates
 from medialaxis.mesh.simplify_cover import cover_repair
 
 __all__ = ["simplify_medial_mesh", "check_simplify", "REGULARISATION"]
@@ -90,39 +89,6 @@ def _initial_quadrics(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray, np.ndarra
     """Per-vertex SQEM ``(A, b, c)`` with error ``s.A.s - 2 b.s + c`` from the contacts."""
     contacts = ma.contacts if "contacts" in ma.extras else ma.points[:, None, :]
     return sphere_quadrics(ma.points, contacts)
-
-
-@njit(cache=True, nogil=True)
-def _optimum(qa, qb, qc, s1, s2, reg):  # type: ignore[no-untyped-def]
-    """Sphere minimising ``s.qa.s - 2 qb.s + qc + reg |s - mid|^2`` and its quadric error (without ``reg``)."""
-    mid = 0.5 * (s1 + s2)
-    a = qa + reg * np.eye(4)
-    b = qb + reg * mid
-    s = np.linalg.solve(a, b)
-    # The merged sphere stays near the two it replaces: on thin parts the quadric barely
-    # constrains the radius along the axis, and an unchecked optimum balloons out of the shape.
-    r_max = max(s1[3], s2[3])
-    half = 0.5 * np.sqrt(np.sum((s1[:3] - s2[:3]) ** 2))
-    off = np.sqrt(np.sum((s[:3] - mid[:3]) ** 2))
-    if s[3] <= 0 or not np.all(np.isfinite(s)) or s[3] > 1.1 * r_max or off > half + 0.1 * r_max:
-        # the cheapest of the two spheres and their midpoint (Garland and Heckbert's fallback): the
-        # midpoint of a large and a small sphere alone pokes out of the thin part
-        s = mid
-        for t in (s1, s2):
-            if t @ qa @ t - 2.0 * (qb @ t) < s @ qa @ s - 2.0 * (qb @ s):
-                s = t.copy()
-    cost = s @ qa @ s - 2.0 * (qb @ s) + qc
-    return s, max(cost, 0.0)
-
-
-@njit(cache=True, nogil=True)
-def _pair_costs(qa, qb, qc, spheres, reg, pairs):  # type: ignore[no-untyped-def]
-    """:func:`_optimum`'s error of merging each pair ``(i, j)`` of spheres."""
-    out = np.empty(pairs.shape[0])
-    for k in range(pairs.shape[0]):
-        i, j = pairs[k, 0], pairs[k, 1]
-        _, out[k] = _optimum(qa[i] + qa[j], qb[i] + qb[j], qc[i] + qc[j], spheres[i], spheres[j], reg)
-    return out
 
 
 def simplify_medial_mesh(
@@ -278,70 +244,54 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any, medial
         repair = max(repair, target - n)  # a compact complex may hold fewer spheres than asked
     target -= repair
 
-    faces = [set() for _ in range(n)]
-    tri = {k: tuple(f) for k, f in enumerate(ma.faces.tolist())}
-    for k, f in tri.items():
-        for v in f:
-            faces[v].add(k)
-    nbr = [set() for _ in range(n)]
-    for a, b in np.concatenate([ma.edges, ma.faces[:, [0, 1]], ma.faces[:, [1, 2]], ma.faces[:, [2, 0]]]).tolist():
-        if a != b:
-            nbr[a].add(b)
-            nbr[b].add(a)
-    version = np.zeros(n, np.int64)
-    alive = np.ones(n, bool)
-    heap: list[tuple[float, int, int, int, int]] = []
-
-    def push(pairs: list[tuple[int, int]]) -> None:  # one compiled call per batch of pairs (i < j)
-        ends = np.array(pairs, np.int64).reshape(-1, 2)
-        for (i, j), cost in zip(pairs, _pair_costs(qa, qb, qc, spheres, reg, ends).tolist()):
-            heapq.heappush(heap, (cost, i, j, int(version[i]), int(version[j])))
-
-    push([(i, j) for i in range(n) for j in nbr[i] if i < j])
-    left = n
-    while left > target and heap:
-        cost, i, j, vi, vj = heapq.heappop(heap)
-        if not (alive[i] and alive[j]) or version[i] != vi or version[j] != vj:
-            continue
-        if bound is not None and np.sqrt(cost) > bound:
+    edges = np.concatenate([ma.edges, ma.faces[:, [0, 1]], ma.faces[:, [1, 2]], ma.faces[:, [2, 0]]]).astype(np.int64)
+    snap = medial is not None and medial.tree is not None
+    cand, state, tree = (medial.spheres, medial.state, medial.kd) if snap else (_NO_SPHERES, _NO_STATE, kd_build(_NO_SPHERES))
+    while True:  # again when a candidate a snap took before asking it is not inscribed
+        out, into = collapse(spheres, qa, qb, qc, reg, edges.reshape(-1, 2), target, np.inf if bound is None else bound,
+                             snap, cand, state, tree, SNAP)
+        if not snap or medial.settle():
             break
-        s, _ = _optimum(qa[i] + qa[j], qb[i] + qb[j], qc[i] + qc[j], spheres[i], spheres[j], reg)
-        spheres[i] = s if medial is None else medial.snap(s, qa[i] + qa[j], qb[i] + qb[j])
-        qa[i] += qa[j]
-        qb[i] += qb[j]
-        qc[i] += qc[j]
-        alive[j] = False
-        left -= 1
-        for k in faces[j]:
-            f = tri[k]
-            if i in f:
-                del tri[k]
-                for v in f:
-                    if v != j:
-                        faces[v].discard(k)
-            else:
-                tri[k] = tuple(i if v == j else v for v in f)
-                faces[i].add(k)
-        faces[j] = set()
-        for k in nbr[j]:
-            nbr[k].discard(j)
-            if k != i:
-                nbr[k].add(i)
-                nbr[i].add(k)
-        nbr[i].discard(j)
-        nbr[j] = set()
-        version[i] += 1
-        push([(min(i, k), max(i, k)) for k in nbr[i]])
-
-    keep = np.flatnonzero(alive)
-    new = np.full(n, -1, np.int64)
-    new[keep] = np.arange(len(keep))
-    out_faces = new[np.array(list(tri.values()), np.int64).reshape(-1, 3)]
-    out_faces = np.unique(np.sort(out_faces, axis=1), axis=0) if len(out_faces) else out_faces
-    face_edges = {tuple(sorted(e)) for f in out_faces.tolist() for e in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
-    curve = sorted({(min(new[i], new[j]), max(new[i], new[j])) for i in keep for j in nbr[i]} - face_edges)
+    spheres, keep, out_faces, curve = out, *_collapsed_mesh(into, ma.faces, edges)
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
-    curve = np.array(curve, np.int64).reshape(-1, 2)
     if repair:
         centres, radii, curve, out_faces = cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
     return centres, radii, curve, out_faces
+
+
+_NO_SPHERES, _NO_STATE = np.zeros((0, 4)), np.zeros(0, np.int8)
+
+
+def _distinct(rows: np.ndarray) -> np.ndarray:
+    """Number of distinct entries of each row of three."""
+    s = np.sort(rows, axis=1)
+    return 1 + (s[:, 1] != s[:, 0]) + (s[:, 2] != s[:, 1])
+
+
+def _collapsed_mesh(into: np.ndarray, faces: np.ndarray, edges: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``(kept, faces, curve)`` after the collapses ``into`` (sphere ``j`` merged into ``into[j]``, ``-1``: kept).
+
+    A triangle goes when two of its corners were merged; the curve is the
+    merged mesh's edges that bound no triangle, both in the kept spheres'
+    numbering, rows sorted and unique.
+    """
+    n = len(into)
+    rep = np.where(into >= 0, into, np.arange(n))
+    while True:  # follow the merges to the sphere kept
+        nxt = rep[rep]
+        if np.array_equal(nxt, rep):
+            break
+        rep = nxt
+    keep = np.flatnonzero(into < 0)
+    new = np.full(n, -1, np.int64)
+    new[keep] = np.arange(len(keep))
+    faces = faces.reshape(-1, 3)
+    merged = rep[faces]
+    out_faces = np.sort(new[merged[_distinct(merged) == _distinct(faces)]], axis=1)
+    out_faces = np.unique(out_faces, axis=0) if len(out_faces) else out_faces.reshape(-1, 3)
+    ends = new[rep[edges.reshape(-1, 2)]]
+    ends = np.sort(ends[ends[:, 0] != ends[:, 1]], axis=1)
+    m = max(len(keep), 1)
+    sides = np.concatenate([out_faces[:, [0, 1]], out_faces[:, [1, 2]], out_faces[:, [0, 2]]])
+    code = np.setdiff1d(ends[:, 0] * m + ends[:, 1], sides[:, 0] * m + sides[:, 1])
+    return keep, out_faces, np.c_[code // m, code % m].astype(np.int64).reshape(-1, 2)
