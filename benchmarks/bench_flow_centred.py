@@ -13,7 +13,8 @@ Every figure comes from geometry, never from the result's metadata:
 - a disc and a square swept along a half circle of radius 3 (flat ends): distance
   to the arc, one tube radius away from the ends;
 - straight rods voxelized and meshed by marching cubes (5 and 10 voxels across
-  the radius): their numbers of endpoints (two);
+  the radius), as meshed and turned by a random rotation after meshing (a
+  scanner's direction cosines): their numbers of endpoints (two);
 - an extruded L-shaped plate with a round hole, written and read back as float32
   STL: its Betti numbers (one cycle).
 
@@ -154,16 +155,20 @@ def main() -> None:
         inside = (angle > 1.0 / 3.0) & (angle < np.pi - 1.0 / 3.0)
         print(f"{name} swept along a half circle R=3 ({len(mesh.vertices)} v): to arc, away from the ends, "
               f"{pct(torus_distance(sk.points[inside], 3.0), 3.0)} of R; ends {len(sk.endpoints)}; {sec:.2f} s")
+    from scipy.spatial.transform import Rotation
+
     from medialaxis.mesh.flow_samples import segment_distance
 
-    for length, radius, pitch in ((6.0, 0.5, 0.1), (6.0, 0.5, 0.05)):
+    for length, radius, pitch, turn in ((6.0, 0.5, 0.1, None), (6.0, 0.5, 0.05, None), (6.0, 0.5, 0.1, 11), (6.0, 0.5, 0.05, 12)):
         mesh = marching_cubes_rod(length, radius, pitch)
+        rotation = np.eye(3) if turn is None else Rotation.random(random_state=turn).as_matrix()
+        mesh.vertices = mesh.vertices @ rotation.T  # turned after meshing: a scanner's direction cosines
         sk, sec = run("rod", mesh)
         total += sec
         axis = np.array([[[-length / 2, 0, 0], [length / 2, 0, 0]]])
-        print(f"marching-cubes rod (length {length:g} r={radius:g}, {radius / pitch:g} voxels; {len(mesh.vertices)} v): "
-              f"ends {len(sk.endpoints)} junctions {len(sk.junctions)}; "
-              f"to axis {pct(segment_distance(sk.points, axis), radius)} of r; {sec:.2f} s")
+        print(f"marching-cubes rod{' turned' if turn is not None else ''} (length {length:g} r={radius:g}, "
+              f"{radius / pitch:g} voxels; {len(mesh.vertices)} v): ends {len(sk.endpoints)} junctions {len(sk.junctions)}; "
+              f"to axis {pct(segment_distance(sk.points @ rotation, axis), radius)} of r; {sec:.2f} s")
     mesh = l_plate_with_hole()
     sk, sec = run("plate", mesh)
     total += sec
