@@ -115,3 +115,44 @@ def test_co_circular_samples_give_the_same_sampling_turned_or_mirrored(shape: sh
         expected = shapely.get_coordinates(motion(shapely.MultiPoint(base.result.points)))
         gap = np.linalg.norm(moved.result.points[:, None, :] - expected[None, :, :], axis=2)
         assert max(gap.min(0).max(), gap.min(1).max()) < 1e-8  # the same axis, moved (shapes 10 across)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_whole_circles_by_the_corner_triangles_is_the_sort_of_every_triangle(seed: int) -> None:
+    from medialaxis.planar._corner_kernels import _whole_circles, _whole_circles_sorted
+
+    rng = np.random.default_rng(seed)
+    # a few circles, each shared by several triangles whose centres and radii differ by about the eps of the test
+    # (1e-9 of radius + |x| + |y|): some pairs within it, some just beyond, some on the same x
+    circles = rng.uniform(-50, 50, (12, 3)) + [0, 0, 60]
+    pick = rng.integers(0, len(circles), 400)
+    scale = 1e-9 * (np.abs(circles[pick]).sum(1))[:, None]
+    shift = rng.choice([0.0, 0.3, 0.9, 1.1, 3.0], (len(pick), 3)) * rng.choice([-1.0, 1.0], (len(pick), 3)) * scale
+    shift[rng.random(len(pick)) < 0.1, 0] = 0.0  # exactly the x of the circle: a tie the sort would order
+    data = circles[pick] + shift
+    centres, radii = np.ascontiguousarray(data[:, :2]), data[:, 2].copy()
+    inside = rng.random(len(pick)) < 0.8
+    corner = inside & (rng.random(len(pick)) < 0.4)
+    expected = _whole_circles_sorted(corner, inside, centres, radii)
+    np.testing.assert_array_equal(_whole_circles(corner, inside, centres, radii), expected)
+    assert (expected != corner).any()  # the data has circles that are not all corner triangles
+
+
+def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> None:
+    from medialaxis.planar._corner_kernels import corner_piece_state_memo
+
+    st = planar_stages(shapely.Polygon([(0, 0), (0, 4), (3, 4), (3, 7), (9, 7), (9, 0)]))
+    smp, tri = st.samples, st.triangulation
+    closed = ring_arrays(st.rings)
+    args = (tri.simplices, st.inside, tri.radii, tri.centers, smp.next, smp.arc, smp.ring, 0, closed.s, closed.xy,
+            closed.start, closed.convex, 1e-4 * 11.4)
+    fresh = corner_piece_state(*args)
+    memo = np.full((len(tri.simplices), 4), -1, np.int64)
+    memo[::3, :3] = np.roll(tri.simplices[::3], 1, axis=1)  # stale rows: other triangles (the same vertices turned)
+    memo[::3, 3] = 1
+    for _ in range(2):  # the first call tests and keeps, the second reads what it kept
+        got = corner_piece_state_memo(*args, memo)
+        np.testing.assert_array_equal(got[0], fresh[0])
+        np.testing.assert_array_equal(got[1], fresh[1])
+    np.testing.assert_array_equal(memo[:, :3], tri.simplices)
+    assert memo[:, 3].any()  # the L shape's convex corners have corner triangles

@@ -37,7 +37,7 @@ import numpy as np
 from medialaxis._jit import njit
 from medialaxis.planar._kernels import piece_state
 
-__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "ERROR_SHARE"]
+__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "corner_piece_state_memo", "ERROR_SHARE"]
 
 #: A corner triangle's circumcentre is within this share of the tolerance of the bisector.
 ERROR_SHARE = 0.25
@@ -113,12 +113,33 @@ def corner_triangle(a, b, c, centre_x, centre_y, edge, at_vertex, ring, rings_xy
 def corner_piece_state(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy, rings_start,
                        convex, tolerance):  # type: ignore[no-untyped-def]
     """``(conforming, radius)`` of every piece ``(i, nxt[i])``, corner triangles left out and mirrored pieces alike."""
+    memo = np.full((len(simplices), 4), -1, np.int64)
+    return corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy,
+                                   rings_start, convex, tolerance, memo)
+
+
+@njit(cache=True, nogil=True)
+def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy, rings_start,
+                            convex, tolerance, memo):  # type: ignore[no-untyped-def]
+    """:func:`corner_piece_state` that keeps each slot's corner test in ``memo`` (rows ``a, b, c, corner``).
+
+    A slot whose triangle has the same vertices, in the same order, as when
+    it was tested keeps its answer: the test reads only the vertices, their
+    arc positions and the circumcentre, which the vertices fix. The
+    incremental rounds (:func:`medialaxis.planar._refine_kernels.refine_round`)
+    so test only the triangles made since the round before.
+    """
     edge, at_vertex = sample_edges(arc, ring, offset, rings_s, rings_start)
     corner = np.zeros(len(simplices), np.bool_)
     for t in range(len(simplices)):
-        if inside[t] and min(simplices[t, 0], simplices[t, 1], simplices[t, 2]) >= offset:
-            corner[t] = corner_triangle(simplices[t, 0], simplices[t, 1], simplices[t, 2], centres[t, 0],
-                                        centres[t, 1], edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance)
+        a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
+        if memo[t, 0] == a and memo[t, 1] == b and memo[t, 2] == c:
+            corner[t] = memo[t, 3] == 1
+            continue
+        if inside[t] and min(a, b, c) >= offset:
+            corner[t] = corner_triangle(a, b, c, centres[t, 0], centres[t, 1], edge, at_vertex, ring, rings_xy,
+                                        rings_start, convex, tolerance)
+        memo[t, 0], memo[t, 1], memo[t, 2], memo[t, 3] = a, b, c, 1 if corner[t] else 0
     counted = inside & ~_whole_circles(corner, inside, centres, radii)
     conforming, radius = piece_state(simplices, counted, radii, nxt)
     _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex)
@@ -135,7 +156,47 @@ def _whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-d
     split into a corner triangle and a triangle that reaches another edge, or
     the other way. Deciding for the whole circle keeps the sampling, and so
     the axis, the same under rotations, mirrors and where a ring starts.
+
+    Only a pair of one corner triangle and one other changes anything, so
+    each inside triangle is looked up among the few corner triangles, sorted
+    by ``x``, instead of sorting every triangle
+    (:func:`_whole_circles_sorted`, which this falls back to where two
+    centres share their ``x`` and only the order of the sort would say
+    whose ``eps`` applies).
     """
+    keys = np.flatnonzero(corner & inside)
+    out = corner.copy()
+    if len(keys) == 0:
+        return out
+    keys = keys[np.argsort(centres[keys, 0])]
+    kx = centres[keys, 0]
+    reach = 0.0  # the largest eps of any inside triangle: no pair is farther apart in x
+    for t in range(len(inside)):
+        if inside[t]:
+            reach = max(reach, 1e-9 * (radii[t] + abs(centres[t, 0]) + abs(centres[t, 1])))
+    if not np.isfinite(reach):
+        return _whole_circles_sorted(corner, inside, centres, radii)
+    for u in range(len(inside)):
+        if not inside[u] or corner[u]:
+            continue
+        ux = centres[u, 0]
+        for m in range(np.searchsorted(kx, ux - reach), len(keys)):
+            t = keys[m]
+            if kx[m] > ux + reach:
+                break
+            if kx[m] == ux:
+                return _whole_circles_sorted(corner, inside, centres, radii)
+            first = t if kx[m] < ux else u  # the pair in the order of the sort: its first triangle's eps
+            eps = 1e-9 * (radii[first] + abs(centres[first, 0]) + abs(centres[first, 1]))
+            if (abs(ux - kx[m]) <= eps and abs(centres[u, 1] - centres[t, 1]) <= eps
+                    and abs(radii[u] - radii[t]) <= eps):
+                out[t] = False
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _whole_circles_sorted(corner, inside, centres, radii):  # type: ignore[no-untyped-def]
+    """:func:`_whole_circles` by one sort of every inside triangle by ``x`` (its reference in the tests)."""
     rows = np.flatnonzero(inside)
     order = rows[np.argsort(centres[rows, 0])]
     out = corner.copy()

@@ -45,9 +45,35 @@ def sample_grid(points):  # type: ignore[no-untyped-def]
     return x0, y0, cell, g, start, members
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _scan_cell(c, points, qx, qy, k, start, members, best_d, best_i, found):  # type: ignore[no-untyped-def]
+    """Merge the samples of cell ``c`` into the sorted ``k + 1`` nearest so far; the new count found."""
+    for m in range(start[c], start[c + 1]):
+        p = members[m]
+        d = (points[p, 0] - qx) ** 2 + (points[p, 1] - qy) ** 2
+        if found == k + 1 and d >= best_d[k]:
+            continue
+        j = min(found, k)
+        while j > 0 and best_d[j - 1] > d:
+            best_d[j] = best_d[j - 1]
+            best_i[j] = best_i[j - 1]
+            j -= 1
+        best_d[j] = d
+        best_i[j] = p
+        found = min(found + 1, k + 1)
+    return found
+
+
 @njit(cache=True, nogil=True)
 def nearest_in_grid(query, points, k, x0, y0, cell, g, start, members):  # type: ignore[no-untyped-def]
-    """:func:`medialaxis.planar._kernels.nearest_samples` in the grid of :func:`sample_grid`, nearest first."""
+    """:func:`medialaxis.planar._kernels.nearest_samples` in the grid of :func:`sample_grid`, nearest first.
+
+    The cells are visited ring by ring around the query's cell (only the
+    ring's own cells, not the square it bounds) until no unseen sample can
+    be nearer than the ``k + 1``-th found. ``sure`` is False where the
+    ``k``-th and the next distance agree to rounding: which of the tied
+    samples is listed then turns on the order of the visit.
+    """
     near = np.empty((len(query), k), np.int64)
     sure = np.ones(len(query), np.bool_)
     best_d = np.empty(k + 1)
@@ -59,23 +85,20 @@ def nearest_in_grid(query, points, k, x0, y0, cell, g, start, members):  # type:
         found = 0
         r = 0
         while True:
-            for ix in range(max(cx - r, 0), min(cx + r, g - 1) + 1):
-                for iy in range(max(cy - r, 0), min(cy + r, g - 1) + 1):
-                    if max(abs(ix - cx), abs(iy - cy)) != r:
-                        continue  # the ring of cells at distance r only
-                    for m in range(start[ix * g + iy], start[ix * g + iy + 1]):
-                        p = members[m]
-                        d = (points[p, 0] - qx) ** 2 + (points[p, 1] - qy) ** 2
-                        if found == k + 1 and d >= best_d[k]:
-                            continue
-                        j = min(found, k)
-                        while j > 0 and best_d[j - 1] > d:
-                            best_d[j] = best_d[j - 1]
-                            best_i[j] = best_i[j - 1]
-                            j -= 1
-                        best_d[j] = d
-                        best_i[j] = p
-                        found = min(found + 1, k + 1)
+            lo_x, hi_x = max(cx - r, 0), min(cx + r, g - 1)
+            if r == 0:
+                found = _scan_cell(cx * g + cy, points, qx, qy, k, start, members, best_d, best_i, found)
+            else:
+                for iy in (cy - r, cy + r):  # the ring's bottom and top rows of cells, corners included
+                    if 0 <= iy < g:
+                        for ix in range(lo_x, hi_x + 1):
+                            found = _scan_cell(ix * g + iy, points, qx, qy, k, start, members, best_d, best_i,
+                                               found)
+                for ix in (cx - r, cx + r):  # its left and right columns between them
+                    if 0 <= ix < g:
+                        for iy in range(max(cy - r + 1, 0), min(cy + r - 1, g - 1) + 1):
+                            found = _scan_cell(ix * g + iy, points, qx, qy, k, start, members, best_d, best_i,
+                                               found)
             covered = cx - r <= 0 and cy - r <= 0 and cx + r >= g - 1 and cy + r >= g - 1
             # any point not yet seen lies beyond the visited block of cells
             bound = min(qx - (x0 + (cx - r) * cell), x0 + (cx + r + 1) * cell - qx,

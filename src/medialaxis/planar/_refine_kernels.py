@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.planar._corner_kernels import corner_piece_state
+from medialaxis.planar._corner_kernels import corner_piece_state_memo
 from medialaxis.planar._delaunay_kernels import insert_point, insertion_order, scratch
 from medialaxis.planar._inside_kernels import UNSURE, locate_centroid
 from medialaxis.planar._kernels import circumcircle, split_count
@@ -170,7 +170,7 @@ def insert_round(x, y, tv, tn, count, order, hint, near, points, centre, radius,
 
 
 @njit(cache=True, nogil=True)
-def refine_round(tv, count, where, centre, radius, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
+def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
                  convex, ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share):  # type: ignore[no-untyped-def]
     """The pieces' state, their splits and the new samples of one round, over the ``n = len(nxt)`` vertices.
 
@@ -178,7 +178,9 @@ def refine_round(tv, count, where, centre, radius, nxt, arc, ring, points, x, y,
     length and vertices, ring ``r`` at ``rings_start[r]:rings_start[r + 1]``,
     ``convex`` flags its convex vertices (the pieces' state is
     :func:`medialaxis.planar._corner_kernels.corner_piece_state`, with the
-    triangles' circumcentres ``centre``).
+    triangles' circumcentres ``centre``; ``memo`` keeps the corner test of
+    each slot from round to round, see
+    :func:`~medialaxis.planar._corner_kernels.corner_piece_state_memo`).
     New samples are placed as :func:`medialaxis.planar.sampling.sample`
     places them and jittered as :func:`medialaxis.planar.delaunay.triangulate`
     does (``(p - lo) / extent + jitter[i]``). Returns ``(m, settled, points,
@@ -188,9 +190,9 @@ def refine_round(tv, count, where, centre, radius, nxt, arc, ring, points, x, y,
     their piece.
     """
     n = len(nxt)
-    conforming, piece_radius = corner_piece_state(tv[:count], where[:count] == 1, radius[:count], centre[:count], nxt,
-                                                  arc, ring, CORNERS, rings_s, rings_xy, rings_start, convex,
-                                                  tolerance)
+    conforming, piece_radius = corner_piece_state_memo(tv[:count], where[:count] == 1, radius[:count], centre[:count],
+                                                       nxt, arc, ring, CORNERS, rings_s, rings_xy, rings_start, convex,
+                                                       tolerance, memo)
     new_arc, new_ring, piece, nxt_out = split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming,
                                                      n, tolerance, min_length, ratio)
     m = len(new_arc)

@@ -115,6 +115,7 @@ def _incremental(
     tn = np.full((2 * n_real + 2, 3), -1, np.int64)
     corner_square(tv, tn, 0)
     centre, radius, where = np.empty((len(tv), 2)), np.empty(len(tv)), np.zeros(len(tv), np.int8)
+    memo = np.full((len(tv), 4), -1, np.int64)  # each slot's corner test, kept while its triangle stays
     count = 2
     batch = insertion_order(x[CORNERS:], y[CORNERS:]) + CORNERS
     hint = np.full(len(batch), -1, np.int64)
@@ -132,7 +133,7 @@ def _incremental(
             break
         while True:
             m, settled, points, arc, ring, nxt, x, y, near, batch, hint = refine_round(
-                tv, count, where, centre, radius, nxt, arc, ring, points, x, y, near, closed.s, closed.xy, closed.start,
+                tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, closed.s, closed.xy, closed.start,
                 closed.convex, first.ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO,
                 SETTLED_SHARE)
             if m >= 0:
@@ -142,17 +143,20 @@ def _incremental(
             break
         slots = 2 * (len(x) - CORNERS) + 2
         tv, tn, centre, radius, where = (_grow(a, slots, count) for a in (tv, tn, centre, radius, where))
+        memo = _grow(memo, slots, count, fill=-1)
     n = len(x)
     return _assembled(points[CORNERS:n], arc[CORNERS:n], ring[CORNERS:n], first.ring_length, tv, tn, count,
                       centre, radius, where)
 
 
-def _grow(array: np.ndarray, rows: int, keep: int) -> np.ndarray:
-    """``array`` with at least ``rows`` rows, its first ``keep`` rows kept."""
+def _grow(array: np.ndarray, rows: int, keep: int, fill: int | None = None) -> np.ndarray:
+    """``array`` with at least ``rows`` rows, its first ``keep`` rows kept (the others ``fill``, if given)."""
     if len(array) >= rows:
         return array
     out = np.empty((max(rows, 2 * len(array)),) + array.shape[1:], array.dtype)
     out[:keep] = array[:keep]
+    if fill is not None:
+        out[keep:] = fill
     return out
 
 
