@@ -101,3 +101,20 @@ def test_interp_is_numpys_bit_for_bit() -> None:
     x = np.concatenate([rng.uniform(-1, xp[-1] + 1, 500), xp, [xp[-1]]])
     ours = [interp(v, xp, fp, 0)[0] for v in x]
     np.testing.assert_array_equal(ours, np.interp(x, xp, fp))
+
+
+@pytest.mark.parametrize("name", list(SHAPES))
+def test_the_compiled_first_sample_is_sample_of_the_start_arcs(name: str) -> None:
+    from medialaxis.planar._refine_kernels import first_sample
+    from medialaxis.planar.corners import ring_arrays
+    from medialaxis.planar.sampling import sample
+
+    region, tolerance = SHAPES[name]
+    rings = simplify_rings(region, 0.0)
+    closed = ring_arrays(rings)
+    for min_length in (tolerance, 40 * tolerance):  # the corners mirrored down to it, or not at all
+        ref = sample(rings, adaptive._start_arcs(rings, closed, rings.region, tolerance, min_length))
+        got = first_sample(closed.xy, closed.s, closed.start, adaptive._start_length(rings.region, min_length),
+                           float(tolerance), float(min_length), adaptive.RATIO)
+        for value, field in zip(got, ("points", "arc", "ring", "next")):
+            np.testing.assert_array_equal(value, getattr(ref, field))

@@ -21,12 +21,13 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.planar._corner_kernels import corner_piece_state_memo
+from medialaxis.planar._corner_kernels import corner_piece_state_memo, corner_twins
 from medialaxis.planar._delaunay_kernels import insert_point, insertion_order, scratch
 from medialaxis.planar._inside_kernels import UNSURE, locate_centroid
 from medialaxis.planar._kernels import circumcircle, split_count
 
-__all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp", "insert_round", "refine_round"]
+__all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp", "insert_round", "refine_round",
+           "first_sample"]
 
 #: Vertices before the first sample: the far corners.
 CORNERS = 4
@@ -227,3 +228,56 @@ def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points,
         y_out[n + i] = (points_out[n + i, 1] - lo[1]) / extent + jitter[n - CORNERS + i, 1]
     order = insertion_order(x_out[n:], y_out[n:])
     return m, settled, points_out, arc_out, ring_out, nxt_out, x_out, y_out, near_out, order + n, piece[order]
+
+
+@njit(cache=True, nogil=True)
+def first_sample(rings_xy, rings_s, rings_start, max_length, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
+    """The first sample of the adaptive rounds, in one call: ``(points, arc, ring, nxt)`` over all rings.
+
+    What :func:`medialaxis.planar.sampling.sample` makes of the arcs of
+    :func:`medialaxis.planar.sampling.initial_arcs` (every vertex, edges cut
+    to ``max_length``) with the twins of
+    :func:`medialaxis.planar.corners.mirrored_corner_arcs`, the same numbers
+    (the tests compare both): ``rings_s`` and ``rings_xy`` hold each closed
+    ring's cumulative arc length and vertices, ring ``r`` at
+    ``rings_start[r]:rings_start[r + 1]``.
+    """
+    n_rings = len(rings_start) - 1
+    arcs = []
+    total = 0
+    for r in range(n_rings):
+        s = rings_s[rings_start[r] : rings_start[r + 1]]
+        count = np.empty(len(s) - 1, np.int64)
+        for j in range(len(s) - 1):
+            count[j] = np.int64(max(1.0, np.ceil((s[j + 1] - s[j]) / max_length)))
+        a = np.empty(count.sum())
+        m = 0
+        for j in range(len(s) - 1):
+            seg = s[j + 1] - s[j]
+            for i in range(count[j]):
+                a[m] = s[j] + i / count[j] * seg
+                m += 1
+        twins = corner_twins(a, s, rings_xy[rings_start[r] : rings_start[r + 1]], tolerance, min_length, ratio)
+        if len(twins):
+            a = np.unique(np.concatenate((a, twins)))
+        arcs.append(a)
+        total += len(a)
+    points = np.empty((total, 2))
+    arc = np.empty(total)
+    ring = np.empty(total, np.int64)
+    nxt = np.empty(total, np.int64)
+    n0 = 0
+    for r in range(n_rings):
+        a = arcs[r]
+        s = rings_s[rings_start[r] : rings_start[r + 1]]
+        for k in range(2):
+            fp = rings_xy[rings_start[r] : rings_start[r + 1], k]
+            j = 0
+            for i in range(len(a)):
+                points[n0 + i, k], j = interp(a[i], s, fp, j)
+        for i in range(len(a)):
+            arc[n0 + i] = a[i]
+            ring[n0 + i] = r
+            nxt[n0 + i] = n0 + (i + 1) % len(a)
+        n0 += len(a)
+    return points, arc, ring, nxt

@@ -25,7 +25,7 @@ import shapely
 from medialaxis._progress import progress
 from medialaxis.planar._corner_kernels import corner_piece_state
 from medialaxis.planar._delaunay_kernels import corner_square, drop_corners, insertion_order
-from medialaxis.planar._refine_kernels import CORNERS, insert_round, refine_round
+from medialaxis.planar._refine_kernels import CORNERS, first_sample, insert_round, refine_round
 from medialaxis.planar.axis import inner_triangles
 from medialaxis.planar.corners import RingArrays, mirrored_corner_arcs, ring_arrays
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
@@ -41,12 +41,16 @@ SETTLED_SHARE = 0.05
 RATIO = 0.5
 
 
+def _start_length(region: Any, min_length: float) -> float:
+    """The length of the first pieces: about ``sqrt(area) / 8``, never below ``min_length``."""
+    return max(min_length, np.sqrt(max(region.area, 1e-300)) / 8.0)
+
+
 def _start_arcs(
     rings: Rings, closed: RingArrays, region: Any, tolerance: float, min_length: float
 ) -> list[np.ndarray]:
-    """Pieces about ``sqrt(area) / 8`` long (never below ``min_length``), every vertex a sample, corners mirrored."""
-    area = max(region.area, 1e-300)
-    arcs = initial_arcs(rings, max(min_length, np.sqrt(area) / 8.0))
+    """Pieces of :func:`_start_length`, every vertex a sample, corners mirrored."""
+    arcs = initial_arcs(rings, _start_length(region, min_length))
     return mirrored_corner_arcs(closed, arcs, tolerance, min_length, RATIO)
 
 
@@ -97,18 +101,24 @@ def _incremental(
     """:func:`rounds_from_scratch`, each round inserting only its new samples; None where the kernel gives up."""
     region, locator = rings.region, rings.locator
     closed = ring_arrays(rings)
-    first = sample(rings, _start_arcs(rings, closed, region, tolerance, min_length))
-    n_real = len(first.points)
-    lo = first.points.min(0)
-    extent = float((first.points.max(0) - lo).max())
-    if n_real < 3 or extent <= 0:
+    # sample(rings, _start_arcs(...)) in one compiled call
+    first, first_arc, first_ring, first_next = first_sample(
+        closed.xy, closed.s, closed.start, _start_length(region, min_length), float(tolerance), float(min_length),
+        RATIO)
+    ring_length = closed.s[closed.start[1:] - 1]
+    n_real = len(first)
+    if n_real < 3:
         return None  # the reference raises the error
-    points = np.vstack([np.zeros((CORNERS, 2)), first.points])
-    arc = np.concatenate([np.zeros(CORNERS), first.arc])
-    ring = np.concatenate([np.full(CORNERS, -1), first.ring]).astype(np.int64)
-    nxt = np.concatenate([np.full(CORNERS, -1), first.next + CORNERS]).astype(np.int64)
+    lo = first.min(0)
+    extent = float((first.max(0) - lo).max())
+    if extent <= 0:
+        return None
+    points = np.vstack([np.zeros((CORNERS, 2)), first])
+    arc = np.concatenate([np.zeros(CORNERS), first_arc])
+    ring = np.concatenate([np.full(CORNERS, -1), first_ring])
+    nxt = np.concatenate([np.full(CORNERS, -1), first_next + CORNERS])
     shaken = jitter(max(4 * n_real, 4096))
-    work = np.vstack([FAR_CORNERS, (first.points - lo) / extent + shaken[:n_real]])
+    work = np.vstack([FAR_CORNERS, (first - lo) / extent + shaken[:n_real]])
     x, y = np.ascontiguousarray(work[:, 0]), np.ascontiguousarray(work[:, 1])
     near = np.zeros(len(x), np.int64)
     tv = np.empty((2 * n_real + 2, 3), np.int64)
@@ -134,7 +144,7 @@ def _incremental(
         while True:
             m, settled, points, arc, ring, nxt, x, y, near, batch, hint = refine_round(
                 tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, closed.s, closed.xy, closed.start,
-                closed.convex, first.ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO,
+                closed.convex, ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO,
                 SETTLED_SHARE)
             if m >= 0:
                 break
@@ -142,10 +152,11 @@ def _incremental(
         if m == 0:
             break
         slots = 2 * (len(x) - CORNERS) + 2
-        tv, tn, centre, radius, where = (_grow(a, slots, count) for a in (tv, tn, centre, radius, where))
-        memo = _grow(memo, slots, count, fill=-1)
+        if len(tv) < slots:  # all six have the rows of tv
+            tv, tn, centre, radius, where = (_grow(a, slots, count) for a in (tv, tn, centre, radius, where))
+            memo = _grow(memo, slots, count, fill=-1)
     n = len(x)
-    return _assembled(points[CORNERS:n], arc[CORNERS:n], ring[CORNERS:n], first.ring_length, tv, tn, count,
+    return _assembled(points[CORNERS:n], arc[CORNERS:n], ring[CORNERS:n], ring_length, tv, tn, count,
                       centre, radius, where)
 
 
