@@ -118,3 +118,41 @@ def test_the_compiled_first_sample_is_sample_of_the_start_arcs(name: str) -> Non
                            float(tolerance), float(min_length), adaptive.RATIO)
         for value, field in zip(got, ("points", "arc", "ring", "next")):
             np.testing.assert_array_equal(value, getattr(ref, field))
+
+
+def _assembled_reference(points, arc, ring, n_rings, tv, tn, count, centre, radius, where):  # type: ignore[no-untyped-def]
+    """NumPy version of :func:`medialaxis.planar._refine_kernels.assembled` (its code before it was compiled)."""
+    from medialaxis.planar._delaunay_kernels import drop_corners
+    from medialaxis.planar._refine_kernels import CORNERS
+
+    order = np.lexsort((arc, ring))
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    simplices, neighbors, row = drop_corners(tv, tn, count, CORNERS, CORNERS + len(points))
+    kept = np.flatnonzero(row >= 0)
+    ring = ring[order]
+    size = np.bincount(ring, minlength=n_rings)
+    start = np.repeat(np.cumsum(size) - size, size)
+    following = np.arange(len(ring)) + 1
+    nxt = np.where(following - start >= size[ring], start, following)
+    return (points[order], ring, arc[order], nxt, rank[simplices], neighbors, centre[kept], radius[kept],
+            where[kept] == 1)
+
+
+@pytest.mark.parametrize("name", ["disc with holes", "two pieces"])
+def test_the_compiled_assembly_is_its_numpy_reference(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    region, tolerance = SHAPES[name]
+    rings = simplify_rings(region, 0.0)
+    calls = []
+
+    def recording(*args: Any) -> Any:
+        calls.append(tuple(np.copy(a) if isinstance(a, np.ndarray) else a for a in args))
+        return assembled(*args)
+
+    from medialaxis.planar._refine_kernels import assembled
+
+    monkeypatch.setattr(adaptive, "assembled", recording)
+    adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
+    assert len(calls) == 1
+    for got, expected in zip(assembled(*calls[0]), _assembled_reference(*calls[0])):
+        np.testing.assert_array_equal(got, expected)

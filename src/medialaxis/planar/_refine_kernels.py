@@ -22,12 +22,12 @@ import numpy as np
 
 from medialaxis._jit import njit
 from medialaxis.planar._corner_kernels import corner_piece_state_memo, corner_twins
-from medialaxis.planar._delaunay_kernels import insert_point, insertion_order, scratch
+from medialaxis.planar._delaunay_kernels import drop_corners, insert_point, insertion_order, scratch
 from medialaxis.planar._inside_kernels import UNSURE, locate_centroid
 from medialaxis.planar._kernels import circumcircle, split_count
 
 __all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp", "insert_round", "refine_round",
-           "first_sample"]
+           "first_sample", "assembled"]
 
 #: Vertices before the first sample: the far corners.
 CORNERS = 4
@@ -281,3 +281,55 @@ def first_sample(rings_xy, rings_s, rings_start, max_length, tolerance, min_leng
             nxt[n0 + i] = n0 + (i + 1) % len(a)
         n0 += len(a)
     return points, arc, ring, nxt
+
+
+@njit(cache=True, nogil=True)
+def assembled(points, arc, ring, n_rings, tv, tn, count, centre, radius, where):  # type: ignore[no-untyped-def]
+    """The samples ``points``, ``arc``, ``ring`` (vertices ``CORNERS ..``) in ring and arc order, and their triangulation.
+
+    Returns ``(points, ring, arc, nxt, simplices, neighbors, centres, radii,
+    inside)``: the samples sorted as ``np.lexsort((arc, ring))`` sorts them,
+    each one's follower on its ring, and the triangles without a far corner,
+    renumbered (:func:`medialaxis.planar._delaunay_kernels.drop_corners`),
+    with their circles and whether they are inside.
+    """
+    n = len(arc)
+    by_arc = np.argsort(arc, kind="mergesort")  # stable; then a stable counting sort by ring: lexsort's order
+    size = np.zeros(n_rings, np.int64)
+    for i in range(n):
+        size[ring[i]] += 1
+    first = np.zeros(n_rings + 1, np.int64)
+    for r in range(n_rings):
+        first[r + 1] = first[r] + size[r]
+    fill = first[:-1].copy()
+    order = np.empty(n, np.int64)
+    for i in by_arc:
+        order[fill[ring[i]]] = i
+        fill[ring[i]] += 1
+    rank = np.empty(n, np.int64)
+    points_out = np.empty((n, 2))
+    ring_out = np.empty(n, np.int64)
+    arc_out = np.empty(n)
+    nxt = np.empty(n, np.int64)
+    for m in range(n):
+        i = order[m]
+        rank[i] = m
+        points_out[m, 0], points_out[m, 1] = points[i, 0], points[i, 1]
+        ring_out[m] = ring[i]
+        arc_out[m] = arc[i]
+        nxt[m] = m + 1 if m + 1 < first[ring[i] + 1] else first[ring[i]]
+    simplices, neighbors, row = drop_corners(tv, tn, count, CORNERS, CORNERS + n)
+    m = len(simplices)
+    centres = np.empty((m, 2))
+    radii = np.empty(m)
+    inside = np.empty(m, np.bool_)
+    for t in range(count):
+        j = row[t]
+        if j < 0:
+            continue
+        for k in range(3):
+            simplices[j, k] = rank[simplices[j, k]]
+        centres[j, 0], centres[j, 1] = centre[t, 0], centre[t, 1]
+        radii[j] = radius[t]
+        inside[j] = where[t] == 1
+    return points_out, ring_out, arc_out, nxt, simplices, neighbors, centres, radii, inside

@@ -24,8 +24,8 @@ import shapely
 
 from medialaxis._progress import progress
 from medialaxis.planar._corner_kernels import corner_piece_state
-from medialaxis.planar._delaunay_kernels import corner_square, drop_corners, insertion_order
-from medialaxis.planar._refine_kernels import CORNERS, first_sample, insert_round, refine_round
+from medialaxis.planar._delaunay_kernels import corner_square, insertion_order
+from medialaxis.planar._refine_kernels import CORNERS, assembled, first_sample, insert_round, refine_round
 from medialaxis.planar.axis import inner_triangles
 from medialaxis.planar.corners import RingArrays, mirrored_corner_arcs, ring_arrays
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
@@ -175,17 +175,8 @@ def _assembled(
     points: np.ndarray, arc: np.ndarray, ring: np.ndarray, ring_length: np.ndarray, tv: np.ndarray, tn: np.ndarray,
     count: int, centre: np.ndarray, radius: np.ndarray, where: np.ndarray,
 ) -> tuple[BoundarySample, Triangulation, np.ndarray]:
-    """The sample in ring and arc order, its triangulation (no corner) and the inner triangles."""
-    order = np.lexsort((arc, ring))
-    rank = np.empty_like(order)
-    rank[order] = np.arange(len(order))
-    simplices, neighbors, row = drop_corners(tv, tn, count, CORNERS, CORNERS + len(points))
-    kept = np.flatnonzero(row >= 0)
-    ring = ring[order]
-    size = np.bincount(ring, minlength=len(ring_length))
-    start = np.repeat(np.cumsum(size) - size, size)
-    following = np.arange(len(ring)) + 1
-    nxt = np.where(following - start >= size[ring], start, following)
-    smp = BoundarySample(points[order], ring, arc[order], ring_length, nxt)
-    tri = Triangulation(smp.points, rank[simplices], neighbors, centre[kept], radius[kept])
-    return smp, tri, where[kept] == 1
+    """The sample in ring and arc order, its triangulation (no corner) and the inner triangles (compiled: :func:`assembled`)."""
+    pts, ring, arc, nxt, simplices, neighbors, centres, radii, inside = assembled(
+        points, arc, ring, len(ring_length), tv, tn, count, centre, radius, where)
+    smp = BoundarySample(pts, ring, arc, ring_length, nxt)
+    return smp, Triangulation(pts, simplices, neighbors, centres, radii), inside
