@@ -26,7 +26,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["kd_build", "kd_knn", "snap_one", "snap_many", "collapse", "optimum", "pair_costs", "PENDING"]
+__all__ = ["kd_build", "kd_knn", "snap_one", "snap_many", "collapse", "optimum", "pair_costs", "span_cosines", "PENDING"]
 
 #: ``MedialCandidates.state`` of a candidate a snap took before it was asked.
 PENDING = 2
@@ -360,3 +360,34 @@ def collapse(spheres, qa, qb, qc, reg, edges, target, bound, snap, cand, state, 
             cost, key = _push(cost, key, size, c, lo, hi, version[lo], version[hi])
             size += 1
     return spheres, into
+
+
+@njit(cache=True, nogil=True)
+def span_cosines(centres, contacts, radii, on_sphere):  # type: ignore[no-untyped-def]
+    """Per sphere, the least cosine between two of its contacts seen from its centre.
+
+    With ``on_sphere > 0`` a contact farther than ``on_sphere`` of the radius from the sphere does not
+    count (cosine ``1``). The arithmetic is numpy's of ``medial_candidates._spans`` (norms, then the
+    dot products of the unit vectors).
+    """
+    n, k = contacts.shape[0], contacts.shape[1]
+    out = np.empty(n)
+    u, off = np.empty((k, 3)), np.zeros(k, np.bool_)
+    for s in range(n):
+        for a in range(k):
+            sq = 0.0
+            for c in range(3):
+                u[a, c] = contacts[s, a, c] - centres[s, c]
+                sq += u[a, c] * u[a, c]
+            d = np.sqrt(sq)
+            off[a] = on_sphere > 0 and abs(d - radii[s]) > on_sphere * radii[s]
+            d = max(d, 1e-300)
+            for c in range(3):
+                u[a, c] /= d
+        least = np.inf
+        for a in range(k):
+            for b in range(k):
+                cos = 1.0 if off[a] or off[b] else u[a, 0] * u[b, 0] + u[a, 1] * u[b, 1] + u[a, 2] * u[b, 2]
+                least = min(least, cos)
+        out[s] = least
+    return out

@@ -25,7 +25,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.core.result import MedialAxis
-from medialaxis.mesh._simplify_kernels import PENDING, kd_build, snap_many
+from medialaxis.mesh._simplify_kernels import PENDING, kd_build, snap_many, span_cosines
 
 __all__ = ["MedialCandidates", "shrinking_balls", "SPAN", "ON_SPHERE", "SNAP", "DEPTH"]
 
@@ -101,15 +101,9 @@ def _spans(centres: np.ndarray, contacts: np.ndarray, radii: np.ndarray | None =
 
     With ``radii``, only the contacts within ``ON_SPHERE`` of the radius count.
     """
-    u = contacts - centres[:, None, :]
-    dist = np.linalg.norm(u, axis=2, keepdims=True)
-    u /= np.maximum(dist, 1e-300)
-    cos = np.einsum("nid,njd->nij", u, u)
-    if radii is not None:
-        off = np.abs(dist[:, :, 0] - radii[:, None]) > ON_SPHERE * radii[:, None]
-        cos[off] = 1.0
-        cos.transpose(0, 2, 1)[off] = 1.0
-    return cos.min(axis=(1, 2)) <= np.cos(np.radians(SPAN))
+    centres, contacts = np.ascontiguousarray(centres, np.float64), np.ascontiguousarray(contacts, np.float64)
+    on = np.zeros(len(centres)) if radii is None else np.ascontiguousarray(radii, np.float64)
+    return span_cosines(centres, contacts, on, 0.0 if radii is None else ON_SPHERE) <= np.cos(np.radians(SPAN))
 
 
 class MedialCandidates:
