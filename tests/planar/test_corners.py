@@ -117,27 +117,6 @@ def test_co_circular_samples_give_the_same_sampling_turned_or_mirrored(shape: sh
         assert max(gap.min(0).max(), gap.min(1).max()) < 1e-8  # the same axis, moved (shapes 10 across)
 
 
-@pytest.mark.parametrize("seed", range(6))
-def test_whole_circles_by_the_corner_triangles_is_the_sort_of_every_triangle(seed: int) -> None:
-    from medialaxis.planar._corner_kernels import _whole_circles, _whole_circles_sorted
-
-    rng = np.random.default_rng(seed)
-    # a few circles, each shared by several triangles whose centres and radii differ by about the eps of the test
-    # (1e-9 of radius + |x| + |y|): some pairs within it, some just beyond, some on the same x
-    circles = rng.uniform(-50, 50, (12, 3)) + [0, 0, 60]
-    pick = rng.integers(0, len(circles), 400)
-    scale = 1e-9 * (np.abs(circles[pick]).sum(1))[:, None]
-    shift = rng.choice([0.0, 0.3, 0.9, 1.1, 3.0], (len(pick), 3)) * rng.choice([-1.0, 1.0], (len(pick), 3)) * scale
-    shift[rng.random(len(pick)) < 0.1, 0] = 0.0  # exactly the x of the circle: a tie the sort would order
-    data = circles[pick] + shift
-    centres, radii = np.ascontiguousarray(data[:, :2]), data[:, 2].copy()
-    inside = rng.random(len(pick)) < 0.8
-    corner = inside & (rng.random(len(pick)) < 0.4)
-    expected = _whole_circles_sorted(corner, inside, centres, radii)
-    np.testing.assert_array_equal(_whole_circles(corner, inside, centres, radii), expected)
-    assert (expected != corner).any()  # the data has circles that are not all corner triangles
-
-
 def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> None:
     from medialaxis.planar._corner_kernels import corner_piece_state_memo
 

@@ -156,47 +156,7 @@ def _whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-d
     split into a corner triangle and a triangle that reaches another edge, or
     the other way. Deciding for the whole circle keeps the sampling, and so
     the axis, the same under rotations, mirrors and where a ring starts.
-
-    Only a pair of one corner triangle and one other changes anything, so
-    each inside triangle is looked up among the few corner triangles, sorted
-    by ``x``, instead of sorting every triangle
-    (:func:`_whole_circles_sorted`, which this falls back to where two
-    centres share their ``x`` and only the order of the sort would say
-    whose ``eps`` applies).
     """
-    keys = np.flatnonzero(corner & inside)
-    out = corner.copy()
-    if len(keys) == 0:
-        return out
-    keys = keys[np.argsort(centres[keys, 0])]
-    kx = centres[keys, 0]
-    reach = 0.0  # the largest eps of any inside triangle: no pair is farther apart in x
-    for t in range(len(inside)):
-        if inside[t]:
-            reach = max(reach, 1e-9 * (radii[t] + abs(centres[t, 0]) + abs(centres[t, 1])))
-    if not np.isfinite(reach):
-        return _whole_circles_sorted(corner, inside, centres, radii)
-    for u in range(len(inside)):
-        if not inside[u] or corner[u]:
-            continue
-        ux = centres[u, 0]
-        for m in range(np.searchsorted(kx, ux - reach), len(keys)):
-            t = keys[m]
-            if kx[m] > ux + reach:
-                break
-            if kx[m] == ux:
-                return _whole_circles_sorted(corner, inside, centres, radii)
-            first = t if kx[m] < ux else u  # the pair in the order of the sort: its first triangle's eps
-            eps = 1e-9 * (radii[first] + abs(centres[first, 0]) + abs(centres[first, 1]))
-            if (abs(ux - kx[m]) <= eps and abs(centres[u, 1] - centres[t, 1]) <= eps
-                    and abs(radii[u] - radii[t]) <= eps):
-                out[t] = False
-    return out
-
-
-@njit(cache=True, nogil=True)
-def _whole_circles_sorted(corner, inside, centres, radii):  # type: ignore[no-untyped-def]
-    """:func:`_whole_circles` by one sort of every inside triangle by ``x`` (its reference in the tests)."""
     rows = np.flatnonzero(inside)
     order = rows[np.argsort(centres[rows, 0])]
     out = corner.copy()
