@@ -156,3 +156,14 @@ def test_the_compiled_assembly_is_its_numpy_reference(name: str, monkeypatch: py
     assert len(calls) == 1
     for got, expected in zip(assembled(*calls[0]), _assembled_reference(*calls[0])):
         np.testing.assert_array_equal(got, expected)
+
+
+@pytest.mark.parametrize("name", list(SHAPES))
+def test_the_compiled_ring_arrays_are_their_numpy_reference(name: str) -> None:
+    from medialaxis.planar.corners import ring_arrays, ring_arrays_reference
+
+    rings = simplify_rings(SHAPES[name][0], 0.0)
+    got, expected = ring_arrays(rings), ring_arrays_reference(rings)
+    for field in ("xy", "s", "start", "convex"):
+        np.testing.assert_array_equal(getattr(got, field), getattr(expected, field))
+    assert expected.convex.any()

@@ -37,7 +37,8 @@ import numpy as np
 from medialaxis._jit import njit
 from medialaxis.planar._kernels import piece_state
 
-__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "corner_piece_state_memo", "ERROR_SHARE"]
+__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "corner_piece_state_memo", "closed_rings",
+           "ERROR_SHARE"]
 
 #: A corner triangle's circumcentre is within this share of the tolerance of the bisector.
 ERROR_SHARE = 0.25
@@ -287,3 +288,40 @@ def corner_twins(a, s, xy, tolerance, min_length, ratio):  # type: ignore[no-unt
                 break
             i += step
     return twins[:count]
+
+
+@njit(cache=True, nogil=True)
+def closed_rings(vertices, open_start):  # type: ignore[no-untyped-def]
+    """``(xy, s, start, convex)`` of :class:`medialaxis.planar.corners.RingArrays` from the rings' vertices.
+
+    ``vertices`` holds the rings one after another, not closed, ring ``r`` at
+    ``open_start[r]:open_start[r + 1]``. Each ring is closed (its first
+    vertex repeated), ``s`` is its cumulative arc length as
+    :attr:`medialaxis.planar.sampling.Rings.arc_lengths` computes it (the
+    same numbers, tested), and a vertex is convex where the region, on the
+    rings' right, turns right.
+    """
+    n_rings = len(open_start) - 1
+    start = np.empty(n_rings + 1, np.int64)
+    start[0] = 0
+    for r in range(n_rings):
+        start[r + 1] = start[r] + open_start[r + 1] - open_start[r] + 1
+    xy = np.empty((start[-1], 2))
+    s = np.empty(start[-1])
+    convex = np.empty(start[-1], np.bool_)
+    for r in range(n_rings):
+        lo, m = start[r], open_start[r + 1] - open_start[r]
+        for i in range(m):
+            xy[lo + i, 0], xy[lo + i, 1] = vertices[open_start[r] + i, 0], vertices[open_start[r] + i, 1]
+        xy[lo + m, 0], xy[lo + m, 1] = xy[lo, 0], xy[lo, 1]
+        s[lo] = 0.0
+        for i in range(m):
+            dx, dy = xy[lo + i + 1, 0] - xy[lo + i, 0], xy[lo + i + 1, 1] - xy[lo + i, 1]
+            s[lo + i + 1] = s[lo + i] + np.sqrt(dx * dx + dy * dy)
+        for i in range(m + 1):
+            before = lo + m - 1 if i == 0 else lo + i - 1  # the vertex before, not the repeat
+            after = lo + 1 if i == m else lo + i + 1
+            ix, iy = xy[lo + i, 0] - xy[before, 0], xy[lo + i, 1] - xy[before, 1]
+            ox, oy = xy[after, 0] - xy[lo + i, 0], xy[after, 1] - xy[lo + i, 1]
+            convex[lo + i] = ix * oy - iy * ox < 0
+    return xy, s, start, convex

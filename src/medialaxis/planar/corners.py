@@ -25,10 +25,10 @@ import dataclasses
 
 import numpy as np
 
-from medialaxis.planar._corner_kernels import corner_twins
+from medialaxis.planar._corner_kernels import closed_rings, corner_twins
 from medialaxis.planar.sampling import Rings
 
-__all__ = ["RingArrays", "ring_arrays", "mirrored_corner_arcs"]
+__all__ = ["RingArrays", "ring_arrays", "ring_arrays_reference", "mirrored_corner_arcs"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -56,7 +56,15 @@ class RingArrays:
 
 def ring_arrays(rings: Rings) -> RingArrays:
     """The closed rings of ``rings`` with their arc lengths (:attr:`~medialaxis.planar.sampling.Rings.arc_lengths`, as
-    :func:`medialaxis.planar.sampling.sample` reads them) and convex vertices, as the compiled kernels take them."""
+    :func:`medialaxis.planar.sampling.sample` reads them) and convex vertices, as the compiled kernels take them
+    (:func:`medialaxis.planar._corner_kernels.closed_rings`; :func:`ring_arrays_reference` is the NumPy version)."""
+    sizes = [len(v) for v in rings.vertices]
+    vertices = np.ascontiguousarray(np.concatenate(rings.vertices), np.float64) if sizes else np.empty((0, 2))
+    return RingArrays(*closed_rings(vertices, np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)))
+
+
+def ring_arrays_reference(rings: Rings) -> RingArrays:
+    """NumPy version of :func:`ring_arrays` (for the tests)."""
     closed, s = rings.closed, rings.arc_lengths
     start = np.concatenate([[0], np.cumsum([len(c) for c in closed])]).astype(np.int64)
     xy = np.ascontiguousarray(np.concatenate(closed))
