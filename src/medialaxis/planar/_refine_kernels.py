@@ -37,8 +37,10 @@ CORNERS = 4
 def insert_batch(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-untyped-def]
     """Insert the vertices ``order`` into the triangulation, each walking from ``near[hint[m]]``.
 
-    ``near[v]`` is a live triangle at or close to vertex ``v`` (updated for
-    every inserted vertex). Returns ``(count, fresh, ok)``: ``fresh[t]``
+    ``near[v]`` is a live triangle at vertex ``v``, kept so for every vertex
+    of every new triangle (the walks from it are short: a step or two, where
+    the slot a vertex got when inserted, long since reused, made 12 on
+    average on the OSM lakes). Returns ``(count, fresh, ok)``: ``fresh[t]``
     marks the slots written by this batch; ``ok`` False where rounding made
     an insertion inconsistent (the triangulation is then unusable).
     """
@@ -52,7 +54,10 @@ def insert_batch(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-unt
         if new == 0:
             return count, fresh, False
         for j in range(new):
-            fresh[work[6, j]] = True
+            t = work[6, j]
+            fresh[t] = True
+            near[tv[t, 0]] = t  # the cavity's vertices lost their triangles: each new one is at its two
+            near[tv[t, 1]] = t
         last = work[6, 0]
         near[p] = last
     return count, fresh, True
