@@ -20,7 +20,7 @@ import numpy as np
 from medialaxis._jit import njit, prange
 
 __all__ = [
-    "closest_on_candidates", "closest_in_tree", "closest_point_reference", "face_spheres", "face_tree",
+    "box_distance2", "closest_on_candidates", "closest_in_tree", "closest_point_reference", "face_spheres", "face_tree",
     "pseudo_normal_sign", "REGION_FACE",
 ]
 
@@ -240,9 +240,10 @@ def face_tree(centre, tri_a, tri_b, tri_c):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
-def _box_distance2(p, low, high, n):  # type: ignore[no-untyped-def]
+def box_distance2(p, low, high, n):  # type: ignore[no-untyped-def]
+    """Squared distance from ``p`` to the box ``low[n]``..``high[n]`` (any dimension: the simplification's 4-D tree too)."""
     d = 0.0
-    for k in range(3):
+    for k in range(p.shape[0]):
         if p[k] < low[n, k]:
             d += (low[n, k] - p[k]) ** 2
         elif p[k] > high[n, k]:
@@ -275,11 +276,11 @@ def closest_in_tree(query, tri, sphere, tree, dist, point, face, region):  # typ
             while top > 0:
                 top -= 1
                 node = pending[top]
-                if _box_distance2(p, low, high, node) >= best:
+                if box_distance2(p, low, high, node) >= best:
                     continue
                 first = child[node]
                 if first >= 0:
-                    near_first = _box_distance2(p, low, high, first) <= _box_distance2(p, low, high, first + 1)
+                    near_first = box_distance2(p, low, high, first) <= box_distance2(p, low, high, first + 1)
                     pending[top], pending[top + 1] = (first + 1, first) if near_first else (first, first + 1)
                     top += 2
                     continue

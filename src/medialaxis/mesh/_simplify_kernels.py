@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
+from medialaxis.mesh._closest_kernels import box_distance2
 
 __all__ = ["kd_build", "kd_knn", "snap_one", "snap_many", "collapse", "optimum", "pair_costs", "span_cosines", "PENDING"]
 
@@ -133,17 +134,6 @@ def kd_build(pts, leaf=8):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
-def _box_distance(q, low, high, k):  # type: ignore[no-untyped-def]
-    out = 0.0
-    for c in range(q.shape[0]):
-        if q[c] < low[k, c]:
-            out += (low[k, c] - q[c]) ** 2
-        elif q[c] > high[k, c]:
-            out += (q[c] - high[k, c]) ** 2
-    return out
-
-
-@njit(cache=True, nogil=True)
 def kd_knn(q, k, pts, perm, start, stop, child, low, high):  # type: ignore[no-untyped-def]
     """Indices of the ``k`` points of the tree nearest ``q`` (Euclidean), nearest first."""
     k = min(k, pts.shape[0])
@@ -169,7 +159,7 @@ def kd_knn(q, k, pts, perm, start, stop, child, low, high):  # type: ignore[no-u
                     best_d[m], best_i[m] = dist, i
             continue
         a, b = child[node], child[node] + 1
-        da, db = _box_distance(q, low, high, a), _box_distance(q, low, high, b)
+        da, db = box_distance2(q, low, high, a), box_distance2(q, low, high, b)
         if da < db:
             a, b, da, db = b, a, db, da
         stack[top], bound[top], stack[top + 1], bound[top + 1] = a, da, b, db  # nearer on top
