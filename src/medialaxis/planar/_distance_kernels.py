@@ -17,7 +17,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["sample_grid", "nearest_in_grid", "piece_distance", "boundary_distance_kernel"]
+__all__ = ["sample_grid", "nearest_in_grid", "piece_distance", "boundary_distance_kernel", "grid_distance"]
 
 
 @njit(cache=True, nogil=True)
@@ -130,6 +130,12 @@ def piece_distance(points, nxt, prv, j, qx, qy):  # type: ignore[no-untyped-def]
 def boundary_distance_kernel(query, points, nxt, prv, k):  # type: ignore[no-untyped-def]
     """Distance from each query to the pieces at its ``k`` nearest samples (N > k) and at every one tied with the k-th."""
     x0, y0, cell, g, start, members = sample_grid(points)
+    return grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members)
+
+
+@njit(cache=True, nogil=True)
+def grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members):  # type: ignore[no-untyped-def]
+    """:func:`boundary_distance_kernel` in the grid of :func:`sample_grid` made already."""
     near, sure = nearest_in_grid(query, points, k, x0, y0, cell, g, start, members)
     out = np.empty(len(query))
     for q in range(len(query)):

@@ -27,7 +27,7 @@ from medialaxis.planar._kernels import nearest_piece_distance, triangle_centroid
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
 
-__all__ = ["RawAxis", "proper_triangles", "inner_triangles", "raw_axis", "boundary_distance", "dual_edges_reference"]
+__all__ = ["RawAxis", "proper_triangles", "inner_triangles", "axis_positions", "raw_axis", "boundary_distance", "dual_edges_reference"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -131,23 +131,31 @@ def _enclosing_centre(tri_pts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return mid, np.sqrt(longest), obtuse
 
 
-def raw_axis(
-    tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region: Any, locator: RegionLocator | None = None
-) -> RawAxis:
-    """Build the inner Voronoi graph (see module docstring); ``locator``: the compiled inside test of ``region``."""
+def axis_positions(
+    tri: Triangulation, inside: np.ndarray, region: Any, locator: RegionLocator | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """The inner triangles (ascending) and their Voronoi vertices, each one in the shape.
+
+    Voronoi vertices outside the region (obtuse triangles at sparse spots)
+    are moved to the centre of the triangle's smallest enclosing circle, or
+    its centroid, so every axis point lies in the shape.
+    """
     t_in = np.flatnonzero(inside)
     pos = tri.centers[t_in].copy()
-
-    # Voronoi vertices outside the region (obtuse triangles at sparse spots) are
-    # moved to the centre of the triangle's smallest enclosing circle, or its
-    # centroid, so every axis point lies in the shape.
     outside = ~_contains(region, locator, pos)
     if outside.any():
         tri_pts = tri.points[tri.simplices[t_in[outside]]]
         mid, _, _ = _enclosing_centre(tri_pts)
         ok = _contains(region, locator, mid)
         pos[outside] = np.where(ok[:, None], mid, tri_pts.mean(1))
+    return t_in, pos
 
+
+def raw_axis(
+    tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region: Any, locator: RegionLocator | None = None
+) -> RawAxis:
+    """Build the inner Voronoi graph (see module docstring); ``locator``: the compiled inside test of ``region``."""
+    t_in, pos = axis_positions(tri, inside, region, locator)
     # Dual edges between inner triangles (compiled; dual_edges_reference is the NumPy version)
     edges, contact, diameter, adjacent = dual_edges(tri.simplices, tri.neighbors, t_in.astype(np.int64),
                                                     np.ascontiguousarray(tri.points, dtype=np.float64),

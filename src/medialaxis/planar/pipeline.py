@@ -165,11 +165,10 @@ def planar_stages(
     return _stages(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary)
 
 
-def _stages(
-    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str,
-    prune: bool = True,
-) -> Stages:
-    """Every stage of the pipeline on a loaded input (``prune=False``: the result is the raw axis)."""
+def sampled(
+    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str
+) -> tuple[float, float, float, Rings, BoundarySample, Triangulation, np.ndarray]:
+    """The tolerance, lambda and detour in force, the rings, the sample, its triangulation and inner triangles."""
     region = src.region
     size = shape_size(region)
     if tolerance is None:
@@ -199,7 +198,18 @@ def _stages(
         smp, tri, inside = sample_and_triangulate(rings, rings.region, tolerance, min_length)
     if not inside.any():
         raise ComputationError("no Delaunay triangle lies inside the shape; is it degenerate?")
+    return tolerance, lam, detour, rings, smp, tri, inside
+
+
+def _stages(
+    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str,
+    prune: bool = True,
+) -> Stages:
+    """Every stage of the pipeline on a loaded input (``prune=False``: the result is the raw axis)."""
+    tolerance, lam, detour, rings, smp, tri, inside = sampled(src, lam=lam, tolerance=tolerance, detour=detour,
+                                                             boundary=boundary)
     ax: RawAxis = raw_axis(tri, inside, smp, rings.region, rings.locator)
+    region = src.region
     # Co-circular samples give clusters of coincident Voronoi vertices (the
     # centre of a disc, the mid-line of a rectangle): one node each.
     cluster, edges, kept = merge_close_nodes(ax.points, ax.edges, tolerance)

@@ -1,0 +1,153 @@
+"""Compiled: the pruned axis from the inner Delaunay triangles in one call, the per-feature work of GIS layers.
+
+:func:`pruned_axis` computes what :func:`medialaxis.planar.axis.raw_axis`
+(after :func:`~medialaxis.planar.axis.axis_positions`), the merging of
+coincident Voronoi vertices of :mod:`medialaxis.planar.pipeline` and
+:func:`medialaxis.planar.pruning.prune_graph` compute, with the same kernels
+(:func:`~medialaxis.planar._graph_kernels.dual_edges`,
+:func:`~medialaxis.planar._distance_kernels.grid_distance`,
+:func:`~medialaxis.planar._graph_kernels.merge_clusters`, the leaf peeling and
+the regrowing of tips) and the same arithmetic (NumPy's elementwise
+operations, ``np.bincount``'s sums in index order, ``np.lexsort``'s first
+node of largest radius), without the Python between them. The tests compare
+it with :func:`medialaxis.planar.pipeline.voronoi_medial_axis` bit for bit.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis._jit import njit
+from medialaxis.core._kernels import peel_leaves_kernel
+from medialaxis.planar._distance_kernels import grid_distance, sample_grid
+from medialaxis.planar._graph_kernels import (
+    adjacency_lists,
+    component_labels,
+    dual_edges,
+    merge_clusters,
+    regrow_tips_kernel,
+)
+
+__all__ = ["contact_arcs", "merged_nodes", "pruned_graph", "pruned_axis"]
+
+
+@njit(cache=True, nogil=True)
+def contact_arcs(contact, arc, ring, ring_length):  # type: ignore[no-untyped-def]
+    """:meth:`medialaxis.planar.sampling.BoundarySample.arc_between` of each contact pair (inf across rings)."""
+    out = np.empty(len(contact))
+    for e in range(len(contact)):
+        a, b = contact[e, 0], contact[e, 1]
+        if ring[a] == ring[b]:
+            d = abs(arc[a] - arc[b])
+            out[e] = min(d, ring_length[ring[a]] - d)
+        else:
+            out[e] = np.inf
+    return out
+
+
+@njit(cache=True, nogil=True)
+def merged_nodes(pos, radii, edges, tolerance):  # type: ignore[no-untyped-def]
+    """Clusters of edges shorter than ``tolerance`` contracted, as the pipeline does with :func:`merge_close_nodes`.
+
+    Returns ``(cluster, kept, points, radii, count)``: each node's cluster,
+    the edges kept, each cluster's mean point and radius, and its size.
+    """
+    short = np.empty(len(edges), np.bool_)
+    for e in range(len(edges)):
+        dx = pos[edges[e, 0], 0] - pos[edges[e, 1], 0]
+        dy = pos[edges[e, 0], 1] - pos[edges[e, 1], 1]
+        short[e] = np.sqrt(dx * dx + dy * dy) < tolerance
+    cluster, kept = merge_clusters(len(pos), edges, short)
+    n = cluster.max() + 1 if len(cluster) else 0
+    count = np.zeros(n, np.int64)
+    sums = np.zeros((n, 3))
+    for i in range(len(pos)):  # np.bincount's sums, in index order
+        c = cluster[i]
+        count[c] += 1
+        sums[c, 0] += pos[i, 0]
+        sums[c, 1] += pos[i, 1]
+        sums[c, 2] += radii[i]
+    points = np.empty((n, 2))
+    mean_radii = np.empty(n)
+    for c in range(n):
+        points[c, 0] = sums[c, 0] / count[c]
+        points[c, 1] = sums[c, 1] / count[c]
+        mean_radii[c] = sums[c, 2] / count[c]
+    return cluster, kept, points, mean_radii, count
+
+
+@njit(cache=True, nogil=True)
+def pruned_graph(radii, edges, diameter, arc, adjacent, lam, detour, regrow_detour):  # type: ignore[no-untyped-def]
+    """:func:`medialaxis.planar.pruning.prune_graph`: ``(kept_node_ids, kept_edges_renumbered)``."""
+    n, m = len(radii), len(edges)
+    removable = np.empty(m, np.bool_)
+    growable = np.empty(m, np.bool_)
+    for e in range(m):
+        excess = arc[e] - diameter[e]
+        removable[e] = not ((diameter[e] >= lam) and (excess >= detour * diameter[e]) and (excess >= 2.0 * lam))
+        growable[e] = (diameter[e] >= lam) and not adjacent[e] and (excess >= regrow_detour * detour * diameter[e])
+    keep = np.ones(m, np.bool_)
+    if m:
+        indptr, nbrs, eids = adjacency_lists(n, edges)
+        peel_leaves_kernel(indptr, nbrs, eids, np.diff(indptr), edges, removable, keep)
+        if keep.any():
+            keep = regrow_tips_kernel(indptr, nbrs, eids, edges, keep, growable)
+    used = np.zeros(n, np.bool_)
+    if n:
+        # components with no edge left keep their node of largest radius (the first such)
+        label = component_labels(n, edges, np.ones(m, np.bool_))
+        n_comp = label.max() + 1
+        has_edge = np.zeros(n_comp, np.bool_)
+        for e in range(m):
+            if keep[e]:
+                has_edge[label[edges[e, 0]]] = True
+                has_edge[label[edges[e, 1]]] = True
+        best = np.full(n_comp, -1, np.int64)
+        for i in range(n):
+            if best[label[i]] < 0 or radii[i] > radii[best[label[i]]]:
+                best[label[i]] = i
+        for c in range(n_comp):
+            if not has_edge[c] and best[c] >= 0:
+                used[best[c]] = True
+    n_kept = 0
+    for e in range(m):
+        if keep[e]:
+            used[edges[e, 0]] = True
+            used[edges[e, 1]] = True
+            n_kept += 1
+    old = np.flatnonzero(used)
+    new_of_old = np.full(n, -1, np.int64)
+    for j in range(len(old)):
+        new_of_old[old[j]] = j
+    out = np.empty((n_kept, 2), np.int64)
+    j = 0
+    for e in range(m):
+        if keep[e]:
+            out[j, 0], out[j, 1] = new_of_old[edges[e, 0]], new_of_old[edges[e, 1]]
+            j += 1
+    return old, out
+
+
+@njit(cache=True, nogil=True)
+def pruned_axis(pos, simplices, neighbors, inner, tri_points, points, nxt, prv, arc, ring, ring_length,  # type: ignore[no-untyped-def]
+                tolerance, lam, detour, regrow_detour, k):
+    """``(points, radii, edges)`` of the pruned axis whose raw nodes sit at ``pos`` in the triangles ``inner``.
+
+    ``points``, ``nxt``, ``prv``, ``arc``, ``ring``, ``ring_length`` describe
+    the boundary sample (more than ``k`` samples; radii from the pieces at
+    the ``k`` nearest), ``tri_points`` the triangulation's vertices.
+    """
+    edges, contact, diameter, adjacent = dual_edges(simplices, neighbors, inner, tri_points, nxt)
+    contact_arc = contact_arcs(contact, arc, ring, ring_length)
+    x0, y0, cell, g, start, members = sample_grid(points)
+    radii = grid_distance(pos, points, nxt, prv, k, x0, y0, cell, g, start, members)
+    cluster, kept, node_points, node_radii, count = merged_nodes(pos, radii, edges, tolerance)
+    merged = np.flatnonzero(count > 1)
+    if len(merged):  # a merged node's radius is its distance, not the mean of its members'
+        node_radii[merged] = grid_distance(node_points[merged], points, nxt, prv, k, x0, y0, cell, g, start, members)
+    node_edges = np.empty((len(kept), 2), np.int64)
+    for j in range(len(kept)):
+        node_edges[j, 0], node_edges[j, 1] = cluster[edges[kept[j], 0]], cluster[edges[kept[j], 1]]
+    old, out = pruned_graph(node_radii, node_edges, diameter[kept], contact_arc[kept], adjacent[kept], lam, detour,
+                            regrow_detour)
+    return node_points[old], node_radii[old], out
