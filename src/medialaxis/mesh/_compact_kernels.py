@@ -12,7 +12,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["structure", "link_ok", "select", "costs", "moves", "lattice"]
+__all__ = ["structure", "link_ok", "select", "feature_lines", "costs", "moves", "lattice"]
 
 
 @njit(cache=True, nogil=True)
@@ -201,7 +201,7 @@ def _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex, enough):  # pra
     one (a body's centre to a finger's root) is costed by how far ``j``
     lies from them, not only by the tangent planes ``i`` keeps. The search
     stops at a distance of at most ``enough`` (then some distance between
-    the true one and ``enough`` is returned).
+    the true one and ``enough`` is returned, and ``True``).
     """
     best = np.inf
     for q in range(ptr[j], ptr[j + 1]):
@@ -214,31 +214,24 @@ def _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex, enough):  # pra
             if apex[r] != i:
                 best = min(best, _triangle_distance2(spheres, j, i, k, apex[r]))
         if np.sqrt(best) <= enough:
-            return np.sqrt(best)
+            return np.sqrt(best), True
     if best == np.inf:  # i is its only neighbour
         best = 0.0
         for k in range(4):
             best += (spheres[j, k] - spheres[i, k]) ** 2
-    return np.sqrt(best)
+    return np.sqrt(best), False
 
 
 @njit(cache=True, nogil=True)
-def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second, star, exact):  # pragma: no cover - compiled
-    """Cost of merging ``j`` into ``i`` and the feature move it makes (see the module docstring).
-
-    The cost is ``max(sqem, move)`` with ``move`` at least the slab
-    distance: without ``exact``, the slab search stops once it is below the
-    other terms, which fixes the cost but may leave the move returned too
-    high (:func:`moves` gives the exact one): 1.44 -> 0.67 s CPU for the
-    first round of the uv ellipsoid's 1.2M edges, one thread.
-    """
+def _cheap_terms(j, i, spheres, qa, qb, qc, count, moved, lines):  # pragma: no cover - compiled
+    """The terms of merging ``j`` into ``i`` other than the slab distance: ``(sqem, rest)`` (the module docstring's (a), (b))."""
     quad = qc[j]
     for a in range(4):
         quad -= 2.0 * qb[j, a] * spheres[i, a]
         for b in range(4):
             quad += spheres[i, a] * qa[j, a, b] * spheres[i, b]
     sqem = np.sqrt(max(quad, 0.0) / count[j])
-    ptr, idx, eid, apex_ptr, apex = star
+    degree, first, second = lines
     shift = 0.0
     if degree[j] != 0:
         far = -1
@@ -251,14 +244,37 @@ def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, degree, first, second, 
                 shift += (spheres[j, a] - spheres[i, a]) ** 2
         else:  # along its line: the distance to the segment that replaces it
             shift = _segment_distance2(spheres, j, i, far, 3)
-    rest = max(moved[j], np.sqrt(shift))  # shift is 0 for a vertex off every feature
-    slab = _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex, -np.inf if exact else max(sqem, rest))
+    return sqem, max(moved[j], np.sqrt(shift))  # shift is 0 for a vertex off every feature
+
+
+@njit(cache=True, nogil=True)
+def _merge_cost(j, i, spheres, qa, qb, qc, count, moved, lines, star, exact):  # pragma: no cover - compiled
+    """Cost of merging ``j`` into ``i`` and the feature move it makes (see the module docstring).
+
+    The cost is ``max(sqem, move)``, the move ``max(rest, slab)`` with
+    ``rest`` the feature terms. The slab search stops once below ``rest``
+    (the move is then ``rest``) or, without ``exact``, below the other
+    terms, which fixes the cost but may leave the move unknown: then the
+    move returned is NaN (:func:`moves` gives it). 1.44 -> 0.67 s CPU for
+    the first round of the uv ellipsoid's 1.2M edges, one thread.
+    """
+    sqem, rest = _cheap_terms(j, i, spheres, qa, qb, qc, count, moved, lines)
+    return _with_slab(j, i, sqem, rest, spheres, star, exact)
+
+
+@njit(cache=True, nogil=True)
+def _with_slab(j, i, sqem, rest, spheres, star, exact):  # pragma: no cover - compiled
+    """:func:`_merge_cost` given its cheap terms ``sqem`` and ``rest``."""
+    ptr, idx, eid, apex_ptr, apex = star
+    slab, stopped = _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex, rest if exact else max(sqem, rest))
     move = max(rest, slab)
+    if stopped and slab > rest:
+        return max(sqem, move), np.nan  # the move lies between rest and slab
     return max(sqem, move), move
 
 
 @njit(cache=True, nogil=True)
-def _feature_lines(edges, feature, n):  # pragma: no cover - compiled
+def feature_lines(edges, feature, n):  # pragma: no cover - compiled
     """Per vertex: how many feature edges it has, and the other ends of the first two."""
     degree = np.zeros(n, np.int64)
     first = np.full(n, -1, np.int64)
@@ -276,36 +292,48 @@ def _feature_lines(edges, feature, n):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def costs(edges, cand, spheres, qa, qb, qc, count, moved, feature, star):  # pragma: no cover - compiled
-    """Cheaper direction of merging each candidate edge: ``src -> dst`` and its cost.
+def costs(edges, cand, spheres, qa, qb, qc, count, moved, lines, star):  # pragma: no cover - compiled
+    """Cheaper direction of merging each candidate edge: ``src -> dst``, its cost and its feature move.
 
-    Features are the edges not shared by exactly two triangles; a vertex
-    with two of them lies on a line (ties go to merging the first end into the second).
-    The feature moves of the merges taken come from :func:`moves`.
+    Features are the edges not shared by exactly two triangles; ``lines`` are
+    :func:`feature_lines` of them (a vertex with two lies on a line; ties go
+    to merging the first end into the second). The direction whose terms
+    other than the slab distance are lower is costed first, and the other
+    only if those terms do not already make it dearer. The move is NaN where
+    the slab search stopped before fixing it (:func:`moves` gives those).
     """
-    degree, first, second = _feature_lines(edges, feature, spheres.shape[0])
     m = cand.shape[0]
     src = np.empty(m, np.int64)
     dst = np.empty(m, np.int64)
     cost = np.empty(m)
+    move = np.empty(m)
     for k in prange(m):
         u, v = edges[cand[k], 0], edges[cand[k], 1]
-        c_uv = _merge_cost(u, v, spheres, qa, qb, qc, count, moved, degree, first, second, star, False)[0]
-        c_vu = _merge_cost(v, u, spheres, qa, qb, qc, count, moved, degree, first, second, star, False)[0]
-        if c_uv <= c_vu:
-            src[k], dst[k], cost[k] = u, v, c_uv
+        s_uv, r_uv = _cheap_terms(u, v, spheres, qa, qb, qc, count, moved, lines)
+        s_vu, r_vu = _cheap_terms(v, u, spheres, qa, qb, qc, count, moved, lines)
+        c_uv = c_vu = np.inf
+        m_uv = m_vu = np.nan
+        if max(s_uv, r_uv) <= max(s_vu, r_vu):
+            c_uv, m_uv = _with_slab(u, v, s_uv, r_uv, spheres, star, False)
+            if max(s_vu, r_vu) < c_uv:  # else c_vu >= c_uv
+                c_vu, m_vu = _with_slab(v, u, s_vu, r_vu, spheres, star, False)
         else:
-            src[k], dst[k], cost[k] = v, u, c_vu
-    return src, dst, cost
+            c_vu, m_vu = _with_slab(v, u, s_vu, r_vu, spheres, star, False)
+            if max(s_uv, r_uv) <= c_vu:  # else c_uv > c_vu
+                c_uv, m_uv = _with_slab(u, v, s_uv, r_uv, spheres, star, False)
+        if c_uv <= c_vu:
+            src[k], dst[k], cost[k], move[k] = u, v, c_uv, m_uv
+        else:
+            src[k], dst[k], cost[k], move[k] = v, u, c_vu, m_vu
+    return src, dst, cost, move
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def moves(edges, src, dst, spheres, qa, qb, qc, count, moved, feature, star):  # pragma: no cover - compiled
+def moves(src, dst, spheres, qa, qb, qc, count, moved, lines, star):  # pragma: no cover - compiled
     """Feature move (see the module docstring) of each merge ``src -> dst``, on the complex of :func:`costs`."""
-    degree, first, second = _feature_lines(edges, feature, spheres.shape[0])
     out = np.empty(src.shape[0])
     for k in prange(src.shape[0]):
-        out[k] = _merge_cost(src[k], dst[k], spheres, qa, qb, qc, count, moved, degree, first, second, star, True)[1]
+        out[k] = _merge_cost(src[k], dst[k], spheres, qa, qb, qc, count, moved, lines, star, True)[1]
     return out
 
 

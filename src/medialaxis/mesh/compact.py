@@ -67,7 +67,7 @@ from scipy.spatial import cKDTree
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers, void_faces
 from medialaxis.core.result import MedialAxis
-from medialaxis.mesh._compact_kernels import costs, link_ok, moves, select, structure
+from medialaxis.mesh._compact_kernels import costs, feature_lines, link_ok, moves, select, structure
 from medialaxis.mesh._rows import first_of_rows
 from medialaxis.mesh.compact_inside import CHUNK, collapses_inside
 
@@ -192,7 +192,7 @@ def compact_complex(
     rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
-        star = ok = cand = src = dst = cost = None  # the last round's, freed before this one's are made
+        star = ok = cand = src = dst = cost = move = lines = None  # the last round's, freed before this one's are made
         ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
         tri_count = np.diff(apex_ptr)
         ok = link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
@@ -200,7 +200,8 @@ def compact_complex(
         if not len(cand):
             break
         star = (ptr, idx, eid, apex_ptr, apex)
-        src, dst, cost = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, tri_count != 2, star)
+        lines = feature_lines(all_edges, tri_count != 2, n)
+        src, dst, cost, move = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, lines, star)
         within = np.flatnonzero(cost <= tolerance)
         if len(blocked):
             key = all_edges[cand[within], 0] * n + all_edges[cand[within], 1]
@@ -217,7 +218,10 @@ def compact_complex(
             if not len(chosen):
                 continue
         j, i = src[chosen], dst[chosen]  # no vertex in two merges: i and j are apart
-        moved[i] = np.maximum(moved[i], moves(all_edges, j, i, spheres, qa, qb, qc, count, moved, tri_count != 2, star))
+        step = move[chosen]
+        unknown = np.flatnonzero(np.isnan(step))  # the slab searches of costs() that stopped before fixing the move
+        step[unknown] = moves(j[unknown], i[unknown], spheres, qa, qb, qc, count, moved, lines, star)
+        moved[i] = np.maximum(moved[i], step)
         qa[i] += qa[j]
         qb[i] += qb[j]
         qc[i] += qc[j]
