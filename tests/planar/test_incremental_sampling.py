@@ -12,7 +12,9 @@ from scipy.spatial import Delaunay, cKDTree
 from shapely.geometry import MultiPolygon, Point, box
 
 from medialaxis.planar import adaptive
-from medialaxis.planar.delaunay import circumcircles
+from medialaxis.planar._refine_kernels import first_sample as adaptive_first_sample
+from medialaxis.planar._rounds_kernels import FAILED
+from medialaxis.planar.delaunay import circumcircles, jitter
 from medialaxis.planar.pipeline import planar_stages
 from medialaxis.planar.sampling import simplify_rings
 
@@ -81,11 +83,11 @@ def test_a_failed_insertion_falls_back_to_rounds_from_scratch(monkeypatch: pytes
     ref = adaptive.rounds_from_scratch(rings, rings.region, tolerance, tolerance)
     calls = []
 
-    def failing(x, y, tv, tn, count, order, *args):  # type: ignore[no-untyped-def]
-        calls.append(len(order))
-        return count, False, np.empty(0, np.int64), np.empty(0), np.empty(0)
+    def failing(round_, *args):  # type: ignore[no-untyped-def]
+        calls.append(round_)
+        return (FAILED, round_, False) + (None,) * 19  # the status, the round, settled, the state
 
-    monkeypatch.setattr(adaptive, "insert_round", failing)
+    monkeypatch.setattr(adaptive, "incremental_rounds", failing)
     smp, tri, inside = adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
     assert calls
     np.testing.assert_array_equal(smp.points, ref[0].points)
@@ -167,3 +169,29 @@ def test_the_compiled_ring_arrays_are_their_numpy_reference(name: str) -> None:
     for field in ("xy", "s", "start", "convex"):
         np.testing.assert_array_equal(getattr(got, field), getattr(expected, field))
     assert expected.convex.any()
+
+
+@pytest.mark.parametrize("name", ["disc with holes", "two pieces"])
+def test_the_rounds_resumed_from_python_give_the_same_sample(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Back in Python after every round (a large shape) or for a longer jitter table: the same sample and triangles."""
+    region, tolerance = SHAPES[name]
+    rings = simplify_rings(region, 0.0)
+    smp, tri, inside = adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
+    monkeypatch.setattr(adaptive, "ONE_ROUND_ABOVE", 0)
+    lengths, first = [], []
+
+    def first_sample(*args):  # type: ignore[no-untyped-def]
+        out = adaptive_first_sample(*args)
+        first.append(len(out[0]))
+        return out
+
+    def short_table(n: int) -> np.ndarray:  # the first table just holds the first sample
+        lengths.append(n)
+        return jitter(n)[: first[0]] if len(lengths) == 1 else jitter(n)
+
+    monkeypatch.setattr(adaptive, "first_sample", first_sample)
+    monkeypatch.setattr(adaptive, "jitter", short_table)
+    again, tri_again, inside_again = adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
+    assert len(lengths) > 1  # the table was made longer
+    np.testing.assert_array_equal(again.points, smp.points)
+    np.testing.assert_array_equal(tri_again.simplices[inside_again], tri.simplices[inside])

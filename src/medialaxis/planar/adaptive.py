@@ -25,7 +25,8 @@ import shapely
 from medialaxis._progress import progress
 from medialaxis.planar._corner_kernels import corner_piece_state
 from medialaxis.planar._delaunay_kernels import corner_square, insertion_order
-from medialaxis.planar._refine_kernels import CORNERS, assembled, first_sample, insert_round, refine_round
+from medialaxis.planar._refine_kernels import CORNERS, assembled, first_sample
+from medialaxis.planar._rounds_kernels import ASK_GEOS, DONE, FAILED, MORE_JITTER, incremental_rounds
 from medialaxis.planar.axis import inner_triangles
 from medialaxis.planar.corners import RingArrays, mirrored_corner_arcs, ring_arrays
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
@@ -37,6 +38,8 @@ __all__ = ["sample_and_triangulate", "rounds_from_scratch", "MAX_REFINEMENTS"]
 MAX_REFINEMENTS = 12
 #: Fewest new samples, as a share of the sample, for another round after the sample conforms.
 SETTLED_SHARE = 0.05
+#: Past this many vertices the compiled rounds come back to Python after each round (progress bar, Ctrl-C).
+ONE_ROUND_ABOVE = 20_000
 #: Longest piece, as a share of its inner circumradius (see :func:`medialaxis.planar.sampling.refine_arcs`).
 RATIO = 0.5
 
@@ -129,46 +132,34 @@ def _incremental(
     count = 2
     batch = insertion_order(x[CORNERS:], y[CORNERS:]) + CORNERS
     hint = np.full(len(batch), -1, np.int64)
-    settled = False
-    for round_ in progress(range(MAX_REFINEMENTS), desc="adaptive sampling"):
-        count, ok, unsure, gx, gy = insert_round(
-            x, y, tv, tn, count, batch, hint, near, points, centre, radius, where, 1e-7 * extent, locator.segments,
-            locator.start, locator.members, locator.y0, locator.height)
-        if not ok:
-            return None
-        if len(unsure):
-            shapely.prepare(region)
-            where[unsure] = shapely.contains_xy(region, gx, gy)
-        if settled or round_ == MAX_REFINEMENTS - 1:
-            break
+    rounds = progress(range(MAX_REFINEMENTS), desc="adaptive sampling")
+    next(rounds, None)
+    round_, inserted, settled = 0, False, False
+    try:
         while True:
-            m, settled, points, arc, ring, nxt, x, y, near, batch, hint = refine_round(
-                tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, closed.s, closed.xy, closed.start,
-                closed.convex, ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO,
-                SETTLED_SHARE)
-            if m >= 0:
+            (status, now, settled, count, x, y, tv, tn, batch, hint, near, points, centre, radius, where, memo, arc,
+             ring, nxt, unsure, gx, gy) = incremental_rounds(
+                round_, inserted, settled, MAX_REFINEMENTS, ONE_ROUND_ABOVE, count, x, y, tv, tn, batch, hint, near,
+                points, centre, radius, where, memo, arc, ring, nxt, 1e-7 * extent, locator.segments, locator.start,
+                locator.members, locator.y0, locator.height, closed.s, closed.xy, closed.start, closed.convex,
+                ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO, SETTLED_SHARE)
+            for _ in range(now - round_):  # the rounds done, for the progress bar
+                next(rounds, None)
+            round_, inserted = now, status in (ASK_GEOS, MORE_JITTER)
+            if status == FAILED:
+                return None
+            if status == ASK_GEOS:
+                shapely.prepare(region)
+                where[unsure] = shapely.contains_xy(region, gx, gy)
+            elif status == MORE_JITTER:
+                shaken = jitter(2 * len(shaken))
+            elif status == DONE:
                 break
-            shaken = jitter(2 * len(shaken))
-        if m == 0:
-            break
-        slots = 2 * (len(x) - CORNERS) + 2
-        if len(tv) < slots:  # all six have the rows of tv
-            tv, tn, centre, radius, where = (_grow(a, slots, count) for a in (tv, tn, centre, radius, where))
-            memo = _grow(memo, slots, count, fill=-1)
+    finally:
+        rounds.close()
     n = len(x)
     return _assembled(points[CORNERS:n], arc[CORNERS:n], ring[CORNERS:n], ring_length, tv, tn, count,
                       centre, radius, where)
-
-
-def _grow(array: np.ndarray, rows: int, keep: int, fill: int | None = None) -> np.ndarray:
-    """``array`` with at least ``rows`` rows, its first ``keep`` rows kept (the others ``fill``, if given)."""
-    if len(array) >= rows:
-        return array
-    out = np.empty((max(rows, 2 * len(array)),) + array.shape[1:], array.dtype)
-    out[:keep] = array[:keep]
-    if fill is not None:
-        out[keep:] = fill
-    return out
 
 
 def _assembled(
