@@ -135,3 +135,29 @@ def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> No
         np.testing.assert_array_equal(got[1], fresh[1])
     np.testing.assert_array_equal(memo[:, :3], tri.simplices)
     assert memo[:, 3].any()  # the L shape's convex corners have corner triangles
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_the_bucketed_whole_circles_are_the_sorted_scans(seed: int) -> None:
+    """Circles repeated exactly, within the scan's 1e-9 and just beyond it, equal x of different circles, not finite."""
+    from medialaxis.planar._corner_kernels import _whole_circles, whole_circles
+
+    rng = np.random.default_rng(seed)
+    n = 400
+    centres = rng.uniform(-50, 50, (n, 2)) * rng.choice([1e-3, 1.0, 1e3])
+    radii = rng.uniform(0.1, 5, n)
+    for _ in range(60):  # copies of a circle: exact, near (the scan's eps is 1e-9 of r + |x| + |y|), or only x kept
+        a, b = rng.integers(0, n, 2)
+        scale = 1e-9 * (radii[a] + np.abs(centres[a]).sum())
+        kind = rng.integers(0, 3)
+        nudge = 0.0 if kind == 0 else rng.choice([0.3, 0.9, 1.1, 3.0]) * scale * rng.choice([-1, 1], 3)
+        centres[b] = centres[a] + (nudge[:2] if kind else 0.0)
+        radii[b] = radii[a] + (nudge[2] if kind else 0.0)
+        if kind == 2:
+            centres[b, 1] += rng.uniform(0, 1)  # the same x only
+    if seed == 0:
+        centres[5, 0] = np.nan
+    inside = rng.random(n) < 0.9
+    corner = inside & (rng.random(n) < 0.3)
+    np.testing.assert_array_equal(whole_circles(corner, inside, centres, radii),
+                                  _whole_circles(corner, inside, centres, radii))

@@ -37,7 +37,7 @@ import numpy as np
 from medialaxis._jit import njit
 from medialaxis.planar._kernels import piece_state
 
-__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "corner_piece_state_memo", "closed_rings",
+__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "corner_piece_state_memo", "whole_circles", "closed_rings",
            "ERROR_SHARE"]
 
 #: A corner triangle's circumcentre is within this share of the tolerance of the bisector.
@@ -141,7 +141,7 @@ def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, o
             corner[t] = corner_triangle(a, b, c, centres[t, 0], centres[t, 1], edge, at_vertex, ring, rings_xy,
                                         rings_start, convex, tolerance)
         memo[t, 0], memo[t, 1], memo[t, 2], memo[t, 3] = a, b, c, 1 if corner[t] else 0
-    counted = inside & ~_whole_circles(corner, inside, centres, radii)
+    counted = inside & ~whole_circles(corner, inside, centres, radii)
     conforming, radius = piece_state(simplices, counted, radii, nxt)
     _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex)
     return conforming, radius
@@ -173,6 +173,69 @@ def _whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-d
                 out[t] = False
                 out[u] = False
     return out
+
+
+@njit(cache=True, nogil=True)
+def whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-def]
+    """:func:`_whole_circles` (its reference) without sorting every inside triangle.
+
+    Only a corner triangle can change, and only by a triangle that is not one
+    whose circle the sort would compare with it: their centres' ``x`` lie
+    within ``eps`` of the one first in ``x``, itself below the largest
+    ``eps``. Buckets of ``x`` at least that wide (a counting sort) give each
+    corner triangle its few candidates; each pair is then decided as the
+    sorted scan decides it. Equal ``x`` in such a pair, whose order the sort
+    would pick and that the order would decide, or a centre that is not
+    finite: the sorted scan itself.
+    """
+    rows = np.flatnonzero(inside)
+    out = corner.copy()
+    if len(rows) < 2:
+        return out
+    lo, hi, widest = np.inf, -np.inf, 0.0
+    for t in rows:
+        if not (np.isfinite(centres[t, 0]) and np.isfinite(centres[t, 1]) and np.isfinite(radii[t])):
+            return _whole_circles(corner, inside, centres, radii)
+        lo, hi = min(lo, centres[t, 0]), max(hi, centres[t, 0])
+        widest = max(widest, 1e-9 * (radii[t] + abs(centres[t, 0]) + abs(centres[t, 1])))
+    width = max((hi - lo) / len(rows), widest, 1e-300)
+    n_buckets = int((hi - lo) / width) + 1
+    bucket = np.empty(len(rows), np.int64)
+    start = np.zeros(n_buckets + 1, np.int64)
+    for i in range(len(rows)):
+        bucket[i] = min(int((centres[rows[i], 0] - lo) / width), n_buckets - 1)
+        start[bucket[i] + 1] += 1
+    for b in range(n_buckets):
+        start[b + 1] += start[b]
+    fill = start[:-1].copy()
+    members = np.empty(len(rows), np.int64)
+    for i in range(len(rows)):
+        members[fill[bucket[i]]] = rows[i]
+        fill[bucket[i]] += 1
+    for i in range(len(rows)):
+        c = rows[i]
+        if not corner[c]:
+            continue
+        for b in range(max(bucket[i] - 2, 0), min(bucket[i] + 2, n_buckets - 1) + 1):
+            for m in range(start[b], start[b + 1]):
+                u = members[m]
+                if corner[u] or abs(centres[u, 0] - centres[c, 0]) > widest:
+                    continue
+                first = _same_circle(c, u, centres, radii) if centres[c, 0] < centres[u, 0] else \
+                    _same_circle(u, c, centres, radii)
+                if centres[u, 0] == centres[c, 0] and first != _same_circle(c, u, centres, radii):
+                    return _whole_circles(corner, inside, centres, radii)  # the sort's order decides
+                if first:
+                    out[c] = False
+    return out
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _same_circle(t, u, centres, radii):  # type: ignore[no-untyped-def]
+    """Whether the sorted scan of :func:`_whole_circles` finds ``u``'s circle ``t``'s, ``t`` coming first."""
+    eps = 1e-9 * (radii[t] + abs(centres[t, 0]) + abs(centres[t, 1]))
+    return (centres[u, 0] - centres[t, 0] <= eps and abs(centres[u, 1] - centres[t, 1]) <= eps
+            and abs(radii[u] - radii[t]) <= eps)
 
 
 @njit(cache=True, nogil=True)

@@ -136,7 +136,7 @@ def topology_preserving_simplify(region: Any, tolerance: float) -> Any:
 def simplify_rings(region: Any, tolerance: float) -> Rings:
     """Douglas-Peucker simplification of every ring to ``tolerance`` (topology kept)."""
     simple = topology_preserving_simplify(region, tolerance) if tolerance > 0 else region
-    if simple.is_empty or not simple.is_valid:
+    if simple is not region and (simple.is_empty or not simple.is_valid):
         simple = region
     simple = shapely.normalize(simple)
     return Rings(_rings_of(simple), simple)
