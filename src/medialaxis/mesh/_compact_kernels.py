@@ -12,7 +12,7 @@ import numpy as np
 
 from medialaxis._jit import njit, prange
 
-__all__ = ["structure", "link_ok", "select", "feature_lines", "costs", "moves", "lattice"]
+__all__ = ["structure", "link_ok", "select", "feature_lines", "costs", "moves", "lattice", "lattice_steps"]
 
 
 @njit(cache=True, nogil=True)
@@ -209,6 +209,8 @@ def _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex, enough):  # pra
         if k == i:
             continue
         best = min(best, _segment_distance2(spheres, j, i, k))
+        if np.sqrt(best) <= enough:  # the triangles on edge jk hold segment ik: they can only be nearer
+            return np.sqrt(best), True
         e = eid[q]
         for r in range(apex_ptr[e], apex_ptr[e + 1]):
             if apex[r] != i:
@@ -338,19 +340,25 @@ def moves(src, dst, spheres, qa, qb, qc, count, moved, lines, star):  # pragma: 
 
 
 @njit(cache=True, nogil=True)
+def lattice_steps(spheres, a, b, c, spacing):  # pragma: no cover - compiled
+    """Steps of :func:`lattice` along the longest side of triangle ``a, b, c`` (edge: ``c == b``); it has samples from 2 on."""
+    longest = 0.0
+    for u, v in ((a, b), (b, c), (c, a)):
+        d = 0.0
+        for k in range(4):
+            d += (spheres[u, k] - spheres[v, k]) ** 2
+        longest = max(longest, d)
+    return int(np.ceil(np.sqrt(longest) / spacing))
+
+
+@njit(cache=True, nogil=True)
 def _lattice(spheres, prims, balls, spacing, tolerance, out, owner):  # pragma: no cover - compiled
     """Fill ``out`` and ``owner`` (if not empty) with :func:`lattice`'s samples; returns their count."""
     count = 0
     s = np.empty(4)
     for p in range(prims.shape[0]):
         a, b, c = prims[p, 0], prims[p, 1], prims[p, 2]
-        longest = 0.0
-        for u, v in ((a, b), (b, c), (c, a)):
-            d = 0.0
-            for k in range(4):
-                d += (spheres[u, k] - spheres[v, k]) ** 2
-            longest = max(longest, d)
-        steps = int(np.ceil(np.sqrt(longest) / spacing))
+        steps = lattice_steps(spheres, a, b, c, spacing)
         for u in range(steps + 1):
             for w in range(1 if b == c else steps - u + 1):  # an edge (b == c): w = 0 only
                 if (u == 0 and w == 0) or u == steps or w == steps:  # the corners

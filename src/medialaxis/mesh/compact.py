@@ -68,8 +68,9 @@ from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers, void_faces
 from medialaxis.core.result import MedialAxis
 from medialaxis.mesh._compact_kernels import costs, feature_lines, link_ok, moves, select, structure
+from medialaxis.mesh._compact_round_kernels import merge_into, quadrics, remap_faces, ties_by_source
 from medialaxis.mesh._rows import first_of_rows
-from medialaxis.mesh.compact_inside import CHUNK, collapses_inside
+from medialaxis.mesh.compact_inside import collapses_inside
 
 __all__ = [
     "Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE", "RULES",
@@ -107,30 +108,29 @@ def sphere_quadrics(points: np.ndarray, contacts: np.ndarray) -> tuple[np.ndarra
     to ``p``; the signed distance of a sphere ``s = (x, r)`` to it is
     ``n.(p - x) - r``, so its square is ``s.A.s - 2 b.s + c``.
     """
-    n = len(points)
-    qa, qb, qc = np.empty((n, 4, 4)), np.empty((n, 4)), np.empty(n)
-    for lo in range(0, n, CHUNK):  # the temporaries of a chunk at a time (0.3 GB for 700,000 spheres at once)
-        part, touch = points[lo : lo + CHUNK], contacts[lo : lo + CHUNK]
-        normal = touch - part[:, None, :]
-        normal /= np.maximum(np.linalg.norm(normal, axis=2, keepdims=True), 1e-300)
-        a = np.concatenate([normal, np.ones(normal.shape[:2] + (1,))], axis=2)
-        d = np.einsum("ijk,ijk->ij", normal, touch)
-        qa[lo : lo + CHUNK], qb[lo : lo + CHUNK] = np.einsum("ijk,ijl->ikl", a, a), np.einsum("ijk,ij->ik", a, d)
-        qc[lo : lo + CHUNK] = (d * d).sum(axis=1)
-    return qa, qb, qc
+    return quadrics(np.ascontiguousarray(points, np.float64), np.ascontiguousarray(contacts, np.float64))
 
 
 def complex_edges(faces: np.ndarray, edges: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """All edges ``(u < v)`` of a complex (curve pieces and triangle sides), sorted, and their triangle counts."""
-    sides = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]) if len(faces) else np.empty((0, 2), np.int64)
-    sides = np.sort(sides, axis=1)
-    keys, counts = np.unique(sides[:, 0] * n + sides[:, 1], return_counts=True)
-    extra = np.sort(np.asarray(edges, np.int64).reshape(-1, 2), axis=1)
-    extra = extra[extra[:, 0] != extra[:, 1]]
-    all_keys = unique_ints(np.concatenate([keys, extra[:, 0] * n + extra[:, 1]]))
-    count = np.zeros(len(all_keys), np.int64)
-    count[np.searchsorted(all_keys, keys)] = counts
-    return np.c_[all_keys // n, all_keys % n], count
+    """All edges ``(u < v)`` of a complex (curve pieces and triangle sides), sorted, and their triangle counts.
+
+    The keys of triangle sides (tagged 0) and of ``edges`` (tagged 1) are
+    sorted together: the triangles on an edge are the 0s in its run.
+    """
+    faces = np.asarray(faces, np.int64).reshape(-1, 3)
+    pairs = np.asarray(edges, np.int64).reshape(-1, 2)
+    pairs = pairs[pairs[:, 0] != pairs[:, 1]]
+    tagged = np.sort(np.concatenate([2 * _edge_keys(u, v, n) + tag for u, v, tag in (
+        (faces[:, 0], faces[:, 1], 0), (faces[:, 1], faces[:, 2], 0), (faces[:, 2], faces[:, 0], 0), (pairs[:, 0], pairs[:, 1], 1))]))
+    keys = tagged >> 1
+    start = np.flatnonzero(np.r_[True, keys[1:] != keys[:-1]]) if len(keys) else np.empty(0, np.int64)
+    count = np.add.reduceat(1 - (tagged & 1), start) if len(keys) else np.empty(0, np.int64)
+    return np.c_[keys[start] // n, keys[start] % n], count
+
+
+def _edge_keys(u: np.ndarray, v: np.ndarray, n: int) -> np.ndarray:
+    """``min * n + max`` of the edges ``(u, v)``: their order is that of the sorted pairs."""
+    return np.minimum(u, v) * n + np.maximum(u, v)
 
 
 #: Collapse rules, fastest first: (link condition tested, how far apart the collapses of a round are).
@@ -208,13 +208,14 @@ def compact_complex(
             within = within[~np.isin(key, blocked)]
         if not len(within):
             break
-        order = within[np.lexsort((src[within], cost[within]))]
+        order = ties_by_source(within[np.argsort(cost[within])], cost, src)  # by cost, source, edge
         chosen = np.flatnonzero(select(order, src, dst, ptr, idx, n, apart))
         if signed is not None:
             chosen, refused, touched = collapses_inside(chosen, src, dst, faces, all_edges, spheres, signed, centres, tolerance)
-            stale = np.isin(blocked // n, touched) | np.isin(blocked % n, touched)
-            pairs = np.sort(np.c_[src[refused], dst[refused]], axis=1)
-            blocked = np.union1d(blocked[~stale], pairs[:, 0] * n + pairs[:, 1])
+            if len(blocked):
+                blocked = blocked[~(np.isin(blocked // n, touched) | np.isin(blocked % n, touched))]  # stale
+            if len(refused):
+                blocked = np.union1d(blocked, _edge_keys(src[refused], dst[refused], n))
             if not len(chosen):
                 continue
         j, i = src[chosen], dst[chosen]  # no vertex in two merges: i and j are apart
@@ -222,22 +223,17 @@ def compact_complex(
         unknown = np.flatnonzero(np.isnan(step))  # the slab searches of costs() that stopped before fixing the move
         step[unknown] = moves(j[unknown], i[unknown], spheres, qa, qb, qc, count, moved, lines, star)
         moved[i] = np.maximum(moved[i], step)
-        qa[i] += qa[j]
-        qb[i] += qb[j]
-        qc[i] += qc[j]
-        count[i] += count[j]
+        merge_into(j, i, qa, qb, qc, count)
         alive[j] = False
         to = np.arange(n)
         to[j] = i
-        faces = to[faces]
-        flat = _flat(faces)
-        faces, origin = faces[~flat], origin[~flat]
+        faces, origin, corners = remap_faces(faces, origin, to)
         if not strict:
-            first = first_of_rows(np.sort(faces, axis=1))
+            first = first_of_rows(corners)
             faces, origin = faces[first], origin[first]
-        mapped = np.sort(to[all_edges], axis=1)
-        mapped = mapped[mapped[:, 0] != mapped[:, 1]]
-        keys = unique_ints(mapped[:, 0] * n + mapped[:, 1])
+        corners = None
+        u, v = to[all_edges[:, 0]], to[all_edges[:, 1]]
+        keys = unique_ints(_edge_keys(u, v, n)[u != v])
         all_edges = np.c_[keys // n, keys % n]
     keep = np.flatnonzero(alive)
     new = np.full(n, -1, np.int64)
@@ -248,11 +244,6 @@ def compact_complex(
     border = all_edges[(tri_count != 0) & (tri_count != 2)]
     edges_out = new[np.concatenate([curve, border])].reshape(-1, 2)
     return Compacted(keep, faces_out, origin, edges_out, int(len(curve)), rounds)
-
-
-def _flat(faces: np.ndarray) -> np.ndarray:
-    """Which triangles repeat a corner (a collapse squeezed them to an edge)."""
-    return (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
 
 
 def _components_and_euler(n: int, faces: np.ndarray, all_edges: np.ndarray) -> tuple[int, int]:

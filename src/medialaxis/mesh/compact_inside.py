@@ -17,6 +17,7 @@ from scipy.spatial import cKDTree
 
 from medialaxis.core.arrays import unique_ints
 from medialaxis.mesh._compact_kernels import lattice
+from medialaxis.mesh._compact_round_kernels import changed_prims
 
 __all__ = ["collapses_inside", "CHUNK", "LATTICE_SPACING", "NEAR_BALLS"]
 
@@ -46,24 +47,17 @@ def collapses_inside(
     """
     n = len(spheres)
     refused = np.zeros(len(src), bool)
-    moving = np.zeros(n, bool)
-    moving[src[chosen]] = True
-    # all that may change, an edge as a triangle (a, b, b); CHUNK of them at a time: 2M on the first
-    # round of a 40k-vertex torus's complex, whose sample arrays took 0.3 GB at once
-    prims = (faces[moving[faces].any(axis=1)], edges[moving[edges].any(axis=1)][:, [0, 1, 1]])
     while True:
         to = np.arange(n)
         to[src[chosen]] = dst[chosen]
-        deep, touched = [np.empty((0, 3), np.int64)], [np.empty(0, np.int64)]
-        for part in (p[lo : lo + CHUNK] for p in prims for lo in range(0, len(p), CHUNK)):
-            after = to[part]
-            flat = (after[:, 0] == after[:, 1]) | (after[:, 2] == after[:, 0]) | ((after[:, 1] == after[:, 2]) & (part[:, 1] != part[:, 2]))
-            changed = (after != part).any(axis=1) & ~flat
-            touched.append(unique_ints(after[changed]))
-            deep.append(part[changed][_reaching_out(after[changed], part[changed], spheres, signed, centres, tolerance)])
-        deep_prims = np.concatenate(deep)
+        after, before, touched = changed_prims(faces, edges, to, spheres, LATTICE_SPACING * tolerance)  # an edge: (a, b, b)
+        # their samples CHUNK primitives at a time: 2M on the first round of a 40k-vertex torus's complex, whose
+        # sample arrays took 0.3 GB at once
+        deep = [before[lo : lo + CHUNK][_reaching_out(after[lo : lo + CHUNK], before[lo : lo + CHUNK], spheres, signed,
+                                                      centres, tolerance)] for lo in range(0, len(after), CHUNK)]
+        deep_prims = np.concatenate([np.empty((0, 3), np.int64)] + deep)
         if not len(deep_prims):
-            return chosen, np.flatnonzero(refused), unique_ints(np.concatenate(touched))
+            return chosen, np.flatnonzero(refused), np.flatnonzero(touched)
         culprit = np.isin(src[chosen], deep_prims)
         refused[chosen[culprit]] = True
         chosen = chosen[~culprit]
@@ -75,6 +69,8 @@ def _reaching_out(
 ) -> np.ndarray:
     """Which primitives ``after`` (replacing ``before``) carry a sphere reaching more than ``tolerance`` out."""
     samples, owner = lattice(spheres, after, np.c_[after, before], LATTICE_SPACING * tolerance, tolerance)  # corners old and new
+    if not len(samples):
+        return np.empty(0, np.int64)
     k = min(NEAR_BALLS, len(spheres))
     near, which = centres.query(samples[:, :3], k=k, workers=-1)
     near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
