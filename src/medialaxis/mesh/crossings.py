@@ -15,7 +15,7 @@ import numpy as np
 from medialaxis.core.arrays import unique_ints
 
 __all__ = [
-    "candidate_pairs", "crossing_pairs", "nested_shell", "shell_labels", "solid_betti", "unit_triangles", "winding_numbers",
+    "candidate_pairs", "crossing_pairs", "nested_shell", "shell_labels", "shell_volumes", "solid_betti", "unit_triangles", "winding_numbers",
 ]
 
 #: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
@@ -42,6 +42,14 @@ def shell_labels(mesh: Any) -> np.ndarray:
     return connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
 
 
+def shell_volumes(mesh: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Shell of each face (:func:`shell_labels`) and six times each shell's signed volume (negative: a cavity)."""
+    labels = shell_labels(mesh)
+    tri = np.asarray(mesh.vertices, np.float64)[np.asarray(mesh.faces, np.int64)]
+    six_volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
+    return labels, np.bincount(labels, six_volume, int(labels.max()) + 1 if len(labels) else 0)
+
+
 def solid_betti(mesh: Any) -> tuple[int, int, int]:
     """Betti numbers ``(b0, b1, b2)`` of the solid a closed, outward-oriented 2-manifold mesh bounds.
 
@@ -56,10 +64,7 @@ def solid_betti(mesh: Any) -> tuple[int, int, int]:
     >>> solid_betti(trimesh.creation.torus(3.0, 1.0))
     (1, 1, 0)
     """
-    labels = shell_labels(mesh)
-    tri = np.asarray(mesh.vertices, np.float64)[np.asarray(mesh.faces, np.int64)]
-    six_volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
-    volume = np.bincount(labels, six_volume, int(labels.max()) + 1 if len(labels) else 0)
+    labels, volume = shell_volumes(mesh)
     b0, b2 = int((volume > 0).sum()), int((volume < 0).sum())
     faces = np.asarray(mesh.faces, np.int64)
     edges = unique_ints(np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1) @ np.array([len(mesh.vertices), 1]))

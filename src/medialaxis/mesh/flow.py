@@ -100,7 +100,8 @@ def flow_skeleton(
     ----------
     mesh : trimesh.Trimesh or path
         A closed, manifold triangle mesh (several closed components are
-        allowed: each gets its own skeleton component).
+        allowed: each gets its own skeleton component; the shells that bound
+        cavities are left out, with a warning: a curve has no room for a void).
     dt : float, optional
         Implicit time step in units of ``s**2``, ``s`` the median inner-ball
         radius of the mesh (so results do not depend on scale). Default 1.0.
@@ -156,7 +157,7 @@ def flow_skeleton(
         ``points`` (s, 3), ``radii`` (mean distance from each node to the
         surface points that collapsed onto it), ``edges``, no faces;
         ``extras["correspondence"]`` (n_input,) is the node of each input
-        vertex; metadata holds ``steps``, ``converged``, ``dt``, ``repairs``,
+        vertex (``-1`` on a filled cavity's surface); metadata holds ``steps``, ``converged``, ``dt``, ``repairs``,
         ``refined_vertices`` (midpoints added to a coarse surface, see
         :func:`~medialaxis.mesh.refine.refine_coarse`).
 
@@ -219,6 +220,7 @@ def flow_skeleton(
             bad = fp[(fp < 0) | (fp >= n_input)][0]
             raise InvalidInputError(f"fixed_points index {int(bad)} out of range for a mesh of {n_input} vertices")
         fixed = unique_ints(vertex_map[fp])
+        fixed = fixed[fixed >= 0]  # vertices of a filled cavity
     use = np.ones(n, dtype=bool)
     if region is not None:
         box = _check_box(region)

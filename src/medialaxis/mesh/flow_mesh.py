@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -13,8 +14,9 @@ from scipy.spatial import cKDTree
 
 from medialaxis.core import graph as _graph
 from medialaxis.core.arrays import unique_ints
-from medialaxis.errors import InvalidInputError
+from medialaxis.errors import InvalidInputError, MedialAxisWarning
 from medialaxis.mesh import _flow_operators as ops
+from medialaxis.mesh.crossings import shell_volumes
 from medialaxis.mesh.inputs import _read, load_mesh
 
 __all__ = ["FlowState", "nonmanifold_vertices", "prepare_flow_mesh", "smoothed_gaussian_curvature", "curvature_tips",
@@ -110,7 +112,40 @@ def prepare_flow_mesh(mesh: Any, *, repair: bool = False) -> tuple[Any, np.ndarr
         vertex_map = np.arange(len(raw_vertices))
     else:
         _, vertex_map = cKDTree(clean_vertices).query(raw_vertices, k=1)
-    return clean, np.asarray(vertex_map, dtype=np.int64), checked.repairs
+    vertex_map = np.asarray(vertex_map, dtype=np.int64)
+    clean, kept, note = _without_cavities(clean)
+    if note:
+        warnings.warn(note, MedialAxisWarning, stacklevel=3)
+        vertex_map = kept[vertex_map]
+    return clean, vertex_map, tuple(checked.repairs) + ((note.split(":")[0],) if note else ())
+
+
+def _without_cavities(mesh: Any) -> tuple[Any, np.ndarray, str]:
+    """``mesh`` without the shells that bound cavities (negative signed volume), the new index of each
+    vertex (``-1``: dropped) and a warning, empty when there is none.
+
+    A curve skeleton has no room for a void, and the flow would contract a
+    cavity's surface to a curve inside the cavity, apart from the rest (a
+    hollow ball gave two components): the skeleton is that of the solid with
+    its cavities filled.
+    """
+    labels, volume = shell_volumes(mesh)
+    faces = np.asarray(mesh.faces, np.int64)
+    cavity = volume < 0
+    n_vertices = len(mesh.vertices)
+    if not cavity.any():
+        return mesh, np.arange(n_vertices), ""
+    keep = ~cavity[labels]
+    used = unique_ints(faces[keep].ravel())
+    new_index = np.full(n_vertices + 1, -1, np.int64)  # the last entry: dropped vertices stay -1
+    new_index[used] = np.arange(len(used))
+    import trimesh
+
+    filled = trimesh.Trimesh(np.asarray(mesh.vertices)[used], new_index[faces[keep]], process=False)
+    k = int(cavity.sum())
+    note = (f"filled {k} cavit{'y' if k == 1 else 'ies'} of the solid: a curve skeleton has no room for a void "
+            "(method='voronoi' keeps them)")
+    return filled, new_index, note
 
 
 def smoothed_gaussian_curvature(points: np.ndarray, faces: np.ndarray, edges: np.ndarray, radius: float) -> np.ndarray:
