@@ -15,6 +15,10 @@ computed apart from the package:
 * a sphere is **inside** when ``trimesh.proximity.signed_distance`` of its
   centre is at least ``0.98 r`` (it holds no more than 2% of its radius of
   the outside);
+* **both**: medial and inside. A sphere reaching past the surface meets it
+  in a circle, and the surface points in its band there can span 90 degrees
+  from one side: Q-MAT's radii reach past the surface (crab: by 8% of the
+  radius), so its medial share counts such spheres;
 * the surface is the input's, or, where the Voronoi route made a solid of an
   open, self-crossing or many-shelled input (its ``repairs`` / ``defects``),
   that solid's (``ma.shape``: caps on the holes, cut where it crosses
@@ -149,11 +153,15 @@ def error(mesh, centres, radii, edges, faces) -> float:
 
 
 def figures(mesh, points, centres, radii, edges, faces, tree=None) -> dict:
+    """Error, medial and inside shares, and the share both medial and inside ("both"): a sphere reaching
+    past the surface meets it in a circle, whose points in the band can span 90 degrees from one side."""
+    medial, inside = medial_flags(points, centres, radii, tree=tree), inside_flags(mesh, centres, radii)
     return {
         "spheres": len(centres),
         "error": error(mesh, centres, radii, edges, faces),
-        "medial": float(medial_flags(points, centres, radii, tree=tree).mean()),
-        "inside": float(inside_flags(mesh, centres, radii).mean()),
+        "medial": float(medial.mean()),
+        "inside": float(inside.mean()),
+        "both": float((medial & inside).mean()),
     }
 
 
@@ -317,7 +325,7 @@ def run_peers(args) -> None:
     print("Q-MAT and MATFP medial meshes of Geometry_Tools against ours at Q-MAT's sphere count "
           f"(mode {args.mode}); error = two-sided (mat_error), medial / inside shares as above")
     print("model      spheres | error: ours  Q-MAT  MATFP | medial: ours  Q-MAT  MATFP | inside: ours  Q-MAT  MATFP "
-          "| MATFP spheres | ours s")  # wall clock (CPU of the call, of the simplification)
+          "| both: ours  Q-MAT  MATFP | MATFP spheres | ours s")  # wall clock (CPU of the call, of the simplification)
     for model in [m for m in PEERS if not args.models or m in args.models.split(",")]:
         name = f"gt-{model}"
         mesh = _load(paths[name])
@@ -341,7 +349,7 @@ def run_peers(args) -> None:
         print(f"{model:10s} {mine['spheres']:7d} | " + "  ".join(
             f"{100 * a[k]:5.2f}% {100 * b[k]:5.2f}% {100 * c[k]:5.2f}% |" if k == "error" else
             f"{100 * a[k]:4.0f}% {100 * b[k]:5.0f}% {100 * c[k]:5.0f}% |"
-            for a, b, c in cols for k in ("error", "medial", "inside"))
+            for a, b, c in cols for k in ("error", "medial", "inside", "both"))
             + f" {peer['MATFP']['spheres']:13d} | {mine['call_seconds']:.1f} (CPU {mine['call_cpu']:.1f}, "
             f"simplify {mine['cpu']:.1f})", flush=True)
 
