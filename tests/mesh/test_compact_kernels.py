@@ -49,7 +49,7 @@ def test_costs_stopped_early_and_moves_match_the_exhaustive_search():
     star = structure(n, edges, faces)
     lines = feature_lines(edges, np.diff(star[3]) != 2, n)
     terms = (spheres, qa, qb, qc, count, moved, lines)
-    src, dst, cost, move = costs(edges, np.arange(len(edges)), *terms, star)
+    src, dst, cost, move = costs(edges, np.arange(len(edges)), *terms, star, np.arange(n))
     rows = np.arange(0, len(edges), 7)
     for k in rows:
         u, v = edges[k]

@@ -5,18 +5,45 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis.mesh._compact_kernels import lattice
-from medialaxis.mesh._compact_round_kernels import changed_prims, merge_into, quadrics, remap_faces, ties_by_source
+from medialaxis.mesh._compact_round_kernels import (
+    changed_prims,
+    merge_into,
+    morton_codes,
+    quadrics,
+    remap_faces,
+    ties_by_source,
+)
 from medialaxis.mesh.compact import complex_edges
 
 
-def test_ties_by_source_is_the_lexsort_by_cost_then_source():
+def test_ties_by_source_is_the_lexsort_by_cost_then_source_then_edge():
     rng = np.random.default_rng(1)
-    cost = rng.integers(0, 40, 5000) / 7.0  # many ties
-    src = rng.integers(0, 300, 5000)
+    n = 300
+    keys = np.unique(rng.integers(0, n * n, 6000))
+    edges = np.c_[keys // n, keys % n]
+    edges = np.sort(edges[edges[:, 0] != edges[:, 1]], axis=1)
+    edges = edges[np.unique(edges[:, 0] * n + edges[:, 1], return_index=True)[1]]  # sorted, distinct
+    cost = rng.integers(0, 40, len(edges)) / 7.0  # many ties
+    src = edges[np.arange(len(edges)), rng.integers(0, 2, len(edges))]
     rows = np.flatnonzero(cost < 5.0)
     expected = rows[np.lexsort((src[rows], cost[rows]))]
     for kind in ("quicksort", "stable", "heapsort"):
-        assert np.array_equal(ties_by_source(rows[np.argsort(cost[rows], kind=kind)], cost, src), expected)
+        got = ties_by_source(rows[np.argsort(cost[rows], kind=kind)], cost, src, edges, np.arange(n))
+        assert np.array_equal(got, expected)
+    # the same complex with its vertices renamed: the order follows the names given, not the labels used
+    perm = rng.permutation(n)
+    label = np.empty(n, np.int64)
+    label[perm] = np.arange(n)
+    got = ties_by_source(rows[np.argsort(cost[rows], kind="quicksort")], cost, label[src], label[edges], perm)
+    assert np.array_equal(got, expected)
+
+
+def test_morton_codes_interleave_the_grid_coordinates():
+    points = np.array([[x, y, z] for z in range(4) for y in range(4) for x in range(4)], float)[::-1] * 0.5 + 2.0
+    q = ((points - 2.0) / 1.5 * 2097151.0).astype(np.int64)  # the 2^21 grid over the box (side 1.5)
+    expected = [sum(((int(c) >> b) & 1) << (3 * b + k) for b in range(21) for k, c in enumerate(row)) for row in q]
+    assert morton_codes(points).tolist() == expected
+    assert not morton_codes(np.array([[0.0, np.nan, 1.0], [1.0, 2.0, 3.0]])).any()  # no box: no order
 
 
 def test_quadrics_are_the_tangent_planes_squared_distances():

@@ -59,9 +59,8 @@ def structure(n, edges, faces):  # pragma: no cover - compiled
                     lo = mid + 1
                 else:
                     hi = mid
-            owner[3 * f + k] = lo
-    for r in range(owner.shape[0]):  # positions in the lists -> their edges
-        owner[r] = eid[owner[r]]
+            owner[3 * f + k] = eid[lo]  # its edge
+    for r in range(owner.shape[0]):
         apex_ptr[owner[r] + 1] += 1
     for e in range(m):
         apex_ptr[e + 1] += apex_ptr[e]
@@ -294,12 +293,12 @@ def feature_lines(edges, feature, n):  # pragma: no cover - compiled
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def costs(edges, cand, spheres, qa, qb, qc, count, moved, lines, star):  # pragma: no cover - compiled
+def costs(edges, cand, spheres, qa, qb, qc, count, moved, lines, star, name):  # pragma: no cover - compiled
     """Cheaper direction of merging each candidate edge: ``src -> dst``, its cost and its feature move.
 
     Features are the edges not shared by exactly two triangles; ``lines`` are
     :func:`feature_lines` of them (a vertex with two lies on a line; ties go
-    to merging the first end into the second). The direction whose terms
+    to merging the end of lower ``name`` into the other). The direction whose terms
     other than the slab distance are lower is costed first, and the other
     only if those terms do not already make it dearer. The move is NaN where
     the slab search stopped before fixing it (:func:`moves` gives those).
@@ -311,6 +310,8 @@ def costs(edges, cand, spheres, qa, qb, qc, count, moved, lines, star):  # pragm
     move = np.empty(m)
     for k in prange(m):
         u, v = edges[cand[k], 0], edges[cand[k], 1]
+        if name[u] > name[v]:
+            u, v = v, u
         s_uv, r_uv = _cheap_terms(u, v, spheres, qa, qb, qc, count, moved, lines)
         s_vu, r_vu = _cheap_terms(v, u, spheres, qa, qb, qc, count, moved, lines)
         c_uv = c_vu = np.inf

@@ -34,6 +34,7 @@ CHUNK = 65_536
 def collapses_inside(
     chosen: np.ndarray, src: np.ndarray, dst: np.ndarray, faces: np.ndarray, edges: np.ndarray,
     spheres: np.ndarray, signed: Callable[[np.ndarray, np.ndarray], np.ndarray], centres: cKDTree, tolerance: float,
+    label: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The collapses ``src -> dst`` of ``chosen`` whose new edges and triangles stay inside the surface.
 
@@ -43,9 +44,12 @@ def collapses_inside(
     surface, at most ``tolerance`` for a kept collapse;
     the collapses that made an edge or triangle failing this are refused,
     and the rest tested again. Returns the kept collapses, the refused ones
-    and the vertices whose stars the kept ones change.
+    and the vertices whose stars the kept ones change. ``label[q]`` is the
+    vertex (row of ``spheres``) of point ``q`` of ``centres`` and of
+    ``signed``'s ``near`` (by default the same).
     """
     n = len(spheres)
+    label = np.arange(n) if label is None else label
     refused = np.zeros(len(src), bool)
     while True:
         to = np.arange(n)
@@ -54,7 +58,7 @@ def collapses_inside(
         # their samples CHUNK primitives at a time: 2M on the first round of a 40k-vertex torus's complex, whose
         # sample arrays took 0.3 GB at once
         deep = [before[lo : lo + CHUNK][_reaching_out(after[lo : lo + CHUNK], before[lo : lo + CHUNK], spheres, signed,
-                                                      centres, tolerance)] for lo in range(0, len(after), CHUNK)]
+                                                      centres, tolerance, label)] for lo in range(0, len(after), CHUNK)]
         deep_prims = np.concatenate([np.empty((0, 3), np.int64)] + deep)
         if not len(deep_prims):
             return chosen, np.flatnonzero(refused), np.flatnonzero(touched)
@@ -65,7 +69,7 @@ def collapses_inside(
 
 def _reaching_out(
     after: np.ndarray, before: np.ndarray, spheres: np.ndarray, signed: Callable[[np.ndarray, np.ndarray], np.ndarray],
-    centres: cKDTree, tolerance: float,
+    centres: cKDTree, tolerance: float, label: np.ndarray,
 ) -> np.ndarray:
     """Which primitives ``after`` (replacing ``before``) carry a sphere reaching more than ``tolerance`` out."""
     samples, owner = lattice(spheres, after, np.c_[after, before], LATTICE_SPACING * tolerance, tolerance)  # corners old and new
@@ -74,7 +78,7 @@ def _reaching_out(
     k = min(NEAR_BALLS, len(spheres))
     near, which = centres.query(samples[:, :3], k=k, workers=-1)
     near, which = near.reshape(len(samples), k), which.reshape(len(samples), k)
-    far = (samples[:, 3, None] - spheres[which, 3] + near).min(axis=1) > tolerance
+    far = (samples[:, 3, None] - spheres[label[which], 3] + near).min(axis=1) > tolerance
     samples, owner = samples[far], owner[far]
     deep = samples[:, 3] + signed(samples[:, :3], which[far]) > tolerance if len(samples) else np.zeros(0, bool)
     return unique_ints(owner[deep])
