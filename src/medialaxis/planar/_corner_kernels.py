@@ -76,7 +76,7 @@ def _touches(edge, at_vertex, i, v, m):  # type: ignore[no-untyped-def]
     return d == 0 or d == 1 or (at_vertex[i] and d == m - 1)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def corner_triangle(a, b, c, centre_x, centre_y, edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance):  # type: ignore[no-untyped-def]
     """Whether the triangle of samples ``a, b, c`` is a corner triangle (see the module docstring)."""
     r = ring[a]

@@ -56,7 +56,7 @@ def band_segments(segments, y0, height, n_bands):  # type: ignore[no-untyped-def
     return start, members
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _locate(px, py, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
     """1 inside, 0 outside, ``UNSURE`` within rounding of a segment's line."""
     n_bands = len(start) - 1
@@ -105,7 +105,7 @@ def points_extent(points, lo, hi):  # type: ignore[no-untyped-def]
     return extent
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def locate_centroid(points, a, b, c, sliver, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
     """Where the centroid of the triangle ``abc`` lies (:func:`_locate`; 0 for a sliver), and the centroid."""
     ux, uy = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1]

@@ -147,7 +147,7 @@ def nearest_piece_distance_reference(
     return best
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def circumcircle(p, i, j, k):  # type: ignore[no-untyped-def]
     """Circumcentre ``(x, y)`` and radius of the triangle ``p[i], p[j], p[k]`` (see :func:`circumcircles_kernel`)."""
     ax, ay = p[i, 0], p[i, 1]
@@ -200,7 +200,7 @@ def _insertion_sort(values, lo, hi):  # type: ignore[no-untyped-def]
         values[j + 1] = v
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def split_count(points, i, j, radius, conforming, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
     """Into how many parts the piece from sample ``i`` to ``j`` is cut (0: kept), as :func:`split_pieces` decides."""
     dx = points[j, 0] - points[i, 0]

@@ -136,7 +136,7 @@ def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, 
     return new_arc, new_ring, piece, out
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def interp(x, xp, fp, j):  # type: ignore[no-untyped-def]
     """``(np.interp(x, xp, fp), j)`` as NumPy computes it; ``j`` the segment found (and the guess given)."""
     if x >= xp[-1]:
