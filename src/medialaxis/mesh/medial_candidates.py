@@ -140,7 +140,7 @@ class MedialCandidates:
         self.signed = signed
         self.state = np.zeros(len(self.spheres), np.int8)  # 1: its radius is its centre's depth, -1: not, 0: not asked, 2: pending
 
-    def _valid(self, index: np.ndarray) -> np.ndarray:
+    def inscribed(self, index: np.ndarray) -> np.ndarray:
         """Which of the candidates ``index`` are inscribed: the centre's depth within ``DEPTH`` of the radius.
 
         A Voronoi sphere of a sparse sample may poke out between its samples
@@ -159,7 +159,7 @@ class MedialCandidates:
         """Each of ``spheres`` snapped to the candidate of least quadric error ``(qa[i], qb[i])``.
 
         Among the ``SNAP`` candidates nearest in (centre, radius) that are
-        inscribed (:meth:`_valid`), else among ``4 SNAP``, else all of these
+        inscribed (:meth:`inscribed`), else among ``4 SNAP``, else all of these
         (:func:`~medialaxis.mesh._simplify_kernels.snap_one`).
         """
         if self.tree is None or not len(spheres):
@@ -176,7 +176,7 @@ class MedialCandidates:
         if not len(pending):
             return True
         self.state[pending] = 0
-        return bool(self._valid(pending).all())
+        return bool(self.inscribed(pending).all())
 
     def cover(self, x: np.ndarray) -> tuple[np.ndarray, float]:
         """The candidate ball reaching nearest to ``x`` among those touching the surface near it.
@@ -189,7 +189,7 @@ class MedialCandidates:
             return x, 0.0
         _, near = self.contact_tree.query(x, k=min(4 * SNAP, len(self.spheres) * self.per))
         index = np.unique(np.atleast_1d(near) // self.per)
-        ok = self._valid(index)
+        ok = self.inscribed(index)
         t = self.spheres[index[ok] if ok.any() else index]
         if self.sample is not None:
             _, near = self.sample_tree.query(x, k=min(SNAP, len(self.sample.points)))

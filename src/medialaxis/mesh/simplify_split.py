@@ -64,7 +64,7 @@ def _inscribed(centre: np.ndarray, signed: Any, medial: Any) -> np.ndarray | Non
         return own
     dist, near = medial.tree.query(own, k=min(8, len(medial.spheres)))
     near, dist = np.atleast_1d(near), np.atleast_1d(dist)
-    ok = medial._valid(near) & (dist <= 0.5 * depth)
+    ok = medial.inscribed(near) & (dist <= 0.5 * depth)
     return medial.spheres[near[ok][0]].copy() if ok.any() else own
 
 
