@@ -46,11 +46,10 @@ def sample_grid(points):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _scan_cell(c, points, qx, qy, k, start, members, best_d, best_i, found):  # type: ignore[no-untyped-def]
-    """Merge the samples of cell ``c`` into the sorted ``k + 1`` nearest so far; the new count found."""
+def _scan_cell(c, xs, ys, qx, qy, k, start, members, best_d, best_i, found):  # type: ignore[no-untyped-def]
+    """Merge the samples of cell ``c`` (coordinates ``xs``, ``ys`` in cell order) into the sorted ``k + 1`` nearest so far; the new count found."""
     for m in range(start[c], start[c + 1]):
-        p = members[m]
-        d = (points[p, 0] - qx) ** 2 + (points[p, 1] - qy) ** 2
+        d = (xs[m] - qx) ** 2 + (ys[m] - qy) ** 2
         if found == k + 1 and d >= best_d[k]:
             continue
         j = min(found, k)
@@ -59,7 +58,7 @@ def _scan_cell(c, points, qx, qy, k, start, members, best_d, best_i, found):  # 
             best_i[j] = best_i[j - 1]
             j -= 1
         best_d[j] = d
-        best_i[j] = p
+        best_i[j] = members[m]
         found = min(found + 1, k + 1)
     return found
 
@@ -74,6 +73,9 @@ def nearest_in_grid(query, points, k, x0, y0, cell, g, start, members):  # type:
     ``k``-th and the next distance agree to rounding: which of the tied
     samples is listed then turns on the order of the visit.
     """
+    xs, ys = np.empty(len(members)), np.empty(len(members))  # the samples in cell order: scans read memory in a row
+    for m in range(len(members)):
+        xs[m], ys[m] = points[members[m], 0], points[members[m], 1]
     near = np.empty((len(query), k), np.int64)
     sure = np.ones(len(query), np.bool_)
     best_d = np.empty(k + 1)
@@ -87,17 +89,17 @@ def nearest_in_grid(query, points, k, x0, y0, cell, g, start, members):  # type:
         while True:
             lo_x, hi_x = max(cx - r, 0), min(cx + r, g - 1)
             if r == 0:
-                found = _scan_cell(cx * g + cy, points, qx, qy, k, start, members, best_d, best_i, found)
+                found = _scan_cell(cx * g + cy, xs, ys, qx, qy, k, start, members, best_d, best_i, found)
             else:
                 for iy in (cy - r, cy + r):  # the ring's bottom and top rows of cells, corners included
                     if 0 <= iy < g:
                         for ix in range(lo_x, hi_x + 1):
-                            found = _scan_cell(ix * g + iy, points, qx, qy, k, start, members, best_d, best_i,
+                            found = _scan_cell(ix * g + iy, xs, ys, qx, qy, k, start, members, best_d, best_i,
                                                found)
                 for ix in (cx - r, cx + r):  # its left and right columns between them
                     if 0 <= ix < g:
                         for iy in range(max(cy - r + 1, 0), min(cy + r - 1, g - 1) + 1):
-                            found = _scan_cell(ix * g + iy, points, qx, qy, k, start, members, best_d, best_i,
+                            found = _scan_cell(ix * g + iy, xs, ys, qx, qy, k, start, members, best_d, best_i,
                                                found)
             covered = cx - r <= 0 and cy - r <= 0 and cx + r >= g - 1 and cy + r >= g - 1
             # any point not yet seen lies beyond the visited block of cells
