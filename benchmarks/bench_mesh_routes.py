@@ -16,6 +16,8 @@ records:
   the loader makes of the file (crossings resolved by winding number, holes
   capped: :func:`solid_topology`, after the timed call), else from the
   input mesh alone (its Euler characteristic, holes counted as capped);
+  ``flow``'s against ``(outer shells, genus, 0)``: a curve holds no void
+  (the flow fills the solid's cavities, with a warning);
 * the seconds of the call (after a warm-up on a small sphere in the same
   process, so that loading compiled kernels is not counted) and the peak
   memory (the subprocess's ``VmHWM`` after the call, warm-up included;
@@ -359,9 +361,9 @@ def main() -> None:
         if row.get("solid"):  # the loader's solid (crossings resolved, holes capped) where it made one
             expected = [row["solid"]["components"], row["solid"]["genus"], row["solid"].get("voids", 0)]
         row["expected"] = expected
-        for record in row["methods"].values():
-            if "betti" in record:
-                record["betti_right"] = record["betti"] == expected
+        for method, record in row["methods"].items():
+            if "betti" in record:  # a curve skeleton holds no void: flow's solid cavities are filled
+                record["betti_right"] = record["betti"] == (expected[:2] + [0] if method == "flow" else expected)
         rows.append(row)
         print_row(row)
         if args.json:
