@@ -116,3 +116,16 @@ def test_complex_edges_counts_the_triangles_on_each_edge():
     expected, times = np.unique(sides, axis=0, return_counts=True)
     assert np.array_equal(edges, expected)
     assert np.array_equal(count, times - (expected == [3, 20]).all(axis=1))
+
+
+def test_small_rounds_run_on_one_thread():
+    import numba
+
+    from medialaxis.mesh.compact_inside import PARALLEL_ROWS, threads_for
+
+    before = numba.get_num_threads()
+    with threads_for(PARALLEL_ROWS - 1):
+        assert numba.get_num_threads() == 1
+    assert numba.get_num_threads() == before
+    with threads_for(PARALLEL_ROWS):
+        assert numba.get_num_threads() == before

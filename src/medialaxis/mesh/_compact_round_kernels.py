@@ -129,7 +129,7 @@ def _prim(faces, edges, p):  # pragma: no cover - compiled
     return edges[e, 0], edges[e, 1], edges[e, 1]
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, parallel=True)
 def changed_prims(faces, edges, to, spheres, spacing):  # pragma: no cover - compiled
     """Triangles ``faces`` and edges ``edges`` (as triangles ``(a, b, b)``) that the map ``to`` changes without squeezing flat.
 
@@ -139,24 +139,29 @@ def changed_prims(faces, edges, to, spheres, spacing):  # pragma: no cover - com
     primitives changed on the uv ellipsoid, 9,073 with samples.
     """
     total = faces.shape[0] + edges.shape[0]
-    touched = np.zeros(to.shape[0], np.bool_)
-    sampled = np.zeros(total, np.bool_)
-    for p in range(total):
+    kind = np.zeros(total, np.uint8)  # 1: changed, 2: changed, with samples
+    for p in prange(total):
         r0, r1, r2 = _prim(faces, edges, p)
         a, b, c = to[r0], to[r1], to[r2]
         if (a == r0 and b == r1 and c == r2) or a == b or c == a or (b == c and r1 != r2):  # unchanged or squeezed flat
             continue
-        touched[a] = True
-        touched[b] = True
-        touched[c] = True
-        sampled[p] = lattice_steps(spheres, a, b, c, spacing) >= 2  # else no sample of the lattice on it
-    rows = np.flatnonzero(sampled)
-    after = np.empty((rows.shape[0], 3), np.int64)
-    before = np.empty((rows.shape[0], 3), np.int64)
-    for k in range(rows.shape[0]):
-        before[k, 0], before[k, 1], before[k, 2] = _prim(faces, edges, rows[k])
-        for s in range(3):
-            after[k, s] = to[before[k, s]]
+        kind[p] = 2 if lattice_steps(spheres, a, b, c, spacing) >= 2 else 1
+    touched = np.zeros(to.shape[0], np.bool_)
+    count = 0
+    for p in range(total):
+        if kind[p]:
+            r0, r1, r2 = _prim(faces, edges, p)
+            touched[to[r0]] = touched[to[r1]] = touched[to[r2]] = True
+            count += kind[p] == 2
+    after = np.empty((count, 3), np.int64)
+    before = np.empty((count, 3), np.int64)
+    count = 0
+    for p in range(total):
+        if kind[p] == 2:
+            before[count, 0], before[count, 1], before[count, 2] = _prim(faces, edges, p)
+            for s in range(3):
+                after[count, s] = to[before[count, s]]
+            count += 1
     return after, before, touched
 
 

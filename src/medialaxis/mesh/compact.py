@@ -70,7 +70,7 @@ from medialaxis.core.result import MedialAxis
 from medialaxis.mesh._compact_kernels import costs, feature_lines, link_ok, moves, select, structure
 from medialaxis.mesh._compact_round_kernels import merge_into, morton_codes, quadrics, remap_faces, ties_by_source
 from medialaxis.mesh._rows import first_of_rows
-from medialaxis.mesh.compact_inside import collapses_inside
+from medialaxis.mesh.compact_inside import collapses_inside, threads_for
 
 __all__ = [
     "Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE", "RULES",
@@ -213,7 +213,8 @@ def compact_complex(
     while rounds < MAX_ROUNDS:
         rounds += 1
         star = ok = cand = src = dst = cost = move = lines = None  # the last round's, freed before this one's are made
-        ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
+        with threads_for(len(faces)):
+            ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
         tri_count = np.diff(apex_ptr)
         ok = link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
         cand = np.flatnonzero(ok)
@@ -221,7 +222,8 @@ def compact_complex(
             break
         star = (ptr, idx, eid, apex_ptr, apex)
         lines = feature_lines(all_edges, tri_count != 2, n)
-        src, dst, cost, move = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, lines, star, name)
+        with threads_for(len(cand)):
+            src, dst, cost, move = costs(all_edges, cand, spheres, qa, qb, qc, count, moved, lines, star, name)
         within = np.flatnonzero(cost <= tolerance)
         if len(blocked):
             key = all_edges[cand[within], 0] * n + all_edges[cand[within], 1]
@@ -242,7 +244,8 @@ def compact_complex(
         j, i = src[chosen], dst[chosen]  # no vertex in two merges: i and j are apart
         step = move[chosen]
         unknown = np.flatnonzero(np.isnan(step))  # the slab searches of costs() that stopped before fixing the move
-        step[unknown] = moves(j[unknown], i[unknown], spheres, qa, qb, qc, count, moved, lines, star)
+        with threads_for(len(unknown)):
+            step[unknown] = moves(j[unknown], i[unknown], spheres, qa, qb, qc, count, moved, lines, star)
         moved[i] = np.maximum(moved[i], step)
         merge_into(j, i, qa, qb, qc, count)
         alive[j] = False
