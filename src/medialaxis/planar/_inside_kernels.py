@@ -22,7 +22,7 @@ import shapely
 
 from medialaxis._jit import njit
 
-__all__ = ["RegionLocator", "band_segments", "locate_points", "locate_centroids", "locate_points_reference"]
+__all__ = ["RegionLocator", "band_segments", "locate_points", "triangle_centroid", "locate_centroids", "locate_points_reference"]
 
 #: Trust a determinant's sign above this fraction of its terms' magnitudes.
 SIGN_MARGIN = 1e-12
@@ -56,39 +56,40 @@ def band_segments(segments, y0, height, n_bands):  # type: ignore[no-untyped-def
     return start, members
 
 
-@njit(cache=True, nogil=True, inline="always")
-def _locate(px, py, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
-    """1 inside, 0 outside, ``UNSURE`` within rounding of a segment's line."""
-    n_bands = len(start) - 1
-    if not (py >= y0 and py <= y0 + height):
-        return 0
-    band = min(max(int((py - y0) / height * n_bands), 0), n_bands - 1)
-    crossings = 0
-    for m in range(start[band], start[band + 1]):
-        s = members[m]
-        x1, y1, x2, y2 = segments[s, 0], segments[s, 1], segments[s, 2], segments[s, 3]
-        if py < min(y1, y2) or py > max(y1, y2) or max(x1, x2) < px:
-            continue
-        u = (x2 - x1) * (py - y1)
-        v = (y2 - y1) * (px - x1)
-        det = u - v
-        if abs(det) <= SIGN_MARGIN * (abs(u) + abs(v)):
-            return UNSURE
-        if (y1 > py) != (y2 > py):
-            left = det > 0.0
-            if y2 < y1:
-                left = not left
-            if left:
-                crossings += 1
-    return crossings % 2
-
-
 @njit(cache=True, nogil=True)
 def locate_points(x, y, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
-    """(q,) int8: 1 inside, 0 outside, ``UNSURE`` (2) within rounding of a segment's line."""
+    """(q,) int8: 1 inside, 0 outside, ``UNSURE`` (2) within rounding of a segment's line.
+
+    The test is written out in the loop, not called per point: a compiled
+    call with array arguments costs two atomic reference counts per array.
+    """
     out = np.zeros(len(x), np.int8)
+    n_bands = len(start) - 1
     for i in range(len(x)):
-        out[i] = _locate(x[i], y[i], segments, start, members, y0, height)
+        px, py = x[i], y[i]
+        if not (py >= y0 and py <= y0 + height):
+            continue
+        band = min(max(int((py - y0) / height * n_bands), 0), n_bands - 1)
+        crossings = 0
+        unsure = False
+        for m in range(start[band], start[band + 1]):
+            s = members[m]
+            x1, y1, x2, y2 = segments[s, 0], segments[s, 1], segments[s, 2], segments[s, 3]
+            if py < min(y1, y2) or py > max(y1, y2) or max(x1, x2) < px:
+                continue
+            u = (x2 - x1) * (py - y1)
+            v = (y2 - y1) * (px - x1)
+            det = u - v
+            if abs(det) <= SIGN_MARGIN * (abs(u) + abs(v)):
+                unsure = True
+                break
+            if (y1 > py) != (y2 > py):
+                left = det > 0.0
+                if y2 < y1:
+                    left = not left
+                if left:
+                    crossings += 1
+        out[i] = UNSURE if unsure else crossings % 2
     return out
 
 
@@ -106,17 +107,15 @@ def points_extent(points, lo, hi):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True, inline="always")
-def locate_centroid(points, a, b, c, sliver, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
-    """Where the centroid of the triangle ``abc`` lies (:func:`_locate`; 0 for a sliver), and the centroid."""
-    ux, uy = points[b, 0] - points[a, 0], points[b, 1] - points[a, 1]
-    vx, vy = points[c, 0] - points[a, 0], points[c, 1] - points[a, 1]
+def triangle_centroid(ax, ay, bx, by, cx, cy, sliver):  # type: ignore[no-untyped-def]
+    """``(proper, gx, gy)``: whether the triangle is more than a sliver, and its centroid (0, 0 for a sliver)."""
+    ux, uy = bx - ax, by - ay
+    vx, vy = cx - ax, cy - ay
     wx, wy = ux - vx, uy - vy
     longest = np.sqrt(max(ux * ux + uy * uy, vx * vx + vy * vy, wx * wx + wy * wy))
     if abs(ux * vy - uy * vx) <= sliver * longest:
-        return 0, 0.0, 0.0
-    gx = (points[a, 0] + points[b, 0] + points[c, 0]) / 3.0
-    gy = (points[a, 1] + points[b, 1] + points[c, 1]) / 3.0
-    return _locate(gx, gy, segments, start, members, y0, height), gx, gy
+        return False, 0.0, 0.0
+    return True, (ax + bx + cx) / 3.0, (ay + by + cy) / 3.0
 
 
 @njit(cache=True, nogil=True)
@@ -127,11 +126,16 @@ def locate_centroids(points, simplices, sliver_fraction, segments, start, member
     extent times its longest side (as :func:`medialaxis.planar._kernels.triangle_centroids`).
     """
     sliver = sliver_fraction * points_extent(points, 0, len(points))
-    where = np.zeros(len(simplices), np.int8)
     centroid = np.empty((len(simplices), 2))
+    proper = np.empty(len(simplices), np.bool_)
     for t in range(len(simplices)):
-        where[t], centroid[t, 0], centroid[t, 1] = locate_centroid(
-            points, simplices[t, 0], simplices[t, 1], simplices[t, 2], sliver, segments, start, members, y0, height)
+        a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
+        proper[t], centroid[t, 0], centroid[t, 1] = triangle_centroid(
+            points[a, 0], points[a, 1], points[b, 0], points[b, 1], points[c, 0], points[c, 1], sliver)
+    where = locate_points(centroid[:, 0], centroid[:, 1], segments, start, members, y0, height)
+    for t in range(len(simplices)):
+        if not proper[t]:
+            where[t] = 0
     return where, centroid
 
 

@@ -31,7 +31,7 @@ from medialaxis._jit import njit
 from medialaxis.planar._distance_kernels import nearest_in_grid, piece_distance, sample_grid
 
 __all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
-           "piece_state_reference", "circumcircles_kernel", "circumcircle", "split_pieces", "split_count",
+           "piece_state_reference", "circumcircles_kernel", "circle_through", "split_pieces", "split_count",
            "nearest_samples", "nearest_with_ties"]
 
 
@@ -148,11 +148,14 @@ def nearest_piece_distance_reference(
 
 
 @njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def circumcircle(p, i, j, k):  # type: ignore[no-untyped-def]
-    """Circumcentre ``(x, y)`` and radius of the triangle ``p[i], p[j], p[k]`` (see :func:`circumcircles_kernel`)."""
-    ax, ay = p[i, 0], p[i, 1]
-    bx, by = p[j, 0] - ax, p[j, 1] - ay
-    cx, cy = p[k, 0] - ax, p[k, 1] - ay
+def circle_through(ax, ay, px, py, qx, qy):  # type: ignore[no-untyped-def]
+    """Circumcentre ``(x, y)`` and radius of the triangle ``a, p, q`` (see :func:`circumcircles_kernel`).
+
+    Scalars, not rows of an array: the loops that call it per triangle make
+    no reference counts for it.
+    """
+    bx, by = px - ax, py - ay
+    cx, cy = qx - ax, qy - ay
     d = 2.0 * (bx * cy - by * cx)
     b2 = bx * bx + by * by
     c2 = cx * cx + cy * cy
@@ -160,16 +163,16 @@ def circumcircle(p, i, j, k):  # type: ignore[no-untyped-def]
     uy = (bx * c2 - cx * b2) / d
     r = math.hypot(ux, uy)
     if not np.isfinite(r):
-        corners = (i, j, k)
+        xs, ys = (ax, px, qx), (ay, py, qy)
         best, longest = 0, -1.0
         for s in range(3):  # side s is opposite corner s
-            e, f = corners[(s + 1) % 3], corners[(s + 2) % 3]
-            sx, sy = p[e, 0] - p[f, 0], p[e, 1] - p[f, 1]
+            e, f = (s + 1) % 3, (s + 2) % 3
+            sx, sy = xs[e] - xs[f], ys[e] - ys[f]
             if sx * sx + sy * sy > longest:
                 best, longest = s, sx * sx + sy * sy
-        e, f = corners[(best + 1) % 3], corners[(best + 2) % 3]
-        ux = 0.5 * (p[e, 0] + p[f, 0]) - ax
-        uy = 0.5 * (p[e, 1] + p[f, 1]) - ay
+        e, f = (best + 1) % 3, (best + 2) % 3
+        ux = 0.5 * (xs[e] + xs[f]) - ax
+        uy = 0.5 * (ys[e] + ys[f]) - ay
         r = 0.5 * np.sqrt(longest)
     return ux + ax, uy + ay, r
 
@@ -184,7 +187,8 @@ def circumcircles_kernel(p, simplices):  # type: ignore[no-untyped-def]
     centre = np.empty((n, 2))
     radius = np.empty(n)
     for t in range(n):
-        centre[t, 0], centre[t, 1], radius[t] = circumcircle(p, simplices[t, 0], simplices[t, 1], simplices[t, 2])
+        i, j, k = simplices[t, 0], simplices[t, 1], simplices[t, 2]
+        centre[t, 0], centre[t, 1], radius[t] = circle_through(p[i, 0], p[i, 1], p[j, 0], p[j, 1], p[k, 0], p[k, 1])
     return centre, radius
 
 

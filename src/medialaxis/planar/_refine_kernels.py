@@ -23,8 +23,8 @@ import numpy as np
 from medialaxis._jit import njit
 from medialaxis.planar._corner_kernels import corner_piece_state_memo, corner_twins
 from medialaxis.planar._delaunay_kernels import drop_corners, insert_point, insertion_order, scratch
-from medialaxis.planar._inside_kernels import UNSURE, locate_centroid
-from medialaxis.planar._kernels import circumcircle, split_count
+from medialaxis.planar._inside_kernels import UNSURE, locate_points, triangle_centroid
+from medialaxis.planar._kernels import circle_through, split_count
 
 __all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp", "insert_round", "refine_round",
            "first_sample", "assembled"]
@@ -65,16 +65,18 @@ def insert_batch(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-unt
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
-    """Circumcircle and inside test (:func:`locate_centroid`) of the ``fresh`` slots.
+    """Circumcircle and inside test (:func:`triangle_centroid`, :func:`locate_points`) of the ``fresh`` slots.
 
     ``points`` are the unjittered vertices (rows of the corners unused);
     triangles at a corner are outside. Returns the slots whose answer is
-    ``UNSURE`` and their centroids (the caller asks GEOS).
+    ``UNSURE`` and their centroids (the caller asks GEOS). The centroids are
+    located in one call: per triangle, a compiled call with array arguments
+    costs two atomic reference counts per array.
     """
-    unsure = np.empty(count, np.int64)
+    slot = np.empty(count, np.int64)
     gx = np.empty(count)
     gy = np.empty(count)
-    n_unsure = 0
+    n_proper = 0
     for t in range(count):
         if not fresh[t]:
             continue
@@ -83,14 +85,22 @@ def fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, seg
             where[t] = 0
             radius[t] = np.inf
             continue
-        centre[t, 0], centre[t, 1], radius[t] = circumcircle(points, a, b, c)
-        where[t], cx, cy = locate_centroid(points, a, b, c, sliver, segments, start, members, y0, height)
-        if where[t] == UNSURE:
-            unsure[n_unsure] = t
-            gx[n_unsure] = cx
-            gy[n_unsure] = cy
+        ax, ay, bx, by, cx, cy = points[a, 0], points[a, 1], points[b, 0], points[b, 1], points[c, 0], points[c, 1]
+        centre[t, 0], centre[t, 1], radius[t] = circle_through(ax, ay, bx, by, cx, cy)
+        proper, x, y = triangle_centroid(ax, ay, bx, by, cx, cy, sliver)
+        if not proper:
+            where[t] = 0
+            continue
+        slot[n_proper], gx[n_proper], gy[n_proper] = t, x, y
+        n_proper += 1
+    located = locate_points(gx[:n_proper], gy[:n_proper], segments, start, members, y0, height)
+    n_unsure = 0
+    for j in range(n_proper):  # in slot order, as the slots come
+        where[slot[j]] = located[j]
+        if located[j] == UNSURE:
+            slot[n_unsure], gx[n_unsure], gy[n_unsure] = slot[j], gx[j], gy[j]
             n_unsure += 1
-    return unsure[:n_unsure], gx[:n_unsure], gy[:n_unsure]
+    return slot[:n_unsure], gx[:n_unsure], gy[:n_unsure]
 
 
 @njit(cache=True, nogil=True)
