@@ -37,7 +37,7 @@ import numpy as np
 from medialaxis._jit import njit
 from medialaxis.planar._kernels import piece_state
 
-__all__ = ["sample_edges", "corner_triangle", "corner_piece_state", "corner_piece_state_memo", "whole_circles", "closed_rings",
+__all__ = ["sample_edges", "corner_triangle", "corner_triangles", "corner_piece_state", "corner_piece_state_memo", "whole_circles", "closed_rings",
            "ERROR_SHARE"]
 
 #: A corner triangle's circumcentre is within this share of the tolerance of the bisector.
@@ -70,44 +70,61 @@ def sample_edges(arc, ring, offset, rings_s, rings_start):  # type: ignore[no-un
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _touches(edge, at_vertex, i, v, m):  # type: ignore[no-untyped-def]
-    """Sample ``i`` lies on an edge of vertex ``v`` (ring of ``m`` vertices)."""
-    d = (v - edge[i]) % m
-    return d == 0 or d == 1 or (at_vertex[i] and d == m - 1)
+def _touches(edge_i, at_vertex_i, v, m):  # type: ignore[no-untyped-def]
+    """A sample on edge ``edge_i`` (at its first vertex: ``at_vertex_i``) lies on an edge of vertex ``v`` (ring of ``m`` vertices)."""
+    d = (v - edge_i) % m
+    return d == 0 or d == 1 or (at_vertex_i and d == m - 1)
 
 
-@njit(cache=True, nogil=True, inline="always")
 def corner_triangle(a, b, c, centre_x, centre_y, edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance):  # type: ignore[no-untyped-def]
     """Whether the triangle of samples ``a, b, c`` is a corner triangle (see the module docstring)."""
-    r = ring[a]
-    if ring[b] != r or ring[c] != r:
-        return False
-    lo = rings_start[r]
-    m = rings_start[r + 1] - lo - 1
-    if m < 3:
-        return False
-    for step in range(3):  # the vertices sample a may belong to
-        v = (edge[a] + step - 1) % m
-        if not convex[lo + v] or not (_touches(edge, at_vertex, a, v, m) and _touches(edge, at_vertex, b, v, m)
-                                      and _touches(edge, at_vertex, c, v, m)):
+    return bool(corner_triangles(np.array([[a, b, c]], np.int64), np.array([0], np.int64),
+                                 np.array([[centre_x, centre_y]], np.float64), edge, at_vertex, ring, rings_xy,
+                                 rings_start, convex, tolerance)[0])
+
+
+@njit(cache=True, nogil=True)
+def corner_triangles(simplices, slots, centres, edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance):  # type: ignore[no-untyped-def]
+    """Whether each triangle ``simplices[slots[j]]`` is a corner triangle (see the module docstring).
+
+    One call for all the triangles, the test written out in the loop: a
+    compiled call per triangle with array arguments costs two atomic
+    reference counts per array.
+    """
+    out = np.zeros(len(slots), np.bool_)
+    for j in range(len(slots)):
+        t = slots[j]
+        a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
+        r = ring[a]
+        if ring[b] != r or ring[c] != r:
             continue
-        px, py = rings_xy[lo + (v - 1) % m, 0], rings_xy[lo + (v - 1) % m, 1]
-        vx, vy = rings_xy[lo + v, 0], rings_xy[lo + v, 1]
-        nx, ny = rings_xy[lo + (v + 1) % m, 0], rings_xy[lo + (v + 1) % m, 1]
-        ux, uy = vx - px, vy - py  # the edge into v
-        wx, wy = nx - vx, ny - vy  # the edge out of v
-        l1 = np.sqrt(ux * ux + uy * uy)
-        l2 = np.sqrt(wx * wx + wy * wy)
-        cx, cy = centre_x - vx, centre_y - vy
-        d1 = (uy * cx - ux * cy) / l1  # distances to both edges' lines, positive on the inner (right) side
-        d2 = (wy * cx - wx * cy) / l2
-        f1 = -(ux * cx + uy * cy) / l1  # the feet, from v along each edge
-        f2 = (wx * cx + wy * cy) / l2
-        half_sine = np.sqrt(max(0.5 * (1.0 + (ux * wx + uy * wy) / (l1 * l2)), 0.0))  # sin of half the inner angle
-        if (d1 >= 0.0 and d2 >= 0.0 and 0.0 <= f1 <= l1 and 0.0 <= f2 <= l2
-                and abs(d1 - d2) <= 2.0 * ERROR_SHARE * tolerance * half_sine):
-            return True
-    return False
+        lo = rings_start[r]
+        m = rings_start[r + 1] - lo - 1
+        if m < 3:
+            continue
+        for step in range(3):  # the vertices sample a may belong to
+            v = (edge[a] + step - 1) % m
+            if not convex[lo + v] or not (_touches(edge[a], at_vertex[a], v, m) and _touches(edge[b], at_vertex[b], v, m)
+                                          and _touches(edge[c], at_vertex[c], v, m)):
+                continue
+            px, py = rings_xy[lo + (v - 1) % m, 0], rings_xy[lo + (v - 1) % m, 1]
+            vx, vy = rings_xy[lo + v, 0], rings_xy[lo + v, 1]
+            nx, ny = rings_xy[lo + (v + 1) % m, 0], rings_xy[lo + (v + 1) % m, 1]
+            ux, uy = vx - px, vy - py  # the edge into v
+            wx, wy = nx - vx, ny - vy  # the edge out of v
+            l1 = np.sqrt(ux * ux + uy * uy)
+            l2 = np.sqrt(wx * wx + wy * wy)
+            cx, cy = centres[t, 0] - vx, centres[t, 1] - vy
+            d1 = (uy * cx - ux * cy) / l1  # distances to both edges' lines, positive on the inner (right) side
+            d2 = (wy * cx - wx * cy) / l2
+            f1 = -(ux * cx + uy * cy) / l1  # the feet, from v along each edge
+            f2 = (wx * cx + wy * cy) / l2
+            half_sine = np.sqrt(max(0.5 * (1.0 + (ux * wx + uy * wy) / (l1 * l2)), 0.0))  # sin of half the inner angle
+            if (d1 >= 0.0 and d2 >= 0.0 and 0.0 <= f1 <= l1 and 0.0 <= f2 <= l2
+                    and abs(d1 - d2) <= 2.0 * ERROR_SHARE * tolerance * half_sine):
+                out[j] = True
+                break
+    return out
 
 
 @njit(cache=True, nogil=True)
@@ -132,15 +149,22 @@ def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, o
     """
     edge, at_vertex = sample_edges(arc, ring, offset, rings_s, rings_start)
     corner = np.zeros(len(simplices), np.bool_)
+    slots = np.empty(len(simplices), np.int64)
+    n_tested = 0
     for t in range(len(simplices)):
         a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
         if memo[t, 0] == a and memo[t, 1] == b and memo[t, 2] == c:
             corner[t] = memo[t, 3] == 1
             continue
         if inside[t] and min(a, b, c) >= offset:
-            corner[t] = corner_triangle(a, b, c, centres[t, 0], centres[t, 1], edge, at_vertex, ring, rings_xy,
-                                        rings_start, convex, tolerance)
-        memo[t, 0], memo[t, 1], memo[t, 2], memo[t, 3] = a, b, c, 1 if corner[t] else 0
+            slots[n_tested] = t
+            n_tested += 1
+        memo[t, 0], memo[t, 1], memo[t, 2], memo[t, 3] = a, b, c, 0
+    tested = corner_triangles(simplices, slots[:n_tested], centres, edge, at_vertex, ring, rings_xy, rings_start,
+                              convex, tolerance)
+    for j in range(n_tested):
+        corner[slots[j]] = tested[j]
+        memo[slots[j], 3] = 1 if tested[j] else 0
     counted = inside & ~whole_circles(corner, inside, centres, radii)
     conforming, radius = piece_state(simplices, counted, radii, nxt)
     _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex)
