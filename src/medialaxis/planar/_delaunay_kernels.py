@@ -26,11 +26,11 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["delaunay_2d", "insertion_order", "insert_point", "scratch", "corner_square", "drop_corners"]
+__all__ = ["delaunay_2d", "insertion_order", "insert_points", "scratch", "corner_square", "drop_corners"]
 
 #: Steps of the visibility walk before the kernel gives up.
 MAX_WALK = 1 << 20
-#: The scratch rows of :func:`insert_point`, indexed in place (a row view per
+#: The scratch rows of :func:`insert_points`, indexed in place (a row view per
 #: insertion costs two atomic reference counts: a fifth of the sampling's time).
 STAMP, CAVITY, FREE, BND_A, BND_B, BND_OUT, NEW_TRI, BY_START, BY_END = range(9)
 
@@ -132,107 +132,122 @@ def insertion_order(x, y, seed=12345):  # type: ignore[no-untyped-def]
     return order
 
 
-@njit(cache=True, nogil=True, inline="always")
-def insert_point(x, y, tv, tn, count, p, t, work, seen):  # type: ignore[no-untyped-def]
-    """Insert point ``p`` into the triangulation ``tv``/``tn`` (``count`` live slots), walking from triangle ``t``.
+@njit(cache=True, nogil=True)
+def insert_points(x, y, tv, tn, count, order, hint, near, fresh, work, seen):  # type: ignore[no-untyped-def]
+    """Insert the points ``order`` into the triangulation ``tv``/``tn`` (``count`` live slots) by Bowyer-Watson.
 
-    ``work`` holds scratch rows (stamp, cavity, free, boundary a/b/out, new
-    triangles, by start, by end) sized to the triangle capacity plus 3, or
-    the point capacity for the last two; ``seen`` (point capacity) must hold
-    no ``p + 1``. Returns ``(count, new)``: ``work[6, :new]`` are the slots of
-    the new triangles; ``new == 0`` where rounding made the insertion
-    inconsistent.
+    Point ``order[m]`` walks from triangle ``near[hint[m]]``, or from the
+    last new triangle where ``hint[m] < 0``. ``near[v]`` is kept at a live
+    triangle of ``v`` for every vertex of every new triangle; ``fresh``
+    marks the slots written. ``work`` holds scratch rows (:data:`STAMP` ..
+    :data:`BY_END`) sized to the triangle capacity plus 3, or the point
+    capacity for the last two; ``seen`` (point capacity) must hold no
+    ``p + 1``. Returns ``(count, ok)``: ``ok`` False where rounding made an
+    insertion inconsistent (the triangulation is then unusable). One call
+    for all the points: a compiled call per point with array arguments costs
+    two atomic reference counts per array.
     """
-    n_free = 0
-    # locate: a visibility walk
-    steps = 0
-    while True:
-        moved = False
-        for k in range(3):
-            a = tv[t, (k + 1) % 3]
-            b = tv[t, (k + 2) % 3]
-            if _orient(x, y, a, b, p) < 0.0:
-                u = tn[t, k]
-                if u < 0:
-                    return count, 0
-                t = u
-                moved = True
-                break
-        if not moved:
-            break
-        steps += 1
-        if steps > MAX_WALK:
-            return count, 0
-    # the cavity, grown across edges from the triangle that holds p
-    mark = p + 1
-    work[STAMP, t] = mark
-    work[CAVITY, 0] = t
-    n_cav = 1
-    n_bnd = 0
-    head = 0
-    while head < n_cav:
-        t = work[CAVITY, head]
-        head += 1
-        for k in range(3):
-            u = tn[t, k]
-            if u >= 0 and work[STAMP, u] == mark:
-                continue
-            inside = False
-            if u >= 0 and work[STAMP, u] != -mark:
-                if _in_circle(x, y, tv[u, 0], tv[u, 1], tv[u, 2], p) > 0.0:
-                    inside = True
-                else:
-                    work[STAMP, u] = -mark
-            if inside:
-                work[STAMP, u] = mark
-                work[CAVITY, n_cav] = u
-                n_cav += 1
-            else:
-                work[BND_A, n_bnd] = tv[t, (k + 1) % 3]
-                work[BND_B, n_bnd] = tv[t, (k + 2) % 3]
-                work[BND_OUT, n_bnd] = u
-                n_bnd += 1
-    if n_bnd != n_cav + 2:  # the boundary of a disc of c triangles has c + 2 edges
-        return count, 0
-    # the new triangles (a, b, p), in the cavity's slots first
-    for j in range(n_cav):
-        work[FREE, n_free] = work[CAVITY, j]
-        n_free += 1
-    for j in range(n_bnd):
-        a, b = work[BND_A, j], work[BND_B, j]
-        if _orient(x, y, a, b, p) <= 0.0 or seen[a] == mark:
-            return count, 0
-        seen[a] = mark
-        if n_free > 0:
-            n_free -= 1
-            s = work[FREE, n_free]
-        else:
-            s = count
-            count += 1
-        tv[s, 0], tv[s, 1], tv[s, 2] = a, b, p
-        tn[s, 2] = work[BND_OUT, j]
-        work[STAMP, s] = 0
-        u = work[BND_OUT, j]
-        if u >= 0:
+    last = 0
+    for m in range(len(order)):
+        p = order[m]
+        t = near[hint[m]] if hint[m] >= 0 else last
+        n_free = 0
+        # locate: a visibility walk
+        steps = 0
+        while True:
+            moved = False
             for k in range(3):
-                if tv[u, (k + 1) % 3] == b and tv[u, (k + 2) % 3] == a:
-                    tn[u, k] = s
-        work[BY_START, a] = s
-        work[BY_END, b] = s
-        work[NEW_TRI, j] = s
-    for j in range(n_bnd):
-        s = work[NEW_TRI, j]
-        a, b = tv[s, 0], tv[s, 1]
-        if seen[b] != mark:  # the boundary is not one closed loop
-            return count, 0
-        tn[s, 0] = work[BY_START, b]
-        tn[s, 1] = work[BY_END, a]
-    return count, n_bnd
+                a = tv[t, (k + 1) % 3]
+                b = tv[t, (k + 2) % 3]
+                if _orient(x, y, a, b, p) < 0.0:
+                    u = tn[t, k]
+                    if u < 0:
+                        return count, False
+                    t = u
+                    moved = True
+                    break
+            if not moved:
+                break
+            steps += 1
+            if steps > MAX_WALK:
+                return count, False
+        # the cavity, grown across edges from the triangle that holds p
+        mark = p + 1
+        work[STAMP, t] = mark
+        work[CAVITY, 0] = t
+        n_cav = 1
+        n_bnd = 0
+        head = 0
+        while head < n_cav:
+            t = work[CAVITY, head]
+            head += 1
+            for k in range(3):
+                u = tn[t, k]
+                if u >= 0 and work[STAMP, u] == mark:
+                    continue
+                inside = False
+                if u >= 0 and work[STAMP, u] != -mark:
+                    if _in_circle(x, y, tv[u, 0], tv[u, 1], tv[u, 2], p) > 0.0:
+                        inside = True
+                    else:
+                        work[STAMP, u] = -mark
+                if inside:
+                    work[STAMP, u] = mark
+                    work[CAVITY, n_cav] = u
+                    n_cav += 1
+                else:
+                    work[BND_A, n_bnd] = tv[t, (k + 1) % 3]
+                    work[BND_B, n_bnd] = tv[t, (k + 2) % 3]
+                    work[BND_OUT, n_bnd] = u
+                    n_bnd += 1
+        if n_bnd != n_cav + 2:  # the boundary of a disc of c triangles has c + 2 edges
+            return count, False
+        # the new triangles (a, b, p), in the cavity's slots first
+        for j in range(n_cav):
+            work[FREE, n_free] = work[CAVITY, j]
+            n_free += 1
+        for j in range(n_bnd):
+            a, b = work[BND_A, j], work[BND_B, j]
+            if _orient(x, y, a, b, p) <= 0.0 or seen[a] == mark:
+                return count, False
+            seen[a] = mark
+            if n_free > 0:
+                n_free -= 1
+                s = work[FREE, n_free]
+            else:
+                s = count
+                count += 1
+            tv[s, 0], tv[s, 1], tv[s, 2] = a, b, p
+            tn[s, 2] = work[BND_OUT, j]
+            work[STAMP, s] = 0
+            u = work[BND_OUT, j]
+            if u >= 0:
+                for k in range(3):
+                    if tv[u, (k + 1) % 3] == b and tv[u, (k + 2) % 3] == a:
+                        tn[u, k] = s
+            work[BY_START, a] = s
+            work[BY_END, b] = s
+            work[NEW_TRI, j] = s
+        for j in range(n_bnd):
+            s = work[NEW_TRI, j]
+            a, b = tv[s, 0], tv[s, 1]
+            if seen[b] != mark:  # the boundary is not one closed loop
+                return count, False
+            tn[s, 0] = work[BY_START, b]
+            tn[s, 1] = work[BY_END, a]
+        for j in range(n_bnd):
+            s = work[NEW_TRI, j]
+            fresh[s] = True
+            near[tv[s, 0]] = s  # the cavity's vertices lost their triangles: each new one is at its two
+            near[tv[s, 1]] = s
+        last = work[NEW_TRI, 0]
+        near[p] = last
+    return count, True
 
 
 @njit(cache=True, nogil=True)
 def scratch(tri_capacity, point_capacity):  # type: ignore[no-untyped-def]
-    """The scratch rows of :func:`_insert` and a zeroed ``seen``."""
+    """The scratch rows of :func:`insert_points` and a zeroed ``seen``."""
     work = np.empty((9, max(tri_capacity + 3, point_capacity)), np.int64)
     work[0, :] = 0
     return work, np.zeros(point_capacity, np.int64)
@@ -262,13 +277,12 @@ def _triangulate(x, y):  # type: ignore[no-untyped-def]
     corner_square(tv, tn, n)
     count = 2
     work, seen = scratch(cap, n + 4)
-    last = 0
     order = insertion_order(x[:n], y[:n])
-    for p in order:
-        count, new = insert_point(x, y, tv, tn, count, p, last, work, seen)
-        if new == 0:
-            return tv, tn, 0, False
-        last = work[6, 0]
+    hint = np.full(n, -1, np.int64)  # each walk from the triangle made last
+    count, ok = insert_points(x, y, tv, tn, count, order, hint, np.zeros(n + 4, np.int64), np.zeros(cap, np.bool_),
+                              work, seen)
+    if not ok:
+        return tv, tn, 0, False
     return tv, tn, count, True
 
 

@@ -4,7 +4,7 @@ Each round of :mod:`medialaxis.planar.adaptive` splits the boundary pieces
 that are too long (:func:`split_linked`, the rule of
 :func:`medialaxis.planar._kernels.split_count`), inserts only the new samples
 into the Delaunay triangulation of the previous round (:func:`insert_batch`,
-the Bowyer-Watson step of :func:`medialaxis.planar._delaunay_kernels.insert_point`,
+the Bowyer-Watson steps of :func:`medialaxis.planar._delaunay_kernels.insert_points`,
 walking from a triangle at the split piece), and computes the circumcircle and the
 inside test of the triangles made in that round only (:func:`fresh_triangles`).
 A round thus costs what it adds, not what the sample holds: the triangles
@@ -22,7 +22,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 from medialaxis.planar._corner_kernels import corner_piece_state_memo, corner_twins
-from medialaxis.planar._delaunay_kernels import drop_corners, insert_point, insertion_order, scratch
+from medialaxis.planar._delaunay_kernels import drop_corners, insert_points, insertion_order, scratch
 from medialaxis.planar._inside_kernels import UNSURE, locate_points, triangle_centroid
 from medialaxis.planar._kernels import circle_through, split_count
 
@@ -46,21 +46,8 @@ def insert_batch(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-unt
     """
     work, seen = scratch(len(tv), len(x))
     fresh = np.zeros(len(tv), np.bool_)
-    last = 0
-    for m in range(len(order)):
-        p = order[m]
-        start = near[hint[m]] if hint[m] >= 0 else last
-        count, new = insert_point(x, y, tv, tn, count, p, start, work, seen)
-        if new == 0:
-            return count, fresh, False
-        for j in range(new):
-            t = work[6, j]
-            fresh[t] = True
-            near[tv[t, 0]] = t  # the cavity's vertices lost their triangles: each new one is at its two
-            near[tv[t, 1]] = t
-        last = work[6, 0]
-        near[p] = last
-    return count, fresh, True
+    count, ok = insert_points(x, y, tv, tn, count, order, hint, near, fresh, work, seen)
+    return count, fresh, ok
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
