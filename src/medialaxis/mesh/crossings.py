@@ -13,9 +13,10 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core.arrays import unique_ints
+from medialaxis.core.graph import component_labels
 
 __all__ = [
-    "candidate_pairs", "crossing_pairs", "nested_shell", "shell_labels", "shell_volumes", "solid_betti", "unit_triangles", "winding_numbers",
+    "candidate_pairs", "crossing_pairs", "inside_out_shells", "nested_shell", "shell_labels", "shell_volumes", "solid_betti", "unit_triangles", "winding_numbers",
 ]
 
 #: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
@@ -48,6 +49,31 @@ def shell_volumes(mesh: Any) -> tuple[np.ndarray, np.ndarray]:
     tri = np.asarray(mesh.vertices, np.float64)[np.asarray(mesh.faces, np.int64)]
     six_volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
     return labels, np.bincount(labels, six_volume, int(labels.max()) + 1 if len(labels) else 0)
+
+
+def inside_out_shells(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Faces of the shells that face inward although no other shell encloses them ``(k,)``.
+
+    A shell of negative signed volume bounds a cavity when the rest of the
+    surface winds around it; one lying apart (a part whose faces an
+    exporter turned over) has winding number 0 there and bounds nothing by
+    the winding-number rule, though it was meant as a solid, as trimesh's
+    ``fix_normals`` and MeshLab take it. Shells are the components of the
+    faces joined at their vertices; each is tested at its first vertex.
+    """
+    faces = np.asarray(faces, np.int64)
+    n, labels = component_labels(len(vertices), faces[:, [0, 1, 1, 2]].reshape(-1, 2))
+    if n < 2:
+        return np.zeros(0, np.int64)
+    shell = labels[faces[:, 0]]
+    tri = np.asarray(vertices, np.float64)[faces]
+    volume = np.bincount(shell, np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])), n)
+    turned = []
+    for k in np.flatnonzero(volume < 0):
+        own = shell == k
+        if abs(float(winding_numbers(tri[own][:1, 0], tri[~own])[0])) < 0.5:
+            turned.append(np.flatnonzero(own))
+    return np.concatenate(turned) if turned else np.zeros(0, np.int64)
 
 
 def solid_betti(mesh: Any) -> tuple[int, int, int]:

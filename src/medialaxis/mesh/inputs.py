@@ -401,6 +401,15 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
             work.invert()
             repairs.append("flipped inward-facing normals")
             volume = -volume
+        from medialaxis.mesh.crossings import inside_out_shells
+
+        turned = inside_out_shells(work.vertices, work.faces)
+        if len(turned):  # a part turned over by its exporter, enclosed by nothing: a solid, not a cavity
+            faces = np.array(work.faces)
+            faces[turned] = faces[turned][:, ::-1]
+            work = trimesh.Trimesh(work.vertices, faces, process=False)
+            repairs.append(f"turned {len(turned)} faces of shells facing inward with nothing around them outward")
+            volume = signed_volume(work.triangles)
         if not volume > 0:
             raise EmptyShapeError(f"the mesh encloses no volume (volume {volume:.3g})")
         solid = resolve_solid(work, repairs, found, None if crossing else np.empty((0, 2), np.int64))
