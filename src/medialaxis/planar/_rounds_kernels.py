@@ -18,9 +18,10 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
+from medialaxis.planar._delaunay_kernels import corner_square, insertion_order
 from medialaxis.planar._refine_kernels import CORNERS, insert_round, refine_round
 
-__all__ = ["DONE", "ASK_GEOS", "MORE_JITTER", "FAILED", "ROUND", "incremental_rounds", "grown"]
+__all__ = ["DONE", "ASK_GEOS", "MORE_JITTER", "FAILED", "ROUND", "first_state", "incremental_rounds", "grown"]
 
 #: What :func:`incremental_rounds` returns for: the sample is final ...
 DONE = 0
@@ -32,6 +33,39 @@ MORE_JITTER = 2
 FAILED = 3
 #: ... a round is done and the sample is large (resume).
 ROUND = 4
+
+
+@njit(cache=True, nogil=True)
+def first_state(first, first_arc, first_ring, first_next, lo, extent, far_corners, shaken):  # type: ignore[no-untyped-def]
+    """The state :func:`incremental_rounds` starts from, for the first sample (``n`` points, ``n`` >= 3).
+
+    Returns ``(points, arc, ring, nxt, x, y, near, tv, tn, centre, radius,
+    where, memo, batch, hint)``: the samples after the :data:`CORNERS` far
+    corners, their jittered coordinates ``(p - lo) / extent + shaken``, the
+    two triangles of the corners, room for ``2 n + 2`` triangles, and the
+    first batch in its insertion order (BRIO).
+    """
+    n = len(first)
+    points = np.zeros((CORNERS + n, 2))
+    arc = np.zeros(CORNERS + n)
+    ring = np.full(CORNERS + n, -1, np.int64)
+    nxt = np.full(CORNERS + n, -1, np.int64)
+    x, y = np.empty(CORNERS + n), np.empty(CORNERS + n)
+    for i in range(CORNERS):
+        x[i], y[i] = far_corners[i, 0], far_corners[i, 1]
+    for i in range(n):
+        points[CORNERS + i, 0], points[CORNERS + i, 1] = first[i, 0], first[i, 1]
+        arc[CORNERS + i], ring[CORNERS + i], nxt[CORNERS + i] = first_arc[i], first_ring[i], first_next[i] + CORNERS
+        x[CORNERS + i] = (first[i, 0] - lo[0]) / extent + shaken[i, 0]
+        y[CORNERS + i] = (first[i, 1] - lo[1]) / extent + shaken[i, 1]
+    slots = 2 * n + 2
+    tv = np.empty((slots, 3), np.int64)
+    tn = np.full((slots, 3), -1, np.int64)
+    corner_square(tv, tn, 0)
+    memo = np.full((slots, 4), -1, np.int64)  # each slot's corner test, kept while its triangle stays
+    batch = insertion_order(x[CORNERS:], y[CORNERS:]) + CORNERS
+    return (points, arc, ring, nxt, x, y, np.zeros(CORNERS + n, np.int64), tv, tn, np.empty((slots, 2)),
+            np.empty(slots), np.zeros(slots, np.int8), memo, batch, np.full(n, -1, np.int64))
 
 
 @njit(cache=True, nogil=True)

@@ -24,9 +24,8 @@ import shapely
 
 from medialaxis._progress import progress
 from medialaxis.planar._corner_kernels import corner_piece_state
-from medialaxis.planar._delaunay_kernels import corner_square, insertion_order
 from medialaxis.planar._refine_kernels import CORNERS, assembled, first_sample
-from medialaxis.planar._rounds_kernels import ASK_GEOS, DONE, FAILED, MORE_JITTER, incremental_rounds
+from medialaxis.planar._rounds_kernels import ASK_GEOS, DONE, FAILED, MORE_JITTER, first_state, incremental_rounds
 from medialaxis.planar.axis import inner_triangles
 from medialaxis.planar.corners import RingArrays, mirrored_corner_arcs, ring_arrays
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
@@ -116,22 +115,10 @@ def _incremental(
     extent = float((first.max(0) - lo).max())
     if extent <= 0:
         return None
-    points = np.vstack([np.zeros((CORNERS, 2)), first])
-    arc = np.concatenate([np.zeros(CORNERS), first_arc])
-    ring = np.concatenate([np.full(CORNERS, -1), first_ring])
-    nxt = np.concatenate([np.full(CORNERS, -1), first_next + CORNERS])
     shaken = jitter(max(4 * n_real, 4096))
-    work = np.vstack([FAR_CORNERS, (first - lo) / extent + shaken[:n_real]])
-    x, y = np.ascontiguousarray(work[:, 0]), np.ascontiguousarray(work[:, 1])
-    near = np.zeros(len(x), np.int64)
-    tv = np.empty((2 * n_real + 2, 3), np.int64)
-    tn = np.full((2 * n_real + 2, 3), -1, np.int64)
-    corner_square(tv, tn, 0)
-    centre, radius, where = np.empty((len(tv), 2)), np.empty(len(tv)), np.zeros(len(tv), np.int8)
-    memo = np.full((len(tv), 4), -1, np.int64)  # each slot's corner test, kept while its triangle stays
+    (points, arc, ring, nxt, x, y, near, tv, tn, centre, radius, where, memo, batch, hint) = first_state(
+        first, first_arc, first_ring, first_next, lo, extent, FAR_CORNERS, shaken)
     count = 2
-    batch = insertion_order(x[CORNERS:], y[CORNERS:]) + CORNERS
-    hint = np.full(len(batch), -1, np.int64)
     rounds = progress(range(MAX_REFINEMENTS), desc="adaptive sampling")
     next(rounds, None)
     round_, inserted, settled = 0, False, False
