@@ -223,7 +223,7 @@ def _slab_distance(j, i, spheres, ptr, idx, eid, apex_ptr, apex, enough):  # pra
     return np.sqrt(best), False
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _cheap_terms(j, i, spheres, qa, qb, qc, count, moved, lines):  # pragma: no cover - compiled
     """The terms of merging ``j`` into ``i`` other than the slab distance: ``(sqem, rest)`` (the module docstring's (a), (b))."""
     quad = qc[j]
