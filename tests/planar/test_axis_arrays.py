@@ -7,6 +7,7 @@ import pytest
 from shapely.geometry import MultiPolygon, Point, Polygon, box
 
 from medialaxis.planar._axis_kernels import pruned_graph
+from medialaxis.planar.axis import axis_positions
 from medialaxis.planar.axis_arrays import polygon_axis_arrays
 from medialaxis.planar.pipeline import voronoi_medial_axis
 from medialaxis.planar.pruning import REGROW_DETOUR, prune_graph
@@ -25,7 +26,7 @@ CASES = {**{name: region for name, (region, _) in SHAPES.items()},
          "box": box(0, 0, 4, 2), "square": box(0, 0, 1, 1), "disc": Point(0, 0).buffer(1.0, 32),
          "triangle": Polygon([(0, 0), (1, 0), (0, 1)]),
          "two pieces, one tiny": MultiPolygon([box(0, 0, 1, 1), box(3, 0, 3.001, 0.001)]),
-         **{f"lake {seed}": _lake(seed) for seed in range(6)}}
+         **{f"lake {seed}": _lake(seed) for seed in (*range(6), 62, 98)}}  # 62, 98: circumcentres outside
 
 
 @pytest.mark.parametrize("name", list(CASES))
@@ -36,6 +37,22 @@ def test_the_arrays_are_the_pipelines_axis(name: str, options: dict) -> None:
     np.testing.assert_array_equal(axis.points, ma.points)
     np.testing.assert_array_equal(axis.radii, ma.radii)
     np.testing.assert_array_equal(axis.edges, ma.edges)
+
+
+def test_circumcentres_outside_the_shape_are_moved_as_the_pipeline_moves_them(monkeypatch: pytest.MonkeyPatch) -> None:
+    from medialaxis.planar import axis_arrays
+
+    calls = []
+
+    def spy(*args):  # type: ignore[no-untyped-def]
+        calls.append(1)
+        return axis_positions(*args)
+
+    monkeypatch.setattr(axis_arrays, "axis_positions", spy)
+    axis, ma = polygon_axis_arrays(CASES["lake 62"]), voronoi_medial_axis(CASES["lake 62"])
+    assert calls  # the compiled path handed the moves to axis_positions
+    np.testing.assert_array_equal(axis.points, ma.points)
+    np.testing.assert_array_equal(axis.radii, ma.radii)
 
 
 def test_inputs_other_than_polygons_go_the_whole_way() -> None:

@@ -27,8 +27,28 @@ from medialaxis.planar._graph_kernels import (
     merge_clusters,
     regrow_tips_kernel,
 )
+from medialaxis.planar._inside_kernels import locate_points
 
-__all__ = ["contact_arcs", "merged_nodes", "pruned_graph", "pruned_axis"]
+__all__ = ["inner_centres", "contact_arcs", "merged_nodes", "pruned_graph", "pruned_axis"]
+
+
+@njit(cache=True, nogil=True)
+def inner_centres(centres, inside, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
+    """``(inner, pos, all_in)``: the inside triangles, their circumcentres, and whether the region holds them all.
+
+    :func:`medialaxis.planar.axis.axis_positions` where no circumcentre needs
+    moving (``all_in``; else, or where the compiled inside test is unsure,
+    the caller takes that function).
+    """
+    inner = np.flatnonzero(inside)
+    pos = np.empty((len(inner), 2))
+    for i in range(len(inner)):
+        pos[i, 0], pos[i, 1] = centres[inner[i], 0], centres[inner[i], 1]
+    where = locate_points(pos[:, 0], pos[:, 1], segments, start, members, y0, height)
+    all_in = True
+    for i in range(len(inner)):
+        all_in = all_in and where[i] == 1
+    return inner, pos, all_in
 
 
 @njit(cache=True, nogil=True)

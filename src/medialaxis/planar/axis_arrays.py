@@ -15,7 +15,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from medialaxis.planar._axis_kernels import pruned_axis
+from medialaxis.planar._axis_kernels import inner_centres, pruned_axis
 from medialaxis.planar.axis import axis_positions
 from medialaxis.planar.pipeline import _load, sampled, voronoi_medial_axis
 from medialaxis.planar.pruning import REGROW_DETOUR
@@ -72,7 +72,11 @@ def polygon_axis_arrays(shape: Any, *, lam: float | None = None, tolerance: floa
                                                              boundary="contour")
     if len(smp.points) <= NEAREST:
         return _whole_way(shape, *given)
-    inner, pos = axis_positions(tri, inside, rings.region, rings.locator)
+    locator = rings.locator
+    inner, pos, all_in = inner_centres(tri.centers, inside, locator.segments, locator.start, locator.members,
+                                       locator.y0, locator.height)
+    if not all_in:  # circumcentres to move, or an inside test for GEOS
+        inner, pos = axis_positions(tri, inside, rings.region, locator)
     points, radii, edges = pruned_axis(
         pos, tri.simplices, tri.neighbors, inner.astype(np.int64), np.ascontiguousarray(tri.points, np.float64),
         np.ascontiguousarray(smp.points, np.float64), np.asarray(smp.next, np.int64), np.asarray(smp.prev, np.int64),
