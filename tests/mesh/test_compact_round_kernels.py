@@ -121,7 +121,7 @@ def test_complex_edges_counts_the_triangles_on_each_edge():
 def test_small_rounds_run_on_one_thread():
     import numba
 
-    from medialaxis.mesh.compact_inside import PARALLEL_ROWS, threads_for
+    from medialaxis.mesh.compact import PARALLEL_ROWS, threads_for
 
     before = numba.get_num_threads()
     with threads_for(PARALLEL_ROWS - 1):

@@ -15,7 +15,7 @@ from medialaxis._jit import njit, prange
 __all__ = ["structure", "link_ok", "select", "feature_lines", "costs", "moves", "lattice", "lattice_steps"]
 
 
-@njit(cache=True, nogil=True, parallel=True)
+@njit(cache=True, nogil=True)
 def structure(n, edges, faces):  # pragma: no cover - compiled
     """Neighbour lists and triangle apexes of a complex, in one pass over its sorted edges.
 
@@ -47,7 +47,7 @@ def structure(n, edges, faces):  # pragma: no cover - compiled
         fill[u] += 1
     owner = np.empty(3 * faces.shape[0], np.int64)
     apex_ptr = np.zeros(m + 1, np.int64)
-    for f in prange(faces.shape[0]):
+    for f in range(faces.shape[0]):
         for k in range(3):
             a, b = faces[f, k], faces[f, (k + 1) % 3]
             u, v = min(a, b), max(a, b)

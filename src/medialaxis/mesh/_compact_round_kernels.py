@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from medialaxis._jit import njit, prange
+from medialaxis._jit import njit
 from medialaxis.mesh._compact_kernels import lattice_steps
 
 __all__ = ["quadrics", "morton_codes", "ties_by_source", "changed_prims", "merge_into", "remap_faces"]
 
 
-@njit(cache=True, nogil=True, parallel=True)
+@njit(cache=True, nogil=True)
 def quadrics(points, contacts):  # pragma: no cover - compiled
     """Spherical quadrics of each point's contacts (see :func:`~medialaxis.mesh.compact.sphere_quadrics`).
 
@@ -32,7 +32,7 @@ def quadrics(points, contacts):  # pragma: no cover - compiled
     qa = np.zeros((n, 4, 4))
     qb = np.zeros((n, 4))
     qc = np.zeros(n)
-    for s in prange(n):
+    for s in range(n):
         for t in range(contacts.shape[1]):
             x = contacts[s, t, 0] - points[s, 0]
             y = contacts[s, t, 1] - points[s, 1]
@@ -64,14 +64,16 @@ def morton_codes(points):  # pragma: no cover - compiled
     """Morton (Z-order) codes of ``points`` (n, 3) on a 2^21 grid over their box (all 0 if it is not finite)."""
     n = points.shape[0]
     codes = np.zeros(n, np.int64)
-    if n == 0 or not np.isfinite(points).all():
-        return codes
-    low = np.empty(3)
-    span = 0.0
-    for k in range(3):
-        low[k] = points[:, k].min()
-        span = max(span, points[:, k].max() - low[k])
-    if span <= 0.0:
+    low = np.full(3, np.inf)
+    high = np.full(3, -np.inf)
+    for p in range(n):
+        for k in range(3):
+            if not np.isfinite(points[p, k]):
+                return codes
+            low[k] = min(low[k], points[p, k])
+            high[k] = max(high[k], points[p, k])
+    span = max(high[0] - low[0], max(high[1] - low[1], high[2] - low[2]))
+    if not span > 0.0:  # no points, or all in one
         return codes
     for p in range(n):
         for k in range(3):
@@ -129,7 +131,7 @@ def _prim(faces, edges, p):  # pragma: no cover - compiled
     return edges[e, 0], edges[e, 1], edges[e, 1]
 
 
-@njit(cache=True, nogil=True, parallel=True)
+@njit(cache=True, nogil=True)
 def changed_prims(faces, edges, to, spheres, spacing):  # pragma: no cover - compiled
     """Triangles ``faces`` and edges ``edges`` (as triangles ``(a, b, b)``) that the map ``to`` changes without squeezing flat.
 
@@ -140,7 +142,7 @@ def changed_prims(faces, edges, to, spheres, spacing):  # pragma: no cover - com
     """
     total = faces.shape[0] + edges.shape[0]
     kind = np.zeros(total, np.uint8)  # 1: changed, 2: changed, with samples
-    for p in prange(total):
+    for p in range(total):
         r0, r1, r2 = _prim(faces, edges, p)
         a, b, c = to[r0], to[r1], to[r2]
         if (a == r0 and b == r1 and c == r2) or a == b or c == a or (b == c and r1 != r2):  # unchanged or squeezed flat

@@ -57,10 +57,12 @@ Heckbert, "Surface simplification using quadric error metrics", 1997.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
+import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
@@ -70,7 +72,7 @@ from medialaxis.core.result import MedialAxis
 from medialaxis.mesh._compact_kernels import costs, feature_lines, link_ok, moves, select, structure
 from medialaxis.mesh._compact_round_kernels import merge_into, morton_codes, quadrics, remap_faces, ties_by_source
 from medialaxis.mesh._rows import first_of_rows
-from medialaxis.mesh.compact_inside import collapses_inside, threads_for
+from medialaxis.mesh.compact_inside import collapses_inside
 
 __all__ = [
     "Compacted", "compact_complex", "compact_medial_axis", "sphere_quadrics", "complex_edges", "COMPACT_TOLERANCE", "RULES",
@@ -81,6 +83,26 @@ COMPACT_TOLERANCE = 1.0
 
 #: Most rounds of collapses (each halves the remaining candidates or more in practice).
 MAX_ROUNDS = 400
+
+
+#: Fewest rows (edges) the compaction's parallel kernels (costs, moves) run on all of numba's threads for. Smaller
+#: rounds run on one: each parallel region waits for all its threads, and on a loaded machine for one descheduled
+#: (fandisk's 43 rounds took 5.1 s on two threads at load 4.5, 0.5 s on one).
+PARALLEL_ROWS = 32_768
+
+
+@contextlib.contextmanager
+def threads_for(rows: int) -> Iterator[None]:
+    """Run the parallel kernels inside on one of numba's threads if ``rows < PARALLEL_ROWS`` (this thread only)."""
+    if rows >= PARALLEL_ROWS:
+        yield
+        return
+    before = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        yield
+    finally:
+        numba.set_num_threads(before)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -213,8 +235,7 @@ def compact_complex(
     while rounds < MAX_ROUNDS:
         rounds += 1
         star = ok = cand = src = dst = cost = move = lines = None  # the last round's, freed before this one's are made
-        with threads_for(len(faces)):
-            ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
+        ptr, idx, eid, apex_ptr, apex = structure(n, all_edges, faces)
         tri_count = np.diff(apex_ptr)
         ok = link_ok(all_edges, ptr, idx, apex_ptr, apex) if strict else np.ones(len(all_edges), bool)
         cand = np.flatnonzero(ok)

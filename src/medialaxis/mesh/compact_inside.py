@@ -10,10 +10,8 @@ get the surface's signed distance.
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
-import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
@@ -21,7 +19,7 @@ from medialaxis.core.arrays import unique_ints
 from medialaxis.mesh._compact_kernels import lattice
 from medialaxis.mesh._compact_round_kernels import changed_prims
 
-__all__ = ["collapses_inside", "threads_for", "CHUNK", "LATTICE_SPACING", "NEAR_BALLS", "PARALLEL_ROWS"]
+__all__ = ["collapses_inside", "CHUNK", "LATTICE_SPACING", "NEAR_BALLS"]
 
 #: Input balls (nearest centres) whose emptiness bounds an interpolated sphere's reach before the surface is searched.
 NEAR_BALLS = 4
@@ -31,26 +29,6 @@ LATTICE_SPACING = 2.0
 
 #: Rows (spheres, triangles) whose temporaries are made at once: memory bounded whatever the complex's size.
 CHUNK = 65_536
-
-#: Fewest rows (edges, triangles) a parallel kernel of the compaction runs on all of numba's threads for. Smaller
-#: rounds run on one: each parallel region waits for all its threads, and on a loaded machine for one descheduled
-#: (fandisk's 43 rounds took 5.1 s on two threads at load 4.5, 0.5 s on one).
-PARALLEL_ROWS = 32_768
-
-
-@contextlib.contextmanager
-def threads_for(rows: int) -> Iterator[None]:
-    """Run the parallel kernels inside on one of numba's threads if ``rows < PARALLEL_ROWS`` (this thread only)."""
-    if rows >= PARALLEL_ROWS:
-        yield
-        return
-    before = numba.get_num_threads()
-    numba.set_num_threads(1)
-    try:
-        yield
-    finally:
-        numba.set_num_threads(before)
-
 
 def collapses_inside(
     chosen: np.ndarray, src: np.ndarray, dst: np.ndarray, faces: np.ndarray, edges: np.ndarray,
@@ -75,8 +53,7 @@ def collapses_inside(
     while True:
         to = np.arange(n)
         to[src[chosen]] = dst[chosen]
-        with threads_for(len(faces) + len(edges)):
-            after, before, touched = changed_prims(faces, edges, to, spheres, LATTICE_SPACING * tolerance)  # an edge: (a, b, b)
+        after, before, touched = changed_prims(faces, edges, to, spheres, LATTICE_SPACING * tolerance)  # an edge: (a, b, b)
         # their samples CHUNK primitives at a time: 2M on the first round of a 40k-vertex torus's complex, whose
         # sample arrays took 0.3 GB at once
         deep = [before[lo : lo + CHUNK][_reaching_out(after[lo : lo + CHUNK], before[lo : lo + CHUNK], spheres, signed,
