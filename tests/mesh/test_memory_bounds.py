@@ -107,14 +107,12 @@ def test_beside_works_at_once_when_no_thread_can_be_started(monkeypatch):
 
 
 def test_the_compaction_does_not_depend_on_how_many_rows_are_made_at_once(monkeypatch):
-    # sphere quadrics and the reach check of each round run CHUNK rows at a time (bounded temporaries)
-    import medialaxis.mesh.compact as compact
+    # the reach check of each round runs CHUNK rows at a time (bounded temporaries; the sphere quadrics make none)
     import medialaxis.mesh.compact_inside as compact_inside
 
     mesh = trimesh.creation.torus(3, 1, major_sections=24, minor_sections=12)
     results = []
-    for chunk in (compact.CHUNK, 97):
-        monkeypatch.setattr(compact, "CHUNK", chunk)
+    for chunk in (compact_inside.CHUNK, 97):
         monkeypatch.setattr(compact_inside, "CHUNK", chunk)
         results.append(mx.medial_axis(mesh, method="voronoi", samples=3000))
     a, b = results
