@@ -189,3 +189,30 @@ def spanning_forest_edges(parent, edge_ij, candidates, drop):  # type: ignore[no
         if a != b:
             drop[k] = True
             parent[min(a, b)] = max(a, b)
+
+
+@njit(cache=True, nogil=True)
+def lost_components(inner, side_ends, kept):  # type: ignore[no-untyped-def]
+    """Per tetrahedron: the root of its component of inner tetrahedra (joined through ``side_ends``) when
+    no tetrahedron of that component is ``kept``, else ``-1``.
+
+    Collapsing a contractible component narrower than lambda leaves one
+    point, which no kept facet or curve piece names: the caller keeps one.
+    """
+    n = inner.shape[0]
+    parent = np.arange(n)
+    for s in range(side_ends.shape[0]):
+        a, b = find_root(parent, side_ends[s, 0]), find_root(parent, side_ends[s, 1])
+        if a != b:
+            parent[min(a, b)] = max(a, b)
+    has = np.zeros(n, np.bool_)
+    for t in range(n):
+        if inner[t] and kept[t]:
+            has[find_root(parent, t)] = True
+    out = np.full(n, -1, np.int64)
+    for t in range(n):
+        if inner[t]:
+            r = find_root(parent, t)
+            if not has[r]:
+                out[t] = r
+    return out

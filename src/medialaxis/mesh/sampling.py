@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial import cKDTree
 
+from medialaxis.core.graph import component_labels
 from medialaxis.errors import InvalidInputError, ResourceLimitError
 from medialaxis.mesh._rows import first_of_rows
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
@@ -32,6 +33,7 @@ __all__ = [
     "face_spacing_for_count",
     "lfs_estimate",
     "adaptive_spacing",
+    "shell_spacing",
     "sample_count",
     "thin_part_count",
 ]
@@ -54,6 +56,11 @@ THIN_SLACK = 1.25
 THIN_SAMPLES = 250_000
 #: Spacing adapts to local feature size within this ratio (finest : coarsest).
 ADAPTIVE_RANGE = 4.0
+#: Fewest samples on each connected piece of the surface (a shell): a piece
+#: smaller than the spacing (a part of a tenth of the spacing, a chip a
+#: boolean left apart) is sampled at least this densely, so that the
+#: Delaunay step resolves it; larger pieces have more samples already.
+MIN_SHELL_SAMPLES = 50
 #: Cell of the grids that thin the medial points of the local feature size
 #: estimate, relative to their radius (see :func:`lfs_estimate`).
 LFS_CELL = 0.05
@@ -290,7 +297,9 @@ def adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:
 
     The local feature size at each face centroid (distance to the nearest
     medial point of :func:`lfs_estimate`) is clipped to within
-    ``ADAPTIVE_RANGE`` of its area-weighted median, then scaled.
+    ``ADAPTIVE_RANGE`` of its area-weighted median, then scaled. A piece of
+    the surface too small for ``MIN_SHELL_SAMPLES`` at that spacing gets a
+    finer one (:func:`shell_spacing`).
     """
     centroids = np.asarray(mesh.triangles_center, np.float64)
     lfs, _ = tree.query(centroids, workers=-1)
@@ -298,7 +307,29 @@ def adaptive_spacing(mesh: Any, tree: cKDTree, count: int) -> np.ndarray:
     order = np.argsort(lfs)
     median = lfs[order][np.searchsorted(np.cumsum(area[order]), 0.5 * area.sum())]
     rel = np.clip(lfs, median / ADAPTIVE_RANGE, median)
-    return face_spacing_for_count(area, rel, count)
+    return shell_spacing(mesh, face_spacing_for_count(area, rel, count))
+
+
+def shell_spacing(mesh: Any, spacing: np.ndarray) -> np.ndarray:
+    """Per-face ``spacing``, finer on the pieces of the surface it would give fewer than ``MIN_SHELL_SAMPLES``.
+
+    The local feature size of :func:`lfs_estimate` comes from a coarse sample
+    that misses pieces smaller than its own spacing. Pieces are the
+    components of the faces joined at their vertices; a piece's spacing is
+    never finer than its edges' total length over ``MIN_SHELL_SAMPLES`` (a
+    needle-thin piece gets no more points along its edges than that).
+    """
+    faces = np.asarray(mesh.faces, np.int64)
+    n, labels = component_labels(len(mesh.vertices), faces[:, [0, 1, 1, 2]].reshape(-1, 2))
+    if n < 2:
+        return spacing
+    shell = labels[faces[:, 0]]
+    area = np.bincount(shell, np.asarray(mesh.area_faces, np.float64), n)
+    tri = np.asarray(mesh.vertices, np.float64)[faces]
+    half_perimeter = 0.5 * np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2).sum(axis=1)
+    edge_length = np.bincount(shell, half_perimeter, n)  # each edge once on a closed piece
+    wanted = np.maximum(np.sqrt(_LATTICE * area / MIN_SHELL_SAMPLES), edge_length / MIN_SHELL_SAMPLES)
+    return np.minimum(spacing, wanted[shell])
 
 
 def sample_count(samples: Any, n_vertices: int) -> int:
