@@ -52,3 +52,19 @@ def test_the_flow_skeleton_of_a_ball_turned_over_beside_another():
     sk = mx.medial_axis(trimesh.util.concatenate([_ball(1.0), _ball(1.0, (5, 0, 0), True)]), method="flow")
     assert sk.n_components == 2  # one point per ball (the turned one was left out as a cavity)
     assert sorted(np.round(sk.points[:, 0]).tolist()) == [0.0, 5.0]
+
+
+def test_a_porous_block_keeps_its_pores_by_both_winding_paths(monkeypatch):
+    # 200 pores (cavities, winding number 1 around them) and one ball turned over apart from the block
+    rng = np.random.default_rng(0)
+    parts = [trimesh.creation.box([10.0, 10.0, 10.0])]
+    parts += [_ball(0.05, c, True, subdivisions=1) for c in rng.uniform(-4.0, 4.0, (200, 3))]
+    parts.append(_ball(1.0, (20.0, 0.0, 0.0), True, subdivisions=2))
+    porous = trimesh.util.concatenate(parts)
+    n_free = len(parts[-1].faces)
+    expected = list(range(len(porous.faces) - n_free, len(porous.faces)))
+    assert inside_out_shells(porous.vertices, porous.faces).tolist() == expected
+    from medialaxis.mesh import crossings
+
+    monkeypatch.setattr(crossings, "EXACT_TERMS", 0)  # the fast winding tree
+    assert inside_out_shells(porous.vertices, porous.faces).tolist() == expected

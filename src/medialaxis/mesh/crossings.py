@@ -19,6 +19,8 @@ __all__ = [
     "candidate_pairs", "crossing_pairs", "inside_out_shells", "nested_shell", "shell_labels", "shell_volumes", "solid_betti", "unit_triangles", "winding_numbers",
 ]
 
+#: Triangle-point terms of an exact winding-number call beyond which the fast winding tree answers.
+EXACT_TERMS = 200_000_000
 #: Vertices of a shell tested against the other shells (evenly spaced subset beyond this).
 SHELL_PROBES = 500
 #: Rounds of longest-edge bisection of a large face (each halves its pieces' longest side).
@@ -59,7 +61,10 @@ def inside_out_shells(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     exporter turned over) has winding number 0 there and bounds nothing by
     the winding-number rule, though it was meant as a solid, as trimesh's
     ``fix_normals`` and MeshLab take it. Shells are the components of the
-    faces joined at their vertices; each is tested at its first vertex.
+    faces joined at their vertices; each is tested at its first vertex,
+    against the outward shells (those enclose; one winding-number call for
+    all, through the fast winding tree past ``EXACT_TERMS`` terms: a porous
+    part has thousands of cavities).
     """
     faces = np.asarray(faces, np.int64)
     n, labels = component_labels(len(vertices), faces[:, [0, 1, 1, 2]].reshape(-1, 2))
@@ -68,12 +73,24 @@ def inside_out_shells(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     shell = labels[faces[:, 0]]
     tri = np.asarray(vertices, np.float64)[faces]
     volume = np.bincount(shell, np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])), n)
-    turned = []
-    for k in np.flatnonzero(volume < 0):
-        own = shell == k
-        if abs(float(winding_numbers(tri[own][:1, 0], tri[~own])[0])) < 0.5:
-            turned.append(np.flatnonzero(own))
-    return np.concatenate(turned) if turned else np.zeros(0, np.int64)
+    inward = np.flatnonzero(volume < 0)
+    if not len(inward):
+        return np.zeros(0, np.int64)
+    outward = tri[volume[shell] > 0]
+    first = np.empty(n, np.int64)
+    first[shell[::-1]] = np.arange(len(shell) - 1, -1, -1)  # each shell's first face
+    probes = tri[first[inward], 0]
+    if not len(outward):
+        winding = np.zeros(len(inward))
+    elif len(probes) * len(outward) > EXACT_TERMS:
+        from medialaxis.mesh._fast_winding_kernels import WindingTree
+
+        winding = WindingTree(outward)(probes)
+    else:
+        winding = winding_numbers(probes, outward)
+    free = np.zeros(n, bool)
+    free[inward[np.abs(winding) < 0.5]] = True
+    return np.flatnonzero(free[shell])
 
 
 def solid_betti(mesh: Any) -> tuple[int, int, int]:
