@@ -25,6 +25,7 @@ from medialaxis.errors import (
     UnsupportedFormatError,
 )
 from medialaxis.mesh.contour import contoured
+from medialaxis.mesh.crossings import inside_out_shells
 
 __all__ = ["MeshInput", "load_mesh", "resolve_solid", "signed_volume", "MESH_EXTENSIONS"]
 
@@ -401,14 +402,14 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
             work.invert()
             repairs.append("flipped inward-facing normals")
             volume = -volume
-        from medialaxis.mesh.crossings import inside_out_shells
-
         turned = inside_out_shells(work.vertices, work.faces)
         if len(turned):  # a part turned over by its exporter, enclosed by nothing: a solid, not a cavity
             faces = np.array(work.faces)
             faces[turned] = faces[turned][:, ::-1]
             work = trimesh.Trimesh(work.vertices, faces, process=False)
             repairs.append(f"turned {len(turned)} faces of shells facing inward with nothing around them outward")
+            warnings.warn(f"{len(turned)} faces of shells facing inward with nothing around them were turned outward: "
+                          "they bound parts, not cavities", MedialAxisWarning, stacklevel=3)
             volume = signed_volume(work.triangles)
         if not volume > 0:
             raise EmptyShapeError(f"the mesh encloses no volume (volume {volume:.3g})")
