@@ -58,10 +58,14 @@ def polygon_axis_arrays(shape: Any, *, lam: float | None = None, tolerance: floa
 
     Examples
     --------
+    >>> import numpy as np
     >>> from shapely.geometry import box
     >>> axis = polygon_axis_arrays(box(0, 0, 4, 2))
-    >>> axis.points.shape, axis.edges.shape
-    ((6, 2), (5, 2))
+    >>> ma = voronoi_medial_axis(box(0, 0, 4, 2))
+    >>> all(np.array_equal(a, b) for a, b in zip(axis, (ma.points, ma.radii, ma.edges)))
+    True
+    >>> len(axis.edges) == len(axis.points) - 1  # a tree: the rectangle's axis with its four corner arms
+    True
     """
     src = _load(shape, threshold=None, spacing=None, tolerance=tolerance, boundary="contour", foreground="auto",
                 strokes=None, layers=None, labels=None, channel_axis=-1)
