@@ -16,7 +16,7 @@ from medialaxis.core.arrays import unique_ints
 from medialaxis.core.graph import component_labels
 
 __all__ = [
-    "candidate_pairs", "crossing_pairs", "inside_out_shells", "nested_shell", "shell_labels", "shell_volumes", "solid_betti", "unit_triangles", "winding_numbers",
+    "candidate_pairs", "crossing_pairs", "inside_out_shells", "nested_shell", "shell_labels", "shell_volumes", "solid_betti", "unit_triangles", "vertex_shells", "winding_numbers",
 ]
 
 #: Triangle-point terms of an exact winding-number call beyond which the fast winding tree answers.
@@ -45,12 +45,23 @@ def shell_labels(mesh: Any) -> np.ndarray:
     return connected_component_labels(mesh.face_adjacency, node_count=len(mesh.faces))
 
 
+def vertex_shells(n_vertices: int, faces: np.ndarray) -> tuple[int, np.ndarray]:
+    """Pieces of a surface, its faces joined at their vertices: how many, and the piece of each face."""
+    faces = np.asarray(faces, np.int64)
+    n, labels = component_labels(n_vertices, faces[:, [0, 1, 1, 2]].reshape(-1, 2))
+    return n, labels[faces[:, 0]]
+
+
+def _six_volumes(tri: np.ndarray, shell: np.ndarray, n: int) -> np.ndarray:
+    """Six times the signed volume of each of the ``n`` shells of the triangles ``tri`` (``shell``: of each)."""
+    return np.bincount(shell, np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])), n)
+
+
 def shell_volumes(mesh: Any) -> tuple[np.ndarray, np.ndarray]:
     """Shell of each face (:func:`shell_labels`) and six times each shell's signed volume (negative: a cavity)."""
     labels = shell_labels(mesh)
     tri = np.asarray(mesh.vertices, np.float64)[np.asarray(mesh.faces, np.int64)]
-    six_volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))
-    return labels, np.bincount(labels, six_volume, int(labels.max()) + 1 if len(labels) else 0)
+    return labels, _six_volumes(tri, labels, int(labels.max()) + 1 if len(labels) else 0)
 
 
 def inside_out_shells(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -66,13 +77,11 @@ def inside_out_shells(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     all, through the fast winding tree past ``EXACT_TERMS`` terms: a porous
     part has thousands of cavities).
     """
-    faces = np.asarray(faces, np.int64)
-    n, labels = component_labels(len(vertices), faces[:, [0, 1, 1, 2]].reshape(-1, 2))
+    n, shell = vertex_shells(len(vertices), faces)
     if n < 2:
         return np.zeros(0, np.int64)
-    shell = labels[faces[:, 0]]
-    tri = np.asarray(vertices, np.float64)[faces]
-    volume = np.bincount(shell, np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])), n)
+    tri = np.asarray(vertices, np.float64)[np.asarray(faces, np.int64)]
+    volume = _six_volumes(tri, shell, n)
     inward = np.flatnonzero(volume < 0)
     if not len(inward):
         return np.zeros(0, np.int64)

@@ -20,9 +20,9 @@ from typing import Any
 import numpy as np
 from scipy.spatial import cKDTree
 
-from medialaxis.core.graph import component_labels
 from medialaxis.errors import InvalidInputError, ResourceLimitError
 from medialaxis.mesh._rows import first_of_rows
+from medialaxis.mesh.crossings import vertex_shells
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
 __all__ = [
@@ -320,10 +320,9 @@ def shell_spacing(mesh: Any, spacing: np.ndarray) -> np.ndarray:
     needle-thin piece gets no more points along its edges than that).
     """
     faces = np.asarray(mesh.faces, np.int64)
-    n, labels = component_labels(len(mesh.vertices), faces[:, [0, 1, 1, 2]].reshape(-1, 2))
+    n, shell = vertex_shells(len(mesh.vertices), faces)
     if n < 2:
         return spacing
-    shell = labels[faces[:, 0]]
     area = np.bincount(shell, np.asarray(mesh.area_faces, np.float64), n)
     tri = np.asarray(mesh.vertices, np.float64)[faces]
     half_perimeter = 0.5 * np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2).sum(axis=1)

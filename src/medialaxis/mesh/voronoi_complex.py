@@ -384,15 +384,16 @@ def medial_complex(
         curve = _by_ends(side_ends[side_alive & ~side_used], n_tets)
         n_curve = len(curve)
         alive = facet_alive
-        kept = np.zeros(n_tets, bool)
-        kept[ring_tets[np.repeat(alive, np.diff(ring_ptr))]] = True
-        kept[curve.ravel()] = True
-        alone = _last_points(lost_components(inner, side_ends, kept), dt, centre_inside, spacing)
     else:
         alive = certified
-        alone = np.zeros(0, np.int64)
     side_id = side_id[np.repeat(alive, np.diff(ring_ptr))]
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, alive)
+    alone = np.zeros(0, np.int64)
+    if topology == "preserve":  # the inner union's components the collapse emptied
+        kept = np.zeros(n_tets, bool)
+        kept[ring_tets] = True
+        kept[curve.ravel()] = True
+        alone = _last_points(lost_components(inner, side_ends, kept), dt, centre_inside, spacing)
     length, certified = length[alive], certified[alive]
     tris, owner = fan_triangles(ring_ptr, ring_tets)
     border_ids = odd_sides(side_id, 4 * n_tets)
