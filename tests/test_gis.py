@@ -152,3 +152,36 @@ def test_branch_chains_walk_as_the_graph_branches_do():
         assert [list(c) for c in chains] == [list(nodes[part == k]) for k in range(len(chains))]
         assert [list(c) for c in chains] == [list(c) for c in branches_reference(n, edges)]  # the Python twin
         assert len(np.unique(part)) == len(chains)
+
+
+def test_widths_and_lines_of_a_chunk_are_those_of_each_axis(layer):
+    from medialaxis.gis.features import axis_widths, axis_widths_reference, branch_lines, chunk_lines
+
+    shapes = [*layer.geometry, shapely.Point(0, 0).buffer(5.0), shapely.box(0, 0, 100, 10)]
+    axes = [mx.medial_axis(shape, detour=1.0) for shape in shapes]
+    for ma in axes:
+        assert axis_widths(ma) == axis_widths_reference(ma)
+    lines = chunk_lines([None, *axes])
+    assert lines[0] is None and lines[4] is None  # no axis; a disc's axis is a point, no branch
+    for line, ma in zip(lines[1:], axes):
+        if line is not None:
+            assert line.wkb == branch_lines(ma).wkb
+    assert chunk_lines([]) == [] and chunk_lines([None]) == [None]
+
+
+def test_widths_sum_as_numpy_sums():
+    from types import SimpleNamespace
+
+    from medialaxis.gis._kernels import pairwise_sum
+    from medialaxis.gis.features import axis_widths, axis_widths_reference
+
+    rng = np.random.default_rng(34)
+    for n in [*range(0, 300, 7), 1000, 8191, 8192, 9001, 40000]:
+        values = rng.random(n) * 10.0 ** rng.uniform(-6, 6, n)
+        assert pairwise_sum(values, 0, n) == np.sum(values)
+        m = max(n, 2)
+        axis = SimpleNamespace(points=rng.random((m, 2)) * 1e5, radii=rng.random(m),
+                               edges=rng.integers(0, m, (n // 2, 2)))
+        assert axis_widths(axis) == axis_widths_reference(axis)
+    nothing = SimpleNamespace(points=np.empty((0, 2)), radii=np.empty(0), edges=np.empty((0, 2), np.int64))
+    assert np.isnan(axis_widths(nothing)).all() and np.isnan(axis_widths_reference(nothing)).all()

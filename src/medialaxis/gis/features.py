@@ -14,11 +14,13 @@ import numpy as np
 
 from medialaxis.api import medial_axis
 from medialaxis.errors import InvalidInputError
-from medialaxis.gis._kernels import branch_chains
+from medialaxis.gis._kernels import axis_widths_kernel, branch_chains
 from medialaxis.gis.network import STATION_COLUMNS, branch_stations
 from medialaxis.planar.axis_arrays import polygon_axis_arrays
+from medialaxis.planar.axis_layer import polygon_axes
 
-__all__ = ["DETOUR", "WIDTH_COLUMNS", "KINDS", "axis_widths", "branch_lines", "feature_axis", "run_chunk"]
+__all__ = ["DETOUR", "WIDTH_COLUMNS", "KINDS", "axis_widths", "axis_widths_reference", "branch_lines",
+           "chunk_lines", "feature_axis", "chunk_axes", "run_chunk"]
 
 #: Columns added to the layer: twice the smallest, mean (over the axis
 #: length) and largest radius along each feature's axis.
@@ -42,7 +44,19 @@ KINDS = ("lines", "stations")
 
 
 def axis_widths(ma: Any) -> tuple[float, float, float]:
-    """Twice the smallest, the length-weighted mean and the largest radius of an axis."""
+    """Twice the smallest, the length-weighted mean and the largest radius of an axis.
+
+    Compiled (:func:`medialaxis.gis._kernels.axis_widths_kernel`, NumPy's
+    sums in NumPy's order): :func:`axis_widths_reference` to the last bit.
+    """
+    points = np.ascontiguousarray(ma.points, np.float64).reshape(-1, 2)
+    edges = np.ascontiguousarray(ma.edges, np.int64).reshape(-1, 2)
+    low, mean, high = axis_widths_kernel(points, np.ascontiguousarray(ma.radii, np.float64), edges)
+    return float(low), float(mean), float(high)
+
+
+def axis_widths_reference(ma: Any) -> tuple[float, float, float]:
+    """NumPy version of :func:`axis_widths` (for the tests)."""
     edges = np.asarray(ma.edges).reshape(-1, 2)
     r = np.asarray(ma.radii, np.float64)
     if len(edges) == 0:
@@ -67,6 +81,41 @@ def branch_lines(ma: Any) -> Any:
     return shapely.multilinestrings(shapely.linestrings(ma.points[nodes], indices=part))
 
 
+def chunk_lines(axes: Sequence[Any]) -> list[Any]:
+    """:func:`branch_lines` of each axis (None for None or no branch), two vectorised shapely calls in all."""
+    import shapely
+
+    coords, parts, owners = [], [], []
+    n_parts = 0
+    for k, ma in enumerate(axes):
+        if ma is None:
+            continue
+        nodes, part = branch_chains(len(ma.points), np.asarray(ma.edges, np.int64).reshape(-1, 2))
+        if not len(nodes):
+            continue
+        coords.append(ma.points[nodes])
+        parts.append(part + n_parts)
+        owners.append(np.full(part[-1] + 1, k))
+        n_parts += part[-1] + 1
+    out: list[Any] = [None] * len(axes)
+    if coords:
+        lines = shapely.linestrings(np.concatenate(coords), indices=np.concatenate(parts))
+        owner = np.concatenate(owners)
+        features = np.unique(owner)
+        for k, multi in zip(features, shapely.multilinestrings(lines, indices=np.searchsorted(features, owner))):
+            out[k] = multi
+    return out
+
+
+def _checked(index: Any, geom: Any) -> bool:
+    """Whether the feature has a polygon to compute (False: empty or missing); other geometries raise."""
+    if geom is None or geom.is_empty:
+        return False
+    if geom.geom_type not in ("Polygon", "MultiPolygon"):
+        raise InvalidInputError(f"feature {index!r} is a {geom.geom_type}; centerlines needs polygons")
+    return True
+
+
 def feature_axis(index: Any, geom: Any, options: dict[str, Any]) -> Any:
     """The medial axis of one polygon feature (None for an empty or missing geometry).
 
@@ -74,36 +123,33 @@ def feature_axis(index: Any, geom: Any, options: dict[str, Any]) -> Any:
     the axis come from :func:`medialaxis.planar.axis_arrays.polygon_axis_arrays`
     (the same arrays, half the time of the result object on small features).
     """
-    if geom is None or geom.is_empty:
+    if not _checked(index, geom):
         return None
-    if geom.geom_type not in ("Polygon", "MultiPolygon"):
-        raise InvalidInputError(f"feature {index!r} is a {geom.geom_type}; centerlines needs polygons")
     options = {"detour": DETOUR, **options}
     if options.keys() <= LIGHT_OPTIONS:
         return polygon_axis_arrays(geom, **options)
     return medial_axis(geom, **options)
 
 
-def _lines(index: Any, geom: Any, options: dict[str, Any]) -> tuple[Any, tuple[float, ...]]:
-    """The axis of one feature as a MultiLineString (None when empty) and its widths."""
-    ma = feature_axis(index, geom, options)
-    if ma is None:
-        return None, (np.nan,) * 3
-    lines = branch_lines(ma)
-    return (None if lines.is_empty else lines), axis_widths(ma)
-
-
-def _stations(index: Any, geom: Any, options: dict[str, Any], step: float | None) -> dict[str, np.ndarray]:
-    """The stations of one feature's branches (columns of :data:`STATION_COLUMNS`)."""
-    ma = feature_axis(index, geom, options)
-    if ma is None:
-        return {name: np.empty(0) for name in STATION_COLUMNS}
-    return branch_stations(ma.points, ma.radii, ma.edges, step)
+def chunk_axes(chunk: Sequence[tuple[Any, Any]], options: dict[str, Any]) -> list[Any]:
+    """:func:`feature_axis` of each ``(index, geometry)``; with only :data:`LIGHT_OPTIONS`, the polygons' shapely
+    work in vectorised calls (:func:`medialaxis.planar.axis_layer.polygon_axes`, the same arrays)."""
+    light = {"detour": DETOUR, **options}
+    if not light.keys() <= LIGHT_OPTIONS:
+        return [feature_axis(index, geom, options) for index, geom in chunk]
+    take = [k for k, (index, geom) in enumerate(chunk) if _checked(index, geom)]
+    out: list[Any] = [None] * len(chunk)
+    for k, axis in zip(take, polygon_axes([chunk[k][1] for k in take], **light)):
+        out[k] = axis
+    return out
 
 
 def run_chunk(kind: str, chunk: Sequence[tuple[Any, Any]], options: dict[str, Any], step: float | None = None
               ) -> list[Any]:
     """The work of ``kind`` (:data:`KINDS`) for each ``(index, geometry)`` of a chunk, in order."""
+    axes = chunk_axes(chunk, options)
     if kind == "lines":
-        return [_lines(index, geom, options) for index, geom in chunk]
-    return [_stations(index, geom, options, step) for index, geom in chunk]
+        widths = [(np.nan,) * 3 if ma is None else axis_widths(ma) for ma in axes]
+        return list(zip(chunk_lines(axes), widths))
+    return [{name: np.empty(0) for name in STATION_COLUMNS} if ma is None else
+            branch_stations(ma.points, ma.radii, ma.edges, step) for ma in axes]

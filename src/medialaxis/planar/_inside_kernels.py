@@ -156,13 +156,16 @@ def locate_points_reference(x: np.ndarray, y: np.ndarray, segments: np.ndarray) 
 class RegionLocator:
     """The boundary segments of a polygonal ``region``, filed by bands, for :meth:`contains`."""
 
-    def __init__(self, region: Any) -> None:
+    def __init__(self, region: Any, segments: np.ndarray | None = None) -> None:
+        """``segments``: the region's boundary segments (s, 4: x1 y1 x2 y2) ring by ring, if known already."""
         self.region = region
-        parts = []
-        for ring in shapely.get_rings(shapely.get_parts(region)):
-            xy = shapely.get_coordinates(ring)
-            parts.append(np.hstack((xy[:-1], xy[1:])))
-        self.segments = np.ascontiguousarray(np.concatenate(parts) if parts else np.empty((0, 4)))
+        if segments is None:
+            parts = []
+            for ring in shapely.get_rings(shapely.get_parts(region)):
+                xy = shapely.get_coordinates(ring)
+                parts.append(np.hstack((xy[:-1], xy[1:])))
+            segments = np.concatenate(parts) if parts else np.empty((0, 4))
+        self.segments = np.ascontiguousarray(segments, np.float64)
         ys = self.segments[:, 1::2]
         self.y0 = float(ys.min()) if len(ys) else 0.0
         self.height = max(float(ys.max()) - self.y0, 1e-300) if len(ys) else 1.0

@@ -24,6 +24,7 @@ import shapely
 
 from medialaxis._progress import progress
 from medialaxis.planar._corner_kernels import corner_piece_state
+from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar._refine_kernels import CORNERS, assembled, first_sample
 from medialaxis.planar._rounds_kernels import ASK_GEOS, DONE, FAILED, MORE_JITTER, first_state, incremental_rounds
 from medialaxis.planar.axis import inner_triangles
@@ -31,7 +32,7 @@ from medialaxis.planar.corners import RingArrays, mirrored_corner_arcs, ring_arr
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
 from medialaxis.planar.sampling import BoundarySample, Rings, initial_arcs, refine_arcs, sample
 
-__all__ = ["sample_and_triangulate", "rounds_from_scratch", "MAX_REFINEMENTS"]
+__all__ = ["sample_and_triangulate", "rounds_from_scratch", "incremental_sample", "MAX_REFINEMENTS"]
 
 #: Most rounds of refinement.
 MAX_REFINEMENTS = 12
@@ -101,8 +102,14 @@ def _incremental(
     rings: Rings, tolerance: float, min_length: float
 ) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
     """:func:`rounds_from_scratch`, each round inserting only its new samples; None where the kernel gives up."""
-    region, locator = rings.region, rings.locator
-    closed = ring_arrays(rings)
+    return incremental_sample(rings.region, rings.locator, ring_arrays(rings), tolerance, min_length)
+
+
+def incremental_sample(
+    region: Any, locator: RegionLocator, closed: RingArrays, tolerance: float, min_length: float
+) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
+    """:func:`_incremental` from the parts of the rings it reads: ``region`` (the rings' region), its
+    ``locator`` and the rings' arrays ``closed`` (:func:`medialaxis.planar.corners.ring_arrays`)."""
     # sample(rings, _start_arcs(...)) in one compiled call
     first, first_arc, first_ring, first_next = first_sample(
         closed.xy, closed.s, closed.start, _start_length(region, min_length), float(tolerance), float(min_length),

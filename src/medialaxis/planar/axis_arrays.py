@@ -16,11 +16,14 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from medialaxis.planar._axis_kernels import inner_centres, pruned_axis
+from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar.axis import axis_positions
+from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.pipeline import _load, sampled, voronoi_medial_axis
 from medialaxis.planar.pruning import REGROW_DETOUR
+from medialaxis.planar.sampling import BoundarySample
 
-__all__ = ["AxisArrays", "polygon_axis_arrays"]
+__all__ = ["AxisArrays", "polygon_axis_arrays", "axis_of_sample", "NEAREST"]
 
 #: The radius of a node comes from the boundary pieces at its nearest samples,
 #: as :func:`medialaxis.planar.axis.boundary_distance` takes them.
@@ -76,11 +79,16 @@ def polygon_axis_arrays(shape: Any, *, lam: float | None = None, tolerance: floa
                                                              boundary="contour")
     if len(smp.points) <= NEAREST:
         return _whole_way(shape, *given)
-    locator = rings.locator
+    return axis_of_sample(rings.region, rings.locator, smp, tri, inside, tolerance, lam, detour)
+
+
+def axis_of_sample(region: Any, locator: RegionLocator, smp: BoundarySample, tri: Triangulation, inside: np.ndarray,
+                   tolerance: float, lam: float, detour: float) -> AxisArrays:
+    """The pruned axis of a sample (more than :data:`NEAREST` points) of ``region``, its triangulation and inner triangles."""
     inner, pos, all_in = inner_centres(tri.centers, inside, locator.segments, locator.start, locator.members,
                                        locator.y0, locator.height)
     if not all_in:  # circumcentres to move, or an inside test for GEOS
-        inner, pos = axis_positions(tri, inside, rings.region, locator)
+        inner, pos = axis_positions(tri, inside, region, locator)
     points, radii, edges = pruned_axis(
         pos, tri.simplices, tri.neighbors, inner.astype(np.int64), np.ascontiguousarray(tri.points, np.float64),
         np.ascontiguousarray(smp.points, np.float64), np.asarray(smp.next, np.int64), np.asarray(smp.prev, np.int64),
