@@ -80,3 +80,12 @@ def test_the_compiled_pruning_is_prune_graph(seed: int) -> None:
     ref_old, ref_edges = prune_graph(radii, edges, diameter, arc, adjacent, lam, detour)
     np.testing.assert_array_equal(old, ref_old)
     np.testing.assert_array_equal(out, ref_edges)
+
+
+@pytest.mark.parametrize("name", ["disc", "square", "two pieces, one tiny", "lake 3"])
+def test_only_the_kept_nodes_are_measured_and_all_of_them_are(name: str) -> None:
+    axis = polygon_axis_arrays(CASES[name], detour=1.0)
+    ma = voronoi_medial_axis(CASES[name], detour=1.0)
+    assert np.isfinite(axis.radii).all() and (axis.radii > 0).all()
+    np.testing.assert_array_equal(axis.radii, ma.radii)
+    assert len(ma.raw.points) > len(axis.points) or name in ("disc", "square")

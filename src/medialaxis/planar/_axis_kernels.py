@@ -29,7 +29,8 @@ from medialaxis.planar._graph_kernels import (
 )
 from medialaxis.planar._inside_kernels import locate_points
 
-__all__ = ["inner_centres", "contact_arcs", "merged_nodes", "pruned_graph", "pruned_axis"]
+__all__ = ["inner_centres", "contact_arcs", "merged_nodes", "pruned_graph", "kept_edges", "selected_nodes",
+           "pruned_axis"]
 
 
 @njit(cache=True, nogil=True)
@@ -99,7 +100,15 @@ def merged_nodes(pos, radii, edges, tolerance):  # type: ignore[no-untyped-def]
 @njit(cache=True, nogil=True)
 def pruned_graph(radii, edges, diameter, arc, adjacent, lam, detour, regrow_detour):  # type: ignore[no-untyped-def]
     """:func:`medialaxis.planar.pruning.prune_graph`: ``(kept_node_ids, kept_edges_renumbered)``."""
-    n, m = len(radii), len(edges)
+    keep, label, lonely = kept_edges(len(radii), edges, diameter, arc, adjacent, lam, detour, regrow_detour)
+    return selected_nodes(radii, edges, keep, label, lonely)
+
+
+@njit(cache=True, nogil=True)
+def kept_edges(n, edges, diameter, arc, adjacent, lam, detour, regrow_detour):  # type: ignore[no-untyped-def]
+    """The pruning of :func:`pruned_graph` before the radii: ``(keep, label, lonely)``, the edges kept, each
+    node's component and the components left without an edge (which keep their node of largest radius)."""
+    m = len(edges)
     removable = np.empty(m, np.bool_)
     growable = np.empty(m, np.bool_)
     for e in range(m):
@@ -112,23 +121,30 @@ def pruned_graph(radii, edges, diameter, arc, adjacent, lam, detour, regrow_deto
         peel_leaves_kernel(indptr, nbrs, eids, np.diff(indptr), edges, removable, keep)
         if keep.any():
             keep = regrow_tips_kernel(indptr, nbrs, eids, edges, keep, growable)
+    label = component_labels(n, edges, np.ones(m, np.bool_)) if n else np.zeros(0, np.int64)
+    n_comp = label.max() + 1 if n else 0
+    lonely = np.ones(n_comp, np.bool_)
+    for e in range(m):
+        if keep[e]:
+            lonely[label[edges[e, 0]]] = False
+            lonely[label[edges[e, 1]]] = False
+    return keep, label, lonely
+
+
+@njit(cache=True, nogil=True)
+def selected_nodes(radii, edges, keep, label, lonely):  # type: ignore[no-untyped-def]
+    """``(kept_node_ids, kept_edges_renumbered)`` of :func:`pruned_graph` from :func:`kept_edges`; ``radii`` are
+    read only in the ``lonely`` components (the first node of largest radius of each stays)."""
+    n, m = len(label), len(edges)
     used = np.zeros(n, np.bool_)
-    if n:
-        # components with no edge left keep their node of largest radius (the first such)
-        label = component_labels(n, edges, np.ones(m, np.bool_))
-        n_comp = label.max() + 1
-        has_edge = np.zeros(n_comp, np.bool_)
-        for e in range(m):
-            if keep[e]:
-                has_edge[label[edges[e, 0]]] = True
-                has_edge[label[edges[e, 1]]] = True
-        best = np.full(n_comp, -1, np.int64)
-        for i in range(n):
-            if best[label[i]] < 0 or radii[i] > radii[best[label[i]]]:
-                best[label[i]] = i
-        for c in range(n_comp):
-            if not has_edge[c] and best[c] >= 0:
-                used[best[c]] = True
+    best = np.full(len(lonely), -1, np.int64)
+    for i in range(n):
+        c = label[i]
+        if lonely[c] and (best[c] < 0 or radii[i] > radii[best[c]]):
+            best[c] = i
+    for c in range(len(lonely)):
+        if best[c] >= 0:
+            used[best[c]] = True
     n_kept = 0
     for e in range(m):
         if keep[e]:
@@ -155,19 +171,30 @@ def pruned_axis(pos, simplices, neighbors, inner, tri_points, points, nxt, prv, 
 
     ``points``, ``nxt``, ``prv``, ``arc``, ``ring``, ``ring_length`` describe
     the boundary sample (more than ``k`` samples; radii from the pieces at
-    the ``k`` nearest), ``tri_points`` the triangulation's vertices.
+    the ``k`` nearest), ``tri_points`` the triangulation's vertices. A node's
+    radius is the distance at its point (a merged node's at its mean point,
+    a single one's at its own), so only the nodes the pruning keeps, and
+    those of components left without an edge, are measured.
     """
     edges, contact, diameter, adjacent = dual_edges(simplices, neighbors, inner, tri_points, nxt)
     contact_arc = contact_arcs(contact, arc, ring, ring_length)
-    x0, y0, cell, g, start, members = sample_grid(points)
-    radii = grid_distance(pos, points, nxt, prv, k, x0, y0, cell, g, start, members)
-    cluster, kept, node_points, node_radii, count = merged_nodes(pos, radii, edges, tolerance)
-    merged = np.flatnonzero(count > 1)
-    if len(merged):  # a merged node's radius is its distance, not the mean of its members'
-        node_radii[merged] = grid_distance(node_points[merged], points, nxt, prv, k, x0, y0, cell, g, start, members)
+    cluster, kept, node_points, _, count = merged_nodes(pos, np.zeros(len(pos)), edges, tolerance)
     node_edges = np.empty((len(kept), 2), np.int64)
     for j in range(len(kept)):
         node_edges[j, 0], node_edges[j, 1] = cluster[edges[kept[j], 0]], cluster[edges[kept[j], 1]]
-    old, out = pruned_graph(node_radii, node_edges, diameter[kept], contact_arc[kept], adjacent[kept], lam, detour,
-                            regrow_detour)
+    n = len(count)
+    keep, label, lonely = kept_edges(n, node_edges, diameter[kept], contact_arc[kept], adjacent[kept], lam, detour,
+                                     regrow_detour)
+    wanted = np.zeros(n, np.bool_)
+    for i in range(n):
+        wanted[i] = lonely[label[i]]
+    for e in range(len(node_edges)):
+        if keep[e]:
+            wanted[node_edges[e, 0]] = True
+            wanted[node_edges[e, 1]] = True
+    measured = np.flatnonzero(wanted)
+    x0, y0, cell, g, start, members = sample_grid(points)
+    node_radii = np.full(n, np.nan)
+    node_radii[measured] = grid_distance(node_points[measured], points, nxt, prv, k, x0, y0, cell, g, start, members)
+    old, out = selected_nodes(node_radii, node_edges, keep, label, lonely)
     return node_points[old], node_radii[old], out
