@@ -185,3 +185,17 @@ def test_widths_sum_as_numpy_sums():
         assert axis_widths(axis) == axis_widths_reference(axis)
     nothing = SimpleNamespace(points=np.empty((0, 2)), radii=np.empty(0), edges=np.empty((0, 2), np.int64))
     assert np.isnan(axis_widths(nothing)).all() and np.isnan(axis_widths_reference(nothing)).all()
+
+
+def test_a_series_and_a_frame_give_the_same_table(layer):
+    from geopandas.testing import assert_geodataframe_equal
+
+    frame = layer.rename_geometry("shape").assign(width_min=-1.0)  # a width column is overwritten where it is
+    out = mx.centerlines(frame)
+    assert list(out.columns) == ["name", "lanes", "width_min", "width_mean", "width_max", "geometry"]
+    assert out.geometry.name == "geometry" and out.crs == layer.crs and (out["width_min"] > 0).all()
+    series = mx.centerlines(layer.geometry)
+    assert list(series.columns) == ["width_min", "width_mean", "width_max", "geometry"]
+    assert_geodataframe_equal(series, out[series.columns])
+    empty = mx.centerlines(layer.geometry.iloc[:0])
+    assert len(empty) == 0 and list(empty.columns) == list(series.columns) and empty.crs == layer.crs

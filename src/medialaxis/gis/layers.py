@@ -168,13 +168,19 @@ or sequence of them
             table[name] = np.asarray([row[1][k] for row in rows], np.float64)
         return table
     gpd = _optional.require("geopandas", "geopandas")
-    frame = _frame(gpd, layer)
-    rows = map_features("lines", list(zip(frame.index, frame.geometry)), options, **run)
-    out = frame.drop(columns=frame.geometry.name).copy()
-    for k, name in enumerate(WIDTH_COLUMNS):
-        out[name] = np.asarray([row[1][k] for row in rows], np.float64)
-    lines = gpd.GeoSeries([row[0] for row in rows], index=frame.index, crs=frame.crs)
-    return gpd.GeoDataFrame(out, geometry=lines, crs=frame.crs)
+    if isinstance(layer, gpd.GeoSeries):  # no frame of the input: its rows' attributes are none
+        index, geoms, crs, out = layer.index, layer.array, layer.crs, None
+    else:
+        frame = _frame(gpd, layer)
+        index, geoms, crs = frame.index, frame.geometry.array, frame.crs
+        out = frame.drop(columns=frame.geometry.name)
+    rows = map_features("lines", list(zip(index, geoms)), options, **run)
+    widths = np.asarray([row[1] for row in rows], np.float64).reshape(-1, len(WIDTH_COLUMNS))
+    columns = {name: widths[:, k] for k, name in enumerate(WIDTH_COLUMNS)}
+    out = _optional.require("pandas", "pandas").DataFrame(columns, index=index) if out is None else out.assign(**columns)
+    lines = np.empty(len(rows), dtype=object)
+    lines[:] = [row[0] for row in rows]
+    return gpd.GeoDataFrame(out, geometry=gpd.GeoSeries(lines, index=index, crs=crs), crs=crs)
 
 
 def stations(layer: Any, *, step: float | None = None, n_jobs: int | None = None, scheduler: Any = None,

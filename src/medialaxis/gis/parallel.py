@@ -69,7 +69,9 @@ def map_features(kind: str, items: Sequence[tuple[Any, Any]], options: dict[str,
     workers = (os.cpu_count() or 1) if n_jobs is None and scheduler is not None else int(n_jobs or 1)
     if scheduler == "synchronous" or (scheduler is None and workers == 1) or not items:
         results = []
-        for chunk in progress(_chunks(items, 1), desc="features", show=show_progress):
+        # here, chunks of CHUNK features: each chunk's shapely work is vectorised (features.chunk_axes)
+        for chunk in progress([items[k:k + CHUNK] for k in range(0, len(items), CHUNK)], desc="features",
+                              show=show_progress):
             results.extend(run_chunk(kind, chunk, options, step))
         return results
     if scheduler in (None, "threads"):
