@@ -106,10 +106,12 @@ def _incremental(
 
 
 def incremental_sample(
-    region: Any, locator: RegionLocator, closed: RingArrays, tolerance: float, min_length: float
+    region: Any, locator: RegionLocator, closed: RingArrays, tolerance: float, min_length: float,
+    show_progress: bool | None = None,
 ) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
     """:func:`_incremental` from the parts of the rings it reads: ``region`` (the rings' region), its
-    ``locator`` and the rings' arrays ``closed`` (:func:`medialaxis.planar.corners.ring_arrays`)."""
+    ``locator`` and the rings' arrays ``closed`` (:func:`medialaxis.planar.corners.ring_arrays`);
+    ``show_progress`` False: no bar over the rounds (a layer has its own over the features)."""
     # sample(rings, _start_arcs(...)) in one compiled call
     first, first_arc, first_ring, first_next = first_sample(
         closed.xy, closed.s, closed.start, _start_length(region, min_length), float(tolerance), float(min_length),
@@ -126,7 +128,7 @@ def incremental_sample(
     (points, arc, ring, nxt, x, y, near, tv, tn, centre, radius, where, memo, batch, hint) = first_state(
         first, first_arc, first_ring, first_next, lo, extent, FAR_CORNERS, shaken)
     count = 2
-    rounds = progress(range(MAX_REFINEMENTS), desc="adaptive sampling")
+    rounds = progress(range(MAX_REFINEMENTS), desc="adaptive sampling", show=show_progress)
     next(rounds, None)
     round_, inserted, settled = 0, False, False
     try:

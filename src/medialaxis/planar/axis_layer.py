@@ -149,38 +149,47 @@ def polygon_axes(geoms: Sequence[Any], *, lam: float | None = None, tolerance: f
     pair = np.flatnonzero(~last[:-1])  # the segments (row, row + 1) of the locator, ring by ring
     segments = np.hstack((rxy[pair], rxy[pair + 1]))
     seg_start = _offsets(row_ring[pair], len(rings))
-    sizes = np.diff(rstart) - 1  # vertices of each ring, not repeated
+    sizes = np.maximum(np.diff(rstart) - 1, 0)  # vertices of each ring, not repeated
     spread = _extents(rxy, rstart)
+    vertices = rxy[~last]  # the rings one after the other, not closed: ring r at vstart[r]:vstart[r + 1]
+    open_start = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
     for j, k in enumerate(take):
         axis = None
         size = 2.0 * float(np.sqrt(far[j]))
         if vstart[j + 1] - vstart[j] <= SIMPLIFY_ABOVE:
-            axis = _one(simple[j], range(first_ring[j], first_ring[j + 1]), size, rxy, rstart,
-                        sizes, spread, segments, seg_start, lam, tolerance, detour)
+            axis = _one(simple[j], range(first_ring[j], first_ring[j + 1]), size, rxy, rstart, vertices,
+                        open_start, sizes, spread, segments, seg_start, lam, tolerance, detour)
         out[k] = polygon_axis_arrays(geoms[k], lam=lam, tolerance=tolerance, detour=detour) if axis is None else axis
     for k in np.flatnonzero(~ok):
         out[k] = polygon_axis_arrays(geoms[k], lam=lam, tolerance=tolerance, detour=detour)
     return out
 
 
-def _one(region: Any, ring_ids: range, size: float, rxy: np.ndarray, rstart: np.ndarray,
-         sizes: np.ndarray, spread: np.ndarray, segments: np.ndarray, seg_start: np.ndarray, lam: float | None,
-         tolerance: float | None, detour: float | None) -> AxisArrays | None:
+def _one(region: Any, ring_ids: range, size: float, rxy: np.ndarray, rstart: np.ndarray, vertices: np.ndarray,
+         open_start: np.ndarray, sizes: np.ndarray, spread: np.ndarray, segments: np.ndarray, seg_start: np.ndarray,
+         lam: float | None, tolerance: float | None, detour: float | None) -> AxisArrays | None:
     """The axis of one region (its rings ``ring_ids`` of the layer's arrays) as :func:`polygon_axis_arrays`
     computes it, or None where that function takes another way."""
     tolerance = 1e-4 * size if tolerance is None else tolerance
     tolerance = max(check_number(tolerance, "tolerance"), 1e-9 * size)
     lam = LAM_PER_TOLERANCE * tolerance if lam is None else check_number(lam, "lam")
     detour = check_number(DEFAULT_VECTOR_DETOUR if detour is None else detour, "detour")
-    kept = [r for r in ring_ids if sizes[r] >= 3]
-    if not kept or min(spread[r] for r in kept) < MIN_RING_FRACTION * size:
-        return None  # polygon_axis_arrays raises
-    vertices = np.concatenate([rxy[rstart[r]:rstart[r + 1] - 1] for r in kept])
-    start = np.concatenate([[0], np.cumsum([sizes[r] for r in kept])]).astype(np.int64)
-    closed = RingArrays(*closed_rings(np.ascontiguousarray(vertices, np.float64), start))
+    first, end = ring_ids[0], ring_ids[-1] + 1
+    if (sizes[first:end] >= 3).all():  # every ring is one of Rings.vertices (the usual case): slices
+        if spread[first:end].min() < MIN_RING_FRACTION * size:
+            return None  # polygon_axis_arrays raises
+        xy = vertices[open_start[first]:open_start[end]]
+        start = open_start[first:end + 1] - open_start[first]
+    else:
+        kept = [r for r in ring_ids if sizes[r] >= 3]
+        if not kept or min(spread[r] for r in kept) < MIN_RING_FRACTION * size:
+            return None  # polygon_axis_arrays raises
+        xy = np.concatenate([rxy[rstart[r]:rstart[r + 1] - 1] for r in kept])
+        start = np.concatenate([[0], np.cumsum([sizes[r] for r in kept])]).astype(np.int64)
+    closed = RingArrays(*closed_rings(np.ascontiguousarray(xy, np.float64), start))
     locator = RegionLocator(region, segments[seg_start[ring_ids[0]]:seg_start[ring_ids[-1] + 1]])
     min_length = max(tolerance, lam / 8.0)
-    found = incremental_sample(region, locator, closed, tolerance, min_length)
+    found = incremental_sample(region, locator, closed, tolerance, min_length, show_progress=False)
     if found is None:
         return None
     smp, tri, inside = found
