@@ -180,3 +180,38 @@ def test_a_split_keeps_the_topology_of_the_medial_mesh():
     assert len(grown) == 4 and len(curve) == 0
     assert len(split) in (2, 3) and euler(len(grown), split) == euler(3, faces) == 1
     assert np.all(np.isin([0, 1, 2, 3], split))
+
+
+def test_a_patch_is_the_largest_ball_inside_tangent_at_its_point_or_at_a_corner_the_deepest():
+    # a 1 x 1 x 1 box: the ball tangent to the top face at (0.2, 0.5) reaches the side x = 0 beyond radius 0.2,
+    # the one at the face's centre the bottom beyond 0.5; a ball already inside is kept; at a corner no ball
+    # tangent along its normal is inside: the ball at the centre given, its radius brought to its depth
+    from medialaxis.mesh.signed_distance import SignedDistance
+    from medialaxis.mesh.simplify_cover import INSCRIBED, _inscribed
+
+    box = trimesh.creation.box([1.0, 1.0, 1.0])
+    box.apply_translation([0.5, 0.5, 0.5])
+    signed, up = SignedDistance(box), np.array([0.0, 0.0, 1.0])
+    for x, start, radius in [(0.2, 2.0, 0.2), (0.5, 2.0, 0.5), (0.5, 0.1, 0.1)]:
+        p = np.array([x, 0.5, 1.0])
+        c, r = _inscribed(p, up, start, signed)
+        assert r == pytest.approx(radius, rel=2e-3) and r <= radius / (1.0 - INSCRIBED) + 1e-12
+        assert np.allclose(c, p - r * up)
+    corner, diagonal = np.ones(3), np.ones(3) / np.sqrt(3.0)
+    c, r = _inscribed(corner, diagonal, 0.5, signed)
+    assert np.allclose(c, corner - 0.5 * diagonal) and r == pytest.approx(0.5 / np.sqrt(3.0), rel=1e-9)
+
+
+def test_patches_at_the_points_of_a_star_are_inside():
+    # an extruded five-pointed star at 30 spheres takes two patches at its points; as shrinking balls of the
+    # sparse sample they reached out of the surface (inside share 0.93), now every sphere is inside (trimesh's
+    # signed distance)
+    shapely = pytest.importorskip("shapely")
+    angles = np.linspace(0.0, 2.0 * np.pi, 10, endpoint=False)
+    outline = [(np.cos(a) * (1.0 if k % 2 == 0 else 0.4), np.sin(a) * (1.0 if k % 2 == 0 else 0.4))
+               for k, a in enumerate(angles)]
+    star = trimesh.creation.extrude_polygon(shapely.geometry.Polygon(outline), 0.3)
+    s = simplify_medial_mesh(voronoi_medial_axis(star), 30)
+    assert len(s.points) == 30
+    assert _inside_share(star, s.points, s.radii) == 1.0
+    assert _medial_share(star, s.points, s.radii) >= 0.75
