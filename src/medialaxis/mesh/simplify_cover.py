@@ -70,10 +70,10 @@ def _inscribed(p: np.ndarray, n: np.ndarray, r: float, signed: Any) -> tuple[np.
     ``p`` are nested, so the largest one inside (within ``INSCRIBED`` of its
     radius, exact signed distance) is found by three rounds of 32 radii, to
     ``r / 32768``: it touches ``p`` and the surface elsewhere. Where ``p`` is
-    a convex corner or on a crease (its normal is the faces' mean) no ball
-    tangent there is inside, nor one at most half as large as the ball at the
-    shrinking ball's centre with the radius brought to its depth, which is
-    then taken.
+    a convex corner or on a crease (its normal is the faces' mean), no ball
+    tangent there is inside; where the largest tangent ball inside is at most
+    half as large as the ball at the shrinking ball's centre with its radius
+    brought to that centre's depth, the latter is taken.
     """
     lo, hi = 0.0, r
     for _ in range(3):
