@@ -26,12 +26,7 @@ from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar.adaptive import incremental_sample
 from medialaxis.planar.axis_arrays import NEAREST, AxisArrays, axis_of_sample, polygon_axis_arrays
 from medialaxis.planar.corners import RingArrays
-from medialaxis.planar.pipeline import (
-    DEFAULT_VECTOR_DETOUR,
-    LAM_PER_TOLERANCE,
-    MIN_RING_FRACTION,
-    SIMPLIFY_ABOVE,
-)
+from medialaxis.planar.pipeline import MIN_RING_FRACTION, SIMPLIFY_ABOVE, parameters
 from medialaxis.planar.vectors import NEAR_DUPLICATE
 
 __all__ = ["polygon_axes"]
@@ -170,10 +165,7 @@ def _one(region: Any, ring_ids: range, size: float, rxy: np.ndarray, rstart: np.
          lam: float | None, tolerance: float | None, detour: float | None) -> AxisArrays | None:
     """The axis of one region (its rings ``ring_ids`` of the layer's arrays) as :func:`polygon_axis_arrays`
     computes it, or None where that function takes another way."""
-    tolerance = 1e-4 * size if tolerance is None else tolerance
-    tolerance = max(check_number(tolerance, "tolerance"), 1e-9 * size)
-    lam = LAM_PER_TOLERANCE * tolerance if lam is None else check_number(lam, "lam")
-    detour = check_number(DEFAULT_VECTOR_DETOUR if detour is None else detour, "detour")
+    tolerance, lam, detour = parameters(size, lam, tolerance, detour)
     first, end = ring_ids[0], ring_ids[-1] + 1
     if (sizes[first:end] >= 3).all():  # every ring is one of Rings.vertices (the usual case): slices
         if spread[first:end].min() < MIN_RING_FRACTION * size:

@@ -165,21 +165,28 @@ def planar_stages(
     return _stages(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary)
 
 
+def parameters(size: float, lam: float | None, tolerance: float | None, detour: float | None,
+               pixel: float | None = None) -> tuple[float, float, float]:
+    """The tolerance, lambda and detour in force for a shape of ``size`` (``pixel``: a raster's smallest spacing)."""
+    if tolerance is None:
+        tolerance = 0.25 * pixel if pixel is not None else 1e-4 * size
+    tolerance = check_number(tolerance, "tolerance")
+    # Below about 1e-9 of the size, float64 and the triangulation's jitter cannot tell samples apart.
+    tolerance = max(tolerance, 1e-9 * size)
+    lam = LAM_PER_TOLERANCE * tolerance if lam is None else check_number(lam, "lam")
+    if detour is None:
+        detour = DEFAULT_DETOUR if pixel is not None else DEFAULT_VECTOR_DETOUR
+    return tolerance, lam, check_number(detour, "detour")
+
+
 def sampled(
     src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str
 ) -> tuple[float, float, float, Rings, BoundarySample, Triangulation, np.ndarray]:
     """The tolerance, lambda and detour in force, the rings, the sample, its triangulation and inner triangles."""
     region = src.region
     size = shape_size(region)
-    if tolerance is None:
-        tolerance = 0.25 * float(src.spacing.min()) if src.is_raster else 1e-4 * size
-    tolerance = check_number(tolerance, "tolerance")
-    # Below about 1e-9 of the size, float64 and the triangulation's jitter cannot tell samples apart.
-    tolerance = max(tolerance, 1e-9 * size)
-    lam = LAM_PER_TOLERANCE * tolerance if lam is None else check_number(lam, "lam")
-    if detour is None:
-        detour = DEFAULT_DETOUR if src.is_raster else DEFAULT_VECTOR_DETOUR
-    detour = check_number(detour, "detour")
+    tolerance, lam, detour = parameters(size, lam, tolerance, detour,
+                                        float(src.spacing.min()) if src.is_raster else None)
     if boundary == "canny":
         if not src.is_raster:
             raise InvalidInputError("boundary='canny' needs an image input")
