@@ -67,11 +67,39 @@ def contact_arcs(contact, arc, ring, ring_length):  # type: ignore[no-untyped-de
 
 
 @njit(cache=True, nogil=True)
-def merged_nodes(pos, radii, edges, tolerance):  # type: ignore[no-untyped-def]
-    """Clusters of edges shorter than ``tolerance`` contracted, as the pipeline does with :func:`merge_close_nodes`.
+def _means(pos, cluster):  # type: ignore[no-untyped-def]
+    """``(points, count)``: each cluster's mean point (``np.bincount``'s sums, in index order) and size."""
+    n = cluster.max() + 1 if len(cluster) else 0
+    count = np.zeros(n, np.int64)
+    sums = np.zeros((n, 2))
+    for i in range(len(pos)):
+        c = cluster[i]
+        count[c] += 1
+        sums[c, 0] += pos[i, 0]
+        sums[c, 1] += pos[i, 1]
+    points = np.empty((n, 2))
+    for c in range(n):
+        points[c, 0] = sums[c, 0] / count[c]
+        points[c, 1] = sums[c, 1] / count[c]
+    return points, count
 
-    Returns ``(cluster, kept, points, radii, count)``: each node's cluster,
-    the edges kept, each cluster's mean point and radius, and its size.
+
+@njit(cache=True, nogil=True)
+def merged_nodes(pos, reach, edges, tolerance, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
+    """Clusters of edges shorter than ``tolerance`` contracted to their mean point, as far as it stays inside.
+
+    As :func:`medialaxis.planar.pruning.merge_close_nodes`, except that a
+    cluster is left alone (its nodes and edges kept) where the region
+    (``segments`` ... ``height``: its
+    :class:`~medialaxis.planar._inside_kernels.RegionLocator`) does not surely
+    hold its mean point, or where that point lies outside the ball of one of
+    its members (centre ``pos``, radius ``reach``): a cluster strung along the
+    bend of a thin part has its mean outside the part, or a straight edge
+    from it leaving the part (tested on a V-shaped strip). Coincident Voronoi
+    vertices, which the merging is for, lie well inside each other's balls.
+
+    Returns ``(cluster, kept, points, count)``: each node's cluster, the edges
+    kept, each cluster's point and its size.
     """
     short = np.empty(len(edges), np.bool_)
     for e in range(len(edges)):
@@ -79,22 +107,27 @@ def merged_nodes(pos, radii, edges, tolerance):  # type: ignore[no-untyped-def]
         dy = pos[edges[e, 0], 1] - pos[edges[e, 1], 1]
         short[e] = np.sqrt(dx * dx + dy * dy) < tolerance
     cluster, kept = merge_clusters(len(pos), edges, short)
-    n = cluster.max() + 1 if len(cluster) else 0
-    count = np.zeros(n, np.int64)
-    sums = np.zeros((n, 3))
-    for i in range(len(pos)):  # np.bincount's sums, in index order
+    points, count = _means(pos, cluster)
+    loose = count > 1
+    for i in range(len(pos)):  # outside a member's ball
         c = cluster[i]
-        count[c] += 1
-        sums[c, 0] += pos[i, 0]
-        sums[c, 1] += pos[i, 1]
-        sums[c, 2] += radii[i]
-    points = np.empty((n, 2))
-    mean_radii = np.empty(n)
-    for c in range(n):
-        points[c, 0] = sums[c, 0] / count[c]
-        points[c, 1] = sums[c, 1] / count[c]
-        mean_radii[c] = sums[c, 2] / count[c]
-    return cluster, kept, points, mean_radii, count
+        if loose[c]:
+            dx, dy = pos[i, 0] - points[c, 0], pos[i, 1] - points[c, 1]
+            loose[c] = dx * dx + dy * dy < reach[i] * reach[i]
+    merged = np.flatnonzero(loose)
+    where = locate_points(points[merged, 0], points[merged, 1], segments, start, members, y0, height)
+    bad = np.zeros(len(count), np.bool_)
+    for c in range(len(count)):
+        bad[c] = count[c] > 1 and not loose[c]
+    for j in range(len(merged)):
+        bad[merged[j]] = where[j] != 1
+    if not bad.any():
+        return cluster, kept, points, count
+    for e in range(len(edges)):
+        short[e] = short[e] and not bad[cluster[edges[e, 0]]]
+    cluster, kept = merge_clusters(len(pos), edges, short)
+    points, count = _means(pos, cluster)
+    return cluster, kept, points, count
 
 
 @njit(cache=True, nogil=True)
@@ -165,20 +198,25 @@ def selected_nodes(radii, edges, keep, label, lonely):  # type: ignore[no-untype
 
 
 @njit(cache=True, nogil=True)
-def pruned_axis(pos, simplices, neighbors, inner, tri_points, points, nxt, prv, arc, ring, ring_length,  # type: ignore[no-untyped-def]
-                tolerance, lam, detour, regrow_detour, k):
+def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points, nxt, prv, arc, ring,  # type: ignore[no-untyped-def]
+                ring_length, tolerance, lam, detour, regrow_detour, k, segments, start, members, y0, height):
     """``(points, radii, edges)`` of the pruned axis whose raw nodes sit at ``pos`` in the triangles ``inner``.
 
     ``points``, ``nxt``, ``prv``, ``arc``, ``ring``, ``ring_length`` describe
     the boundary sample (more than ``k`` samples; radii from the pieces at
-    the ``k`` nearest), ``tri_points`` the triangulation's vertices. A node's
+    the ``k`` nearest), ``tri_points`` and ``tri_radii`` the triangulation's
+    vertices and circumradii (a node's ball in :func:`merged_nodes`),
+    ``segments`` ... ``height`` the region's compiled inside test. A node's
     radius is the distance at its point (a merged node's at its mean point,
     a single one's at its own), so only the nodes the pruning keeps, and
     those of components left without an edge, are measured.
     """
     edges, contact, diameter, adjacent = dual_edges(simplices, neighbors, inner, tri_points, nxt)
     contact_arc = contact_arcs(contact, arc, ring, ring_length)
-    cluster, kept, node_points, _, count = merged_nodes(pos, np.zeros(len(pos)), edges, tolerance)
+    reach = np.empty(len(inner))
+    for i in range(len(inner)):
+        reach[i] = tri_radii[inner[i]]
+    cluster, kept, node_points, count = merged_nodes(pos, reach, edges, tolerance, segments, start, members, y0, height)
     node_edges = np.empty((len(kept), 2), np.int64)
     for j in range(len(kept)):
         node_edges[j, 0], node_edges[j, 1] = cluster[edges[kept[j], 0]], cluster[edges[kept[j], 1]]

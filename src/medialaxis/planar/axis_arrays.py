@@ -91,9 +91,10 @@ def axis_of_sample(region: Any, locator: RegionLocator, smp: BoundarySample, tri
         inner, pos = axis_positions(tri, inside, region, locator)
     points, radii, edges = pruned_axis(
         pos, tri.simplices, tri.neighbors, inner.astype(np.int64), np.ascontiguousarray(tri.points, np.float64),
-        np.ascontiguousarray(smp.points, np.float64), np.asarray(smp.next, np.int64), np.asarray(smp.prev, np.int64),
-        np.asarray(smp.arc, np.float64), np.asarray(smp.ring, np.int64), np.asarray(smp.ring_length, np.float64),
-        float(tolerance), float(lam), float(detour), REGROW_DETOUR, NEAREST)
+        np.asarray(tri.radii, np.float64), np.ascontiguousarray(smp.points, np.float64), np.asarray(smp.next, np.int64),
+        np.asarray(smp.prev, np.int64), np.asarray(smp.arc, np.float64), np.asarray(smp.ring, np.int64), np.asarray(smp.ring_length, np.float64),
+        float(tolerance), float(lam), float(detour), REGROW_DETOUR, NEAREST, locator.segments, locator.start,
+        locator.members, locator.y0, locator.height)
     return AxisArrays(points, radii, edges)
 
 

@@ -19,12 +19,13 @@ import shapely
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError
+from medialaxis.planar._axis_kernels import merged_nodes
 from medialaxis.planar.adaptive import sample_and_triangulate
 from medialaxis.planar.axis import RawAxis, boundary_distance, raw_axis
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.inputs import PlanarInput, load_planar
 from medialaxis.planar.labels import merged_label_axes
-from medialaxis.planar.pruning import merge_close_nodes, prune_graph
+from medialaxis.planar.pruning import prune_graph
 from medialaxis.planar.sampling import BoundarySample, Rings, simplify_rings
 
 __all__ = ["voronoi_medial_axis", "planar_stages", "reprune", "Stages", "DEFAULT_DETOUR"]
@@ -218,10 +219,12 @@ def _stages(
     ax: RawAxis = raw_axis(tri, inside, smp, rings.region, rings.locator)
     region = src.region
     # Co-circular samples give clusters of coincident Voronoi vertices (the
-    # centre of a disc, the mid-line of a rectangle): one node each.
-    cluster, edges, kept = merge_close_nodes(ax.points, ax.edges, tolerance)
-    count = np.bincount(cluster)
-    points = np.stack([np.bincount(cluster, ax.points[:, k]) / count for k in range(2)], axis=1)
+    # centre of a disc, the mid-line of a rectangle): one node each, at the
+    # mean, where it stays inside (a member's ball: its Delaunay circle).
+    loc = rings.locator
+    cluster, kept, points, count = merged_nodes(ax.points, np.asarray(tri.radii, np.float64)[ax.triangle], ax.edges,
+                                                tolerance, loc.segments, loc.start, loc.members, loc.y0, loc.height)
+    edges = cluster[ax.edges[kept]].reshape(-1, 2)
     radii = np.bincount(cluster, ax.radii) / count
     merged = count > 1
     radii[merged] = boundary_distance(points[merged], smp)
