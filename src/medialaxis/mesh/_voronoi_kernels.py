@@ -1,11 +1,11 @@
-"""Compiled kernels of the Voronoi medial complex: tetrahedron geometry, Delaunay edge rings, star groups.
+"""Compiled kernels of the Voronoi medial complex: tetrahedron geometry, nearest samples, star groups.
 
 :func:`tet_geometry` gives the circumspheres, longest edges and volumes of
 the Delaunay tetrahedra, :func:`tet_centroids` their centroids and
-:func:`nearest_other_sample` the sample nearest to each centroid;
-:func:`all_edge_rings` walks the tetrahedra around every Delaunay edge (the
-Voronoi facets); :func:`minor_star_groups` finds the tetrahedra that pinch
-the union of the inner ones at a sample point (:func:`~medialaxis.mesh.voronoi_complex.unpinch`);
+:func:`nearest_other_sample` the sample nearest to each centroid (the
+Voronoi facets are walked by :func:`~medialaxis.mesh._ring_kernels.all_edge_rings`);
+:func:`minor_star_groups` finds the tetrahedra that pinch the union of the
+inner ones at a sample point (:func:`~medialaxis.mesh.voronoi_complex.unpinch`);
 :func:`small_cavities` finds the cavities of that union too small for the sampling;
 :func:`collapse_facets` and :func:`collapse_free_sides` collapse the dual
 complex through free faces (:func:`~medialaxis.mesh.voronoi_complex.medial_complex`).
@@ -19,7 +19,7 @@ from medialaxis._jit import njit, prange
 from medialaxis.core._kernels import find_root
 from medialaxis.mesh._ring_kernels import csr_transpose
 
-__all__ = ["all_edge_rings", "minor_star_groups", "nearest_other_sample", "small_cavities", "tet_centroids", "tet_geometry"]
+__all__ = ["minor_star_groups", "nearest_other_sample", "small_cavities", "tet_centroids", "tet_geometry"]
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -178,94 +178,6 @@ def _greedy_nearest(queries, points, simplices, vptr, vtets, which, start):  # t
         if best != start[q]:
             out[i] = best
     return out
-
-
-@njit(cache=True, nogil=True)
-def _walk_ring(simplices, neighbors, t, i, j, lowest, out, pos):  # type: ignore[no-untyped-def]
-    """Walk the tetrahedra around edge ``(i, j)`` from ``t`` across shared faces.
-
-    Returns the ring's size, or 0 when the walk meets the hull (-1) or a
-    tetrahedron below ``lowest`` (the ring then belongs to another start),
-    or does not close within 4096 steps. With ``out``, the ring is written
-    at ``out[pos:]``.
-    """
-    came = -1
-    for c in range(4):
-        v = simplices[t, c]
-        if v != i and v != j:
-            came = v
-            break
-    start = t
-    size = 0
-    while True:
-        if out.shape[0] > 0:
-            out[pos + size] = t
-        size += 1
-        nxt = -1
-        other = -1
-        for c in range(4):
-            v = simplices[t, c]
-            if v == came:
-                nxt = neighbors[t, c]
-            elif v != i and v != j:
-                other = v
-        if nxt < lowest or size > 4096:  # the hull (-1), or a ring already owned
-            return 0
-        if nxt == start:
-            return size
-        came = other
-        t = nxt
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ignore[no-untyped-def]
-    """The tetrahedra around every bounded Delaunay edge of ``tets``, in cyclic order.
-
-    Each edge at least ``min_length`` long is walked from every tetrahedron
-    of ``tets`` holding it, and kept by the one of lowest index in its ring
-    (so each edge comes once, and only if its whole ring is in ``tets``
-    when ``tets`` is sorted and holds every tetrahedron with such an edge).
-    Edges on the convex hull (whose Voronoi facets are unbounded) are left out.
-
-    Returns
-    -------
-    edge_ij : (e, 2) int64 ndarray
-        Sample indices of each edge, ``i < j``.
-    ring_ptr : (e + 1,) int64 ndarray
-    ring : (r,) int64 ndarray
-        Tetrahedra of edge ``k`` at ``ring[ring_ptr[k]:ring_ptr[k + 1]]``.
-    length : (e,) float64 ndarray
-    """
-    n = tets.shape[0]
-    size = np.zeros(6 * n, np.int64)
-    none = np.zeros(0, np.int64)
-    for q in prange(n):
-        t = tets[q]
-        for a in range(3):
-            for b in range(a + 1, 4):
-                i, j = simplices[t, a], simplices[t, b]
-                d0 = points[i, 0] - points[j, 0]
-                d1 = points[i, 1] - points[j, 1]
-                d2 = points[i, 2] - points[j, 2]
-                if d0 * d0 + d1 * d1 + d2 * d2 >= min_length * min_length:
-                    size[6 * q + a * (7 - a) // 2 + b - a - 1] = _walk_ring(simplices, neighbors, t, i, j, t, none, 0)
-    owned = np.flatnonzero(size)
-    counts = size[owned]
-    ring_ptr = np.zeros(owned.shape[0] + 1, np.int64)
-    ring_ptr[1:] = np.cumsum(counts)
-    ring = np.empty(ring_ptr[-1], np.int64)
-    edge_ij = np.empty((owned.shape[0], 2), np.int64)
-    length = np.empty(owned.shape[0], np.float64)
-    for k in prange(owned.shape[0]):
-        q, e = owned[k] // 6, owned[k] % 6
-        t = tets[q]
-        a = 0 if e < 3 else (1 if e < 5 else 2)
-        b = e - (a * (7 - a) // 2) + a + 1
-        i, j = simplices[t, a], simplices[t, b]
-        _walk_ring(simplices, neighbors, t, i, j, t, ring, ring_ptr[k])
-        edge_ij[k, 0], edge_ij[k, 1] = min(i, j), max(i, j)
-        length[k] = np.sqrt(((points[i] - points[j]) ** 2).sum())
-    return edge_ij, ring_ptr, ring, length
 
 
 @njit(cache=True, nogil=True)

@@ -14,8 +14,8 @@ import dataclasses
 
 import numpy as np
 
-from medialaxis.mesh._ring_kernels import edge_order, gather_rings
-from medialaxis.mesh._voronoi_kernels import all_edge_rings, tet_geometry
+from medialaxis.mesh._ring_kernels import all_edge_rings
+from medialaxis.mesh._voronoi_kernels import tet_geometry
 from medialaxis.mesh.delaunay import delaunay_tetrahedra
 
 __all__ = ["Tetrahedralisation", "tetrahedralise", "edge_rings"]
@@ -90,7 +90,7 @@ def edge_rings(
     Returns
     -------
     edge_ij : (e, 2) int64 ndarray
-        Sample indices of each bounded facet's Delaunay edge (hull edges are dropped).
+        Sample indices of each bounded facet's Delaunay edge (hull edges are dropped), ascending.
     ring_ptr : (e + 1,) int64 ndarray
     ring_tets : (r,) int64 ndarray
         Tetrahedra of facet ``k`` in angular order around its edge:
@@ -99,9 +99,5 @@ def edge_rings(
         Length of each facet's Delaunay edge (the contact-set lower bound).
     """
     tets = np.sort(np.asarray(tets, np.int64))
-    edge_ij, ring_ptr, ring, length = all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, float(min_length))
-    # in the order of the edges (the facets of a sample come together: output files compress better)
-    order = edge_order(edge_ij, len(dt.points))
-    new_ptr, new_ring = gather_rings(ring_ptr, ring, order)
-    return edge_ij[order], new_ptr, new_ring, length[order]
+    return all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, float(min_length))  # type: ignore[no-any-return]
 
