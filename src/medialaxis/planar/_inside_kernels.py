@@ -31,8 +31,17 @@ UNSURE = 2
 
 
 @njit(cache=True, nogil=True)
-def band_segments(segments, y0, height, n_bands):  # type: ignore[no-untyped-def]
-    """CSR lists (``start``, ``members``) of the segments (s, 4: x1 y1 x2 y2) meeting each of ``n_bands`` bands."""
+def band_segments(segments, n_bands):  # type: ignore[no-untyped-def]
+    """``(y0, height, start, members)``: the segments' (s, 4: x1 y1 x2 y2) lowest y and height (0 and 1 without
+    segments, at least 1e-300), and CSR lists of the segments meeting each of ``n_bands`` bands of that height."""
+    y0, y1 = np.inf, -np.inf
+    for s in range(len(segments)):
+        y0 = min(y0, segments[s, 1], segments[s, 3])
+        y1 = max(y1, segments[s, 1], segments[s, 3])
+    if len(segments):
+        height = max(y1 - y0, 1e-300)
+    else:
+        y0, height = 0.0, 1.0
     count = np.zeros(n_bands + 1, np.int64)
     lo = np.empty(len(segments), np.int64)
     hi = np.empty(len(segments), np.int64)
@@ -53,7 +62,7 @@ def band_segments(segments, y0, height, n_bands):  # type: ignore[no-untyped-def
         for k in range(lo[s], hi[s] + 1):
             members[fill[k]] = s
             fill[k] += 1
-    return start, members
+    return y0, height, start, members
 
 
 @njit(cache=True, nogil=True)
@@ -166,11 +175,7 @@ class RegionLocator:
                 parts.append(np.hstack((xy[:-1], xy[1:])))
             segments = np.concatenate(parts) if parts else np.empty((0, 4))
         self.segments = np.ascontiguousarray(segments, np.float64)
-        ys = self.segments[:, 1::2]
-        self.y0 = float(ys.min()) if len(ys) else 0.0
-        self.height = max(float(ys.max()) - self.y0, 1e-300) if len(ys) else 1.0
-        n_bands = max(1, len(self.segments) // 2)
-        self.start, self.members = band_segments(self.segments, self.y0, self.height, n_bands)
+        self.y0, self.height, self.start, self.members = band_segments(self.segments, max(1, len(self.segments) // 2))
 
     def inner_triangles(self, points: np.ndarray, simplices: np.ndarray, sliver_fraction: float) -> np.ndarray:
         """(T,) bool: proper triangles whose centroid the region contains (see :func:`locate_centroids`)."""

@@ -146,30 +146,37 @@ def polygon_axes(geoms: Sequence[Any], *, lam: float | None = None, tolerance: f
     seg_start = _offsets(row_ring[pair], len(rings))
     sizes = np.maximum(np.diff(rstart) - 1, 0)  # vertices of each ring, not repeated
     spread = _extents(rxy, rstart)
+    all_full = _per_group(np.logical_and, sizes >= 3, first_ring, True)  # every ring of the feature is one of Rings'
+    narrowest = _per_group(np.minimum, spread, first_ring, np.inf)
     vertices = rxy[~last]  # the rings one after the other, not closed: ring r at vstart[r]:vstart[r + 1]
     open_start = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    diameter = 2.0 * np.sqrt(far)
+    small = np.diff(vstart) <= SIMPLIFY_ABOVE
     for j, k in enumerate(take):
         axis = None
-        size = 2.0 * float(np.sqrt(far[j]))
-        if vstart[j + 1] - vstart[j] <= SIMPLIFY_ABOVE:
-            axis = _one(simple[j], range(first_ring[j], first_ring[j + 1]), size, rxy, rstart, vertices,
-                        open_start, sizes, spread, segments, seg_start, lam, tolerance, detour)
+        size = float(diameter[j])
+        if small[j]:
+            rings = range(first_ring[j], first_ring[j + 1])
+            sliced = bool(all_full[j])
+            if not sliced or narrowest[j] >= MIN_RING_FRACTION * size:  # else polygon_axis_arrays raises
+                axis = _one(simple[j], rings, sliced, size, rxy, rstart, vertices, open_start, sizes, spread, segments,
+                            seg_start, lam, tolerance, detour)
         out[k] = polygon_axis_arrays(geoms[k], lam=lam, tolerance=tolerance, detour=detour) if axis is None else axis
     for k in np.flatnonzero(~ok):
         out[k] = polygon_axis_arrays(geoms[k], lam=lam, tolerance=tolerance, detour=detour)
     return out
 
 
-def _one(region: Any, ring_ids: range, size: float, rxy: np.ndarray, rstart: np.ndarray, vertices: np.ndarray,
-         open_start: np.ndarray, sizes: np.ndarray, spread: np.ndarray, segments: np.ndarray, seg_start: np.ndarray,
-         lam: float | None, tolerance: float | None, detour: float | None) -> AxisArrays | None:
+def _one(region: Any, ring_ids: range, sliced: bool, size: float, rxy: np.ndarray, rstart: np.ndarray,
+         vertices: np.ndarray, open_start: np.ndarray, sizes: np.ndarray, spread: np.ndarray, segments: np.ndarray,
+         seg_start: np.ndarray, lam: float | None, tolerance: float | None,
+         detour: float | None) -> AxisArrays | None:
     """The axis of one region (its rings ``ring_ids`` of the layer's arrays) as :func:`polygon_axis_arrays`
-    computes it, or None where that function takes another way."""
+    computes it, or None where that function takes another way. ``sliced``: every ring has three vertices
+    or more (is one of ``Rings.vertices``) and none is too small (the caller checked)."""
     tolerance, lam, detour = parameters(size, lam, tolerance, detour)
     first, end = ring_ids[0], ring_ids[-1] + 1
-    if (sizes[first:end] >= 3).all():  # every ring is one of Rings.vertices (the usual case): slices
-        if spread[first:end].min() < MIN_RING_FRACTION * size:
-            return None  # polygon_axis_arrays raises
+    if sliced:  # the usual case: slices
         xy = vertices[open_start[first]:open_start[end]]
         start = open_start[first:end + 1] - open_start[first]
     else:
