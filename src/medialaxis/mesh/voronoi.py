@@ -47,6 +47,7 @@ from medialaxis.mesh.sampling import (
     sample_surface,
 )
 from medialaxis.mesh.signed_distance import SignedDistance
+from medialaxis.mesh.stray_cycles import without_stray_cycles
 from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, euler_characteristic, medial_complex
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
@@ -179,7 +180,9 @@ def voronoi_medial_axis(
         paper's formula, ``10 * (9 D^3 epsilon)^(1/4)`` with ``D`` the
         bounding-box diagonal standing for the diameter: a worst-case bound,
         usually larger than the shape, hence the practical default ``lam``),
-        ``euler_characteristic``, ``n_filling_faces``, ``timings`` (seconds
+        ``euler_characteristic``, ``n_filling_faces``, ``n_cut_cycles`` (cycles the
+        solid lacks, cut where they ran through points outside it:
+        :mod:`~medialaxis.mesh.stray_cycles`), ``timings`` (seconds
         per step; ``epsilon`` is the wait for the work done beside the Delaunay
         insertion: the thin-part check, the crossing check, epsilon, the closest-point structure),
         ``delaunay_share`` and ``defects`` (crossings, holes). The compact complex keeps a subset
@@ -319,6 +322,13 @@ def voronoi_medial_axis(
     used = cx.tets
     todo = used[~np.isfinite(signed[used])]
     signed[todo], closest[todo] = sd.query(dt.centres[todo], smp.face[dt.simplices[todo]])
+    solid = solid_betti(src.mesh)
+    faces, edges, n_curve, n_cut = cx.faces, cx.edges, cx.n_curve_edges, 0
+    if topology == "preserve":  # cycles the solid lacks, run out through flat tetrahedra on the surface
+        medial_point = (signed[used] < 0) & (dt.radii[used] + signed[used] <= EMPTY_BALL_SLACK * eps)
+        one_sided = dt.longest[used] < -signed[used]  # its four contacts within 60 degrees, seen from its centre
+        used, faces, edges, n_curve, n_cut = without_stray_cycles(
+            used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid)
     stray = used[(signed[used] >= 0) | (dt.radii[used] >= diag)]  # kept for topology, its circumcentre out or far
     if len(stray):  # the centroid of its (inner) tetrahedron stands for it: far circumcentres broke compaction
         dt.centres[stray] = tet_centroids(dt.points, dt.simplices[stray])
@@ -326,7 +336,6 @@ def voronoi_medial_axis(
     points = dt.centres[used]
     radii = np.abs(signed[used])
     inside = signed[used] < 0
-    faces, edges = cx.faces, cx.edges
     timings["facets"] = time.perf_counter() - t0
     timings["total"] = time.perf_counter() - t_start
 
@@ -346,14 +355,15 @@ def voronoi_medial_axis(
         "mesh_volume": src.volume,
         "mesh_euler_characteristic": int(src.mesh.euler_number),
         "euler_characteristic": chi,
-        "solid_betti": list(solid_betti(src.mesh)),
+        "solid_betti": list(solid),
         "repairs": list(src.repairs),
         "defects": dict(src.found),
         "topology": topology,
         "n_filling_faces": int((~cx.face_certified).sum()),
         "n_outside_points": int((~inside).sum()),
         "inner_volume": union_volume,
-        "n_curve_edges": int(cx.n_curve_edges),
+        "n_curve_edges": int(n_curve),
+        "n_cut_cycles": n_cut,
         "timings": timings,
         "delaunay_share": timings["delaunay"] / timings["total"],
     }

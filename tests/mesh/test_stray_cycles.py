@@ -1,0 +1,73 @@
+"""Cycles of the medial complex through points outside the solid are cut only where the solid lacks them.
+
+The complexes are built by hand, so their Betti numbers are known from the
+construction: a disc (a fan of triangles) is contractible, each curve loop
+hung on it adds one cycle.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from medialaxis.core.homology import betti_numbers
+from medialaxis.mesh.stray_cycles import cut_stray_cycles, without_stray_cycles
+
+RIM = 8  # a disc: centre 0, rim points 1..8
+
+
+def _disc_with_loops(loops: list[int]) -> tuple[int, np.ndarray, np.ndarray, int]:
+    """A fan disc with, for each entry, a curve loop of that many new points from rim point 1 to rim point 5."""
+    faces = np.array([[0, 1 + k, 1 + (k + 1) % RIM] for k in range(RIM)])
+    border = np.array([[1 + k, 1 + (k + 1) % RIM] for k in range(RIM)])
+    curve, n = [], RIM + 1
+    for length in loops:
+        chain = [1, *range(n, n + length), 5]
+        curve += [[a, b] for a, b in zip(chain[:-1], chain[1:])]
+        n += length
+    return n, faces, np.concatenate([np.array(curve).reshape(-1, 2), border]), len(curve)
+
+
+def test_a_loop_through_stray_points_is_cut_and_pulled_back_to_the_disc():
+    n, faces, edges, n_curve = _disc_with_loops([4])
+    assert betti_numbers(n, edges, faces) == (1, 1, 0)
+    stray = np.zeros(n, bool)
+    stray[[11, 12]] = True  # two points far out on the loop
+    kept, n_kept, keep, n_cut = cut_stray_cycles(n, faces, edges, n_curve, stray, excess=1)
+    assert n_cut == 1 and n_kept == 0
+    assert keep.tolist() == [True] * (RIM + 1) + [False] * 4  # the loop's points all go
+    np.testing.assert_array_equal(kept, edges[n_curve:])  # the disc's border is left, untouched
+    assert betti_numbers(n, kept, faces)[1:] == (0, 0)
+
+
+def test_a_loop_of_medial_points_is_never_cut():
+    n, faces, edges, n_curve = _disc_with_loops([4])
+    kept, n_kept, keep, n_cut = cut_stray_cycles(n, faces, edges, n_curve, np.zeros(n, bool), excess=1)
+    assert n_cut == 0 and n_kept == n_curve and keep.all()
+    np.testing.assert_array_equal(kept, edges)
+
+
+def test_no_more_cycles_are_cut_than_the_solid_lacks():
+    n, faces, edges, n_curve = _disc_with_loops([3, 3, 2])
+    assert betti_numbers(n, edges, faces) == (1, 3, 0)
+    stray = np.zeros(n, bool)
+    stray[RIM + 1 :] = True
+    kept, n_kept, keep, n_cut = cut_stray_cycles(n, faces, edges, n_curve, stray, excess=2)
+    assert n_cut == 2
+    new_index = np.cumsum(keep) - 1
+    assert betti_numbers(int(keep.sum()), new_index[kept], new_index[faces]) == (1, 1, 0)
+    # the loop left is whole: a chain of k points has k + 1 edges
+    assert n_kept in (3, 4) and keep.sum() == RIM + 1 + n_kept - 1
+
+
+def test_the_complex_is_renumbered_and_left_alone_when_its_euler_characteristic_is_the_solids():
+    n, faces, edges, n_curve = _disc_with_loops([4, 2])
+    used = np.arange(100, 100 + n)  # tetrahedra of the points
+    stray = np.zeros(n, bool)
+    stray[RIM + 1 :] = True
+    same = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 2, 0))  # a solid of genus 2
+    assert same[4] == 0 and same[1] is faces and same[2] is edges
+    used2, faces2, edges2, n_curve2, n_cut = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 0, 0))
+    assert n_cut == 2 and n_curve2 == 0
+    np.testing.assert_array_equal(used2, used[: RIM + 1])
+    np.testing.assert_array_equal(faces2, faces)
+    assert betti_numbers(len(used2), edges2, faces2) == (1, 0, 0)
