@@ -8,9 +8,13 @@ hung on it adds one cycle.
 from __future__ import annotations
 
 import numpy as np
+import trimesh
+
+import medialaxis as mx
+import medialaxis.mesh.voronoi as voronoi
 
 from medialaxis.core.homology import betti_numbers
-from medialaxis.mesh.stray_cycles import cut_stray_cycles, without_stray_cycles
+from medialaxis.mesh.stray_cycles import complement_voids, cut_stray_cycles, without_stray_cycles
 
 RIM = 8  # a disc: centre 0, rim points 1..8
 
@@ -64,10 +68,35 @@ def test_the_complex_is_renumbered_and_left_alone_when_its_euler_characteristic_
     used = np.arange(100, 100 + n)  # tetrahedra of the points
     stray = np.zeros(n, bool)
     stray[RIM + 1 :] = True
-    same = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 2, 0))  # a solid of genus 2
+    same = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 2, 0), lambda: 0)  # a solid of genus 2
     assert same[4] == 0 and same[1] is faces and same[2] is edges
-    used2, faces2, edges2, n_curve2, n_cut = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 0, 0))
+    used2, faces2, edges2, n_curve2, n_cut = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 0, 0), lambda: 0)
     assert n_cut == 2 and n_curve2 == 0
     np.testing.assert_array_equal(used2, used[: RIM + 1])
     np.testing.assert_array_equal(faces2, faces)
     assert betti_numbers(len(used2), edges2, faces2) == (1, 0, 0)
+
+
+def test_the_voids_by_the_complement_are_those_of_the_homology(monkeypatch):
+    # a hollow ball and a ball with two cavities: b2 of the full complex by GF(2) elimination
+    # (core.homology, checked against exact answers) and by the components of its complement
+    seen = []
+    real = voronoi.medial_complex
+
+    def spy(dt, *args, **kwargs):
+        cx = real(dt, *args, **kwargs)
+        seen.append((dt, cx))
+        return cx
+
+    monkeypatch.setattr(voronoi, "medial_complex", spy)
+    outer = trimesh.creation.icosphere(4, radius=2.0)
+    holes = [trimesh.creation.icosphere(3, radius=0.5).apply_translation(c) for c in ((0.9, 0, 0), (-0.9, 0, 0))]
+    for n_holes in (1, 2):
+        parts = [outer] + [h.copy() for h in holes[:n_holes]]
+        for part in parts[1:]:
+            part.invert()
+        mesh = trimesh.util.concatenate(parts)
+        mx.medial_axis(mesh, method="voronoi", compact=False)
+        dt, cx = seen[-1]
+        assert betti_numbers(len(cx.tets), cx.edges, cx.faces)[2] == n_holes
+        assert complement_voids(dt.simplices, dt.neighbors, cx.facet_ij) == n_holes

@@ -47,7 +47,7 @@ from medialaxis.mesh.sampling import (
     sample_surface,
 )
 from medialaxis.mesh.signed_distance import SignedDistance
-from medialaxis.mesh.stray_cycles import without_stray_cycles
+from medialaxis.mesh.stray_cycles import complement_voids, without_stray_cycles
 from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, euler_characteristic, medial_complex
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
@@ -328,7 +328,8 @@ def voronoi_medial_axis(
         medial_point = (signed[used] < 0) & (dt.radii[used] + signed[used] <= EMPTY_BALL_SLACK * eps)
         one_sided = dt.longest[used] < -signed[used]  # its four contacts within 60 degrees, seen from its centre
         used, faces, edges, n_curve, n_cut = without_stray_cycles(
-            used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid)
+            used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid,
+            lambda: complement_voids(dt.simplices, dt.neighbors, cx.facet_ij))
     stray = used[(signed[used] >= 0) | (dt.radii[used] >= diag)]  # kept for topology, its circumcentre out or far
     if len(stray):  # the centroid of its (inner) tetrahedron stands for it: far circumcentres broke compaction
         dt.centres[stray] = tet_centroids(dt.points, dt.simplices[stray])

@@ -89,6 +89,8 @@ class MedialComplex:
         where three or more facets meet.
     n_curve_edges : int
         How many of ``edges`` are curve pieces (they come first).
+    facet_ij : (f, 2) int64 ndarray
+        Delaunay edge (sample pair) of each kept facet.
     """
 
     tets: np.ndarray
@@ -97,6 +99,7 @@ class MedialComplex:
     face_certified: np.ndarray
     edges: np.ndarray
     n_curve_edges: int
+    facet_ij: np.ndarray
 
 
 def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | None = None) -> int:
@@ -402,4 +405,5 @@ def medial_complex(
     new_index = np.full(n_tets, -1, np.int64)
     new_index[used] = np.arange(len(used))
     edges = new_index[np.concatenate([curve, border]).astype(np.int64)].reshape(-1, 2)
-    return MedialComplex(used, new_index[tris].reshape(-1, 3), length[owner], certified[owner], edges, n_curve)
+    return MedialComplex(used, new_index[tris].reshape(-1, 3), length[owner], certified[owner], edges, n_curve,
+                         edge_ij[keep][alive])
