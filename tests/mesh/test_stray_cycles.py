@@ -12,7 +12,6 @@ import trimesh
 
 import medialaxis as mx
 import medialaxis.mesh.voronoi as voronoi
-
 from medialaxis.core.homology import betti_numbers
 from medialaxis.mesh.stray_cycles import complement_voids, cut_stray_cycles, without_stray_cycles
 
