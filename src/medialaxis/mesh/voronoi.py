@@ -181,7 +181,7 @@ def voronoi_medial_axis(
         bounding-box diagonal standing for the diameter: a worst-case bound,
         usually larger than the shape, hence the practical default ``lam``),
         ``euler_characteristic``, ``n_filling_faces``, ``n_cut_cycles`` (cycles the
-        solid lacks, cut where they ran through points outside it:
+        solid lacks, cut where they ran through points that are not medial:
         :mod:`~medialaxis.mesh.stray_cycles`), ``timings`` (seconds
         per step; ``epsilon`` is the wait for the work done beside the Delaunay
         insertion: the thin-part check, the crossing check, epsilon, the closest-point structure),
