@@ -39,29 +39,42 @@ def _read_only_copy(tmp_path: Path) -> Path:
     return root
 
 
-@pytest.mark.parametrize("writable_tmp", [True, False])
-def test_cli_runs_from_a_read_only_install_without_a_home(tmp_path, writable_tmp):
-    site = _read_only_copy(tmp_path)
-    home = tmp_path / "home"
-    tmp = tmp_path / "tmp"
-    out = tmp_path / "out"
-    for folder in (home, tmp, out):
+def _launch(tmp_path: Path, writable_tmp: bool) -> tuple[subprocess.Popen, dict[str, Path]]:
+    """Start the CLI on a read-only copy, with a home it cannot write and a temporary folder it can or cannot."""
+    base = tmp_path / ("writable-tmp" if writable_tmp else "read-only-tmp")
+    base.mkdir()
+    folders = {name: base / name for name in ("home", "tmp", "out")}
+    for folder in folders.values():
         folder.mkdir()
-    home.chmod(0o555)
+    folders["site"] = _read_only_copy(base)
+    folders["home"].chmod(0o555)
     if not writable_tmp:
-        tmp.chmod(0o555)
-    env = {"HOME": str(home), "TMPDIR": str(tmp), "PYTHONPATH": str(site), "PATH": os.environ.get("PATH", "/usr/bin")}
+        folders["tmp"].chmod(0o555)
+    env = {"HOME": str(folders["home"]), "TMPDIR": str(folders["tmp"]), "PYTHONPATH": str(folders["site"]),
+           "PATH": os.environ.get("PATH", "/usr/bin")}
+    command = [*_unprivileged(), sys.executable, "-m", "medialaxis", "compute", str(SHAPE), "-o",
+               str(folders["out"] / "a.json")]
+    child = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return child, folders
+
+
+def test_cli_runs_from_a_read_only_install_without_a_home(tmp_path):
+    # Both cases compile every kernel of the image route from scratch (about 40 s each): they run side by side.
+    runs = {writable: _launch(tmp_path, writable) for writable in (True, False)}
     try:
-        run = subprocess.run(
-            [*_unprivileged(), sys.executable, "-m", "medialaxis", "compute", str(SHAPE), "-o", str(out / "a.json")],
-            env=env, capture_output=True, text=True, timeout=600,
-        )
+        done = {writable: child.communicate(timeout=600) for writable, (child, _) in runs.items()}
     finally:
-        for path in [site, *site.rglob("*"), home, tmp]:
-            path.chmod(0o755 if path.is_dir() else 0o644)
-    assert run.returncode == 0, run.stderr
-    assert "Traceback" not in run.stderr
-    assert mx.load(out / "a.json").n_components == 1
-    assert not list((site / "medialaxis").rglob("__pycache__/*.nbi"))  # nothing written into the install
-    cached = list(tmp.rglob("*.nbi"))
-    assert bool(cached) == writable_tmp  # kernels cached privately when a temporary folder is writable
+        for child, folders in runs.values():
+            if child.poll() is None:
+                child.kill()
+                child.wait()
+            for path in [folders["site"], *folders["site"].rglob("*"), folders["home"], folders["tmp"]]:
+                path.chmod(0o755 if path.is_dir() else 0o644)
+    for writable_tmp, (child, folders) in runs.items():
+        stderr = done[writable_tmp][1]
+        assert child.returncode == 0, (writable_tmp, stderr)
+        assert "Traceback" not in stderr
+        assert mx.load(folders["out"] / "a.json").n_components == 1
+        assert not list((folders["site"] / "medialaxis").rglob("__pycache__/*.nbi"))  # nothing written into the install
+        cached = list(folders["tmp"].rglob("*.nbi"))
+        assert bool(cached) == writable_tmp  # kernels cached privately when a temporary folder is writable
