@@ -1,4 +1,4 @@
-"""Cycles of the medial complex that run through points outside the solid, cut.
+"""Cycles of the medial complex that the solid lacks, cut where they run through points that are not medial.
 
 The dual complex of the inner Delaunay tetrahedra has the topology of their
 union, and that union can gain a handle where nearly flat tetrahedra on the
@@ -139,6 +139,11 @@ def complement_voids(simplices: np.ndarray, neighbors: np.ndarray, facet_ij: np.
     cells glued through the facets not kept: two samples are in one
     component when a chain of Delaunay edges whose facets are not kept joins
     them; the cells of the samples on the convex hull reach infinity.
+
+    References
+    ----------
+    A. Hatcher, *Algebraic Topology*, Cambridge University Press, 2002,
+    Theorem 3.44 (Alexander duality). ISBN 978-0-521-79540-1.
 
     Examples
     --------
