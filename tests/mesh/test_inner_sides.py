@@ -104,6 +104,7 @@ def test_a_noisy_uv_ellipsoid_has_no_cavity():
     # and a handle of flat tetrahedra on a pole cap was left as a loop of curves from the axis up to the
     # surface and back (through circumcentres far outside): cut, as the solid has no handle
     assert ma.betti == (1, 0, 0)
+    assert ma.metadata["euler_characteristic"] == 1 and ma.metadata["n_cut_cycles"] >= 1
     # what is left is the axis: the segment |x| <= 8/3 on the x axis, up to the sampling
     x = np.clip(ma.points[:, 0], -8 / 3, 8 / 3)
     assert np.max(np.hypot(np.hypot(ma.points[:, 0] - x, ma.points[:, 1]), ma.points[:, 2])) < 0.05

@@ -8,6 +8,7 @@ hung on it adds one cycle.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import trimesh
 
 import medialaxis as mx
@@ -42,6 +43,21 @@ def test_a_loop_through_stray_points_is_cut_and_pulled_back_to_the_disc():
     assert betti_numbers(n, kept, faces)[1:] == (0, 0)
 
 
+@pytest.mark.parametrize("length", [3, 4, 5])
+def test_a_loop_alone_collapses_to_a_point_not_to_nothing(length):
+    # a component that is a loop of curve edges only, beside the disc: cut, it is a point, still a
+    # component (the path left collapses from both ends and meets at a point or at an edge)
+    n, faces, edges, n_curve = _disc_with_loops([])
+    loop = np.c_[np.arange(n, n + length), np.roll(np.arange(n, n + length), -1)]
+    edges = np.concatenate([loop, edges])
+    stray = np.ones(n + length, bool)
+    assert betti_numbers(n + length, edges, faces) == (2, 1, 0)
+    kept, n_kept, keep, n_cut = cut_stray_cycles(n + length, faces, edges, length, stray, excess=1)
+    assert n_cut == 1 and n_kept == 0 and keep.sum() == n + 1
+    new_index = np.cumsum(keep) - 1
+    assert betti_numbers(int(keep.sum()), new_index[kept], new_index[faces]) == (2, 0, 0)
+
+
 def test_a_loop_of_medial_points_is_never_cut():
     n, faces, edges, n_curve = _disc_with_loops([4])
     kept, n_kept, keep, n_cut = cut_stray_cycles(n, faces, edges, n_curve, np.zeros(n, bool), excess=1)
@@ -67,9 +83,10 @@ def test_the_complex_is_renumbered_and_left_alone_when_its_euler_characteristic_
     used = np.arange(100, 100 + n)  # tetrahedra of the points
     stray = np.zeros(n, bool)
     stray[RIM + 1 :] = True
-    same = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 2, 0), lambda: 0)  # a solid of genus 2
+    chi = 1 - 2 + 0  # the disc and two loops
+    same = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 2, 0), lambda: 0, chi)  # a solid of genus 2
     assert same[4] == 0 and same[1] is faces and same[2] is edges
-    used2, faces2, edges2, n_curve2, n_cut = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 0, 0), lambda: 0)
+    used2, faces2, edges2, n_curve2, n_cut = without_stray_cycles(used, faces, edges, n_curve, stray, (1, 0, 0), lambda: 0, chi)
     assert n_cut == 2 and n_curve2 == 0
     np.testing.assert_array_equal(used2, used[: RIM + 1])
     np.testing.assert_array_equal(faces2, faces)

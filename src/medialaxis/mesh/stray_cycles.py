@@ -32,8 +32,6 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import csgraph
 
-from medialaxis.mesh.voronoi_complex import euler_characteristic
-
 __all__ = ["cut_stray_cycles", "complement_voids", "without_stray_cycles"]
 
 
@@ -113,6 +111,7 @@ def cut_stray_cycles(
     fixed = np.zeros(n_points, bool)  # points a face or a border edge holds
     fixed[faces.ravel()] = True
     fixed[edges[n_curve:].ravel()] = True
+    still = np.zeros(n_points, bool)  # points left, though no edge holds them any more
     while True:  # free ends of the opened curves, one elementary collapse after another
         degree = np.bincount(curve[alive].ravel(), minlength=n_points)
         free = opened & ~fixed & (degree == 1)
@@ -121,9 +120,14 @@ def cut_stray_cycles(
             break
         alive &= ~loose
         opened[curve[loose].ravel()] = True
+        # a path alone collapses from both ends at once: where they meet (a point, or an edge free at
+        # both ends) one point of the component is kept
+        still[curve[loose & free[curve].all(axis=1), 0]] = True
+        ends = np.zeros(n_points, bool)
+        ends[curve[loose].ravel()] = True
+        still |= ends & ~free & (np.bincount(curve[alive].ravel(), minlength=n_points) == 0)
     removed = np.zeros(n_points, bool)
     removed[curve[~alive].ravel()] = True
-    still = np.zeros(n_points, bool)
     still[curve[alive].ravel()] = True
     keep_points = ~removed | fixed | still
     return np.concatenate([curve[alive], edges[n_curve:]]), int(alive.sum()), keep_points, n_cut
@@ -177,17 +181,16 @@ def complement_voids(simplices: np.ndarray, neighbors: np.ndarray, facet_ij: np.
 
 def without_stray_cycles(
     used: np.ndarray, faces: np.ndarray, edges: np.ndarray, n_curve: int, stray: np.ndarray,
-    solid: tuple[int, int, int], voids: Callable[[], int],
+    solid: tuple[int, int, int], voids: Callable[[], int], chi: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, int]:
     """The complex over ``used`` with the cycles through ``stray`` points that the solid lacks cut.
 
-    Looks at the Betti numbers only where the Euler characteristic differs
-    from the solid's ``(b0, b1, b2)``: ``b2`` from ``voids()``
+    Looks at the Betti numbers only where the complex's Euler characteristic
+    ``chi`` differs from the solid's ``(b0, b1, b2)``: ``b2`` from ``voids()``
     (:func:`complement_voids`), ``b0`` from the edges, ``b1`` from the Euler
     characteristic. Returns ``used``, ``faces``, ``edges`` (renumbered),
-    ``n_curve`` and the number of cycles cut.
+    ``n_curve`` and the number of cycles cut (each raises ``chi`` by one).
     """
-    chi = euler_characteristic(len(used), faces, edges)
     if chi == solid[0] - solid[1] + solid[2]:
         return used, faces, edges, n_curve, 0
     pairs = np.concatenate([np.asarray(faces, np.int64)[:, [0, 1]], np.asarray(faces, np.int64)[:, [1, 2]], edges])

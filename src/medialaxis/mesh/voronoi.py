@@ -324,12 +324,14 @@ def voronoi_medial_axis(
     signed[todo], closest[todo] = sd.query(dt.centres[todo], smp.face[dt.simplices[todo]])
     solid = solid_betti(src.mesh)
     faces, edges, n_curve, n_cut = cx.faces, cx.edges, cx.n_curve_edges, 0
+    chi = euler_characteristic(len(used), faces, edges)
     if topology == "preserve":  # cycles the solid lacks, run out through flat tetrahedra on the surface
         medial_point = (signed[used] < 0) & (dt.radii[used] + signed[used] <= EMPTY_BALL_SLACK * eps)
         one_sided = dt.longest[used] < -signed[used]  # its four contacts within 60 degrees, seen from its centre
         used, faces, edges, n_curve, n_cut = without_stray_cycles(
             used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid,
-            lambda: complement_voids(dt.simplices, dt.neighbors, cx.facet_ij))
+            lambda: complement_voids(dt.simplices, dt.neighbors, cx.facet_ij), chi)
+        chi += n_cut
     stray = used[(signed[used] >= 0) | (dt.radii[used] >= diag)]  # kept for topology, its circumcentre out or far
     if len(stray):  # the centroid of its (inner) tetrahedron stands for it: far circumcentres broke compaction
         dt.centres[stray] = tet_centroids(dt.points, dt.simplices[stray])
@@ -340,7 +342,6 @@ def voronoi_medial_axis(
     timings["facets"] = time.perf_counter() - t0
     timings["total"] = time.perf_counter() - t_start
 
-    chi = euler_characteristic(len(points), faces, edges)
     metadata = {
         "domain": "mesh",
         "method": "voronoi",
