@@ -62,7 +62,7 @@ def test_without_convex_vertices_the_state_is_piece_states() -> None:
     closed = ring_arrays(st.rings)
     none = np.zeros_like(closed.convex)
     got = corner_piece_state(tri.simplices, st.inside, tri.radii, tri.centers, smp.next, smp.arc, smp.ring, 0,
-                             closed.s, closed.xy, closed.start, none, 1e-3)
+                             closed.s, closed.xy, closed.start, none, closed.touching, 1e-3)
     for a, b in zip(got, piece_state(tri.simplices, st.inside, tri.radii, smp.next)):
         np.testing.assert_array_equal(a, b)
 
@@ -124,7 +124,7 @@ def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> No
     smp, tri = st.samples, st.triangulation
     closed = ring_arrays(st.rings)
     args = (tri.simplices, st.inside, tri.radii, tri.centers, smp.next, smp.arc, smp.ring, 0, closed.s, closed.xy,
-            closed.start, closed.convex, 1e-4 * 11.4)
+            closed.start, closed.convex, closed.touching, 1e-4 * 11.4)
     fresh = corner_piece_state(*args)
     memo = np.full((len(tri.simplices), 4), -1, np.int64)
     memo[::3, :3] = np.roll(tri.simplices[::3], 1, axis=1)  # stale rows: other triangles (the same vertices turned)

@@ -166,7 +166,7 @@ def test_the_compiled_ring_arrays_are_their_numpy_reference(name: str) -> None:
 
     rings = simplify_rings(SHAPES[name][0], 0.0)
     got, expected = ring_arrays(rings), ring_arrays_reference(rings)
-    for field in ("xy", "s", "start", "convex"):
+    for field in ("xy", "s", "start", "convex", "touching"):
         np.testing.assert_array_equal(getattr(got, field), getattr(expected, field))
     assert expected.convex.any()
 

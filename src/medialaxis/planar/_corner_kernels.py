@@ -12,7 +12,7 @@ again and again down to ``min_length``, says nothing about the sampling
 error there.
 
 :func:`corner_piece_state` is :func:`medialaxis.planar._kernels.piece_state`
-with two changes:
+with three changes:
 
 * *corner triangles* do not count in the radius of their pieces. Each is
   checked, not assumed: its three samples lie on the two edges of one convex
@@ -22,7 +22,9 @@ with two changes:
 * mirrored pieces (the pieces met walking from a convex vertex along both
   edges while the samples stay at equal distances from it) get the smaller
   radius of the two and are conforming only if both are, so they are split
-  alike and stay mirrored.
+  alike and stay mirrored;
+* the pieces of a sample at a pinch (a vertex ``touching`` another) get the radii of the inner triangles
+  at the other sample there (:mod:`medialaxis.planar._pinch_kernels`).
 
 Samples are ``offset .. len(nxt) - 1`` (the incremental kernels keep the
 far corners of the triangulation before them); ``rings_s``, ``rings_xy`` are
@@ -36,6 +38,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 from medialaxis.planar._kernels import piece_state
+from medialaxis.planar._pinch_kernels import pinched_radius
 
 __all__ = ["sample_edges", "corner_triangle", "corner_triangles", "corner_piece_state", "corner_piece_state_memo", "whole_circles", "closed_rings",
            "ERROR_SHARE"]
@@ -129,16 +132,17 @@ def corner_triangles(simplices, slots, centres, edge, at_vertex, ring, rings_xy,
 
 @njit(cache=True, nogil=True)
 def corner_piece_state(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy, rings_start,
-                       convex, tolerance):  # type: ignore[no-untyped-def]
-    """``(conforming, radius)`` of every piece ``(i, nxt[i])``, corner triangles left out and mirrored pieces alike."""
+                       convex, touching, tolerance):  # type: ignore[no-untyped-def]
+    """``(conforming, radius)`` of every piece ``(i, nxt[i])``, corner triangles left out and mirrored pieces alike;
+    the pieces at vertices ``touching`` another get the radii of both (:mod:`medialaxis.planar._pinch_kernels`)."""
     memo = np.full((len(simplices), 4), -1, np.int64)
     return corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy,
-                                   rings_start, convex, tolerance, memo)
+                                   rings_start, convex, touching, tolerance, memo)
 
 
 @njit(cache=True, nogil=True)
 def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy, rings_start,
-                            convex, tolerance, memo):  # type: ignore[no-untyped-def]
+                            convex, touching, tolerance, memo):  # type: ignore[no-untyped-def]
     """:func:`corner_piece_state` that keeps each slot's corner test in ``memo`` (rows ``a, b, c, corner``).
 
     A slot whose triangle has the same vertices, in the same order, as when
@@ -167,6 +171,7 @@ def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, o
         memo[slots[j], 3] = 1 if tested[j] else 0
     counted = inside & ~whole_circles(corner, inside, centres, radii)
     conforming, radius = piece_state(simplices, counted, radii, nxt)
+    pinched_radius(simplices, counted, radii, nxt, radius, ring, edge, at_vertex, rings_start, touching)
     _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex)
     return conforming, radius
 

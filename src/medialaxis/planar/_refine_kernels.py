@@ -174,12 +174,12 @@ def insert_round(x, y, tv, tn, count, order, hint, near, points, centre, radius,
 
 @njit(cache=True, nogil=True)
 def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
-                 convex, ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share):  # type: ignore[no-untyped-def]
+                 convex, touching, ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share):  # type: ignore[no-untyped-def]
     """The pieces' state, their splits and the new samples of one round, over the ``n = len(nxt)`` vertices.
 
     ``rings_s`` and ``rings_xy`` hold each closed ring's cumulative arc
     length and vertices, ring ``r`` at ``rings_start[r]:rings_start[r + 1]``,
-    ``convex`` flags its convex vertices (the pieces' state is
+    ``convex`` flags its convex vertices and ``touching`` those at one point (the pieces' state is
     :func:`medialaxis.planar._corner_kernels.corner_piece_state`, with the
     triangles' circumcentres ``centre``; ``memo`` keeps the corner test of
     each slot from round to round, see
@@ -195,7 +195,7 @@ def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points,
     n = len(nxt)
     conforming, piece_radius = corner_piece_state_memo(tv[:count], where[:count] == 1, radius[:count], centre[:count],
                                                        nxt, arc, ring, CORNERS, rings_s, rings_xy, rings_start, convex,
-                                                       tolerance, memo)
+                                                       touching, tolerance, memo)
     new_arc, new_ring, piece, nxt_out = split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming,
                                                      n, tolerance, min_length, ratio)
     m = len(new_arc)

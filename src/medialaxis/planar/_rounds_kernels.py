@@ -95,7 +95,7 @@ def _grown_rows(array, rows, keep):  # type: ignore[no-untyped-def]
 @njit(cache=True, nogil=True)
 def incremental_rounds(round_, inserted, settled, max_rounds, one_round_above, count, x, y, tv, tn, batch, hint,  # type: ignore[no-untyped-def]
                        near, points, centre, radius, where, memo, arc, ring, nxt, sliver, segments, start, members,
-                       y0, height, rings_s, rings_xy, rings_start, convex, ring_length, lo, extent, shaken, tolerance,
+                       y0, height, rings_s, rings_xy, rings_start, convex, touching, ring_length, lo, extent, shaken, tolerance,
                        min_length, ratio, settled_share):
     """The rounds from ``round_`` on (``inserted``: its samples are in already), until one of the statuses.
 
@@ -122,7 +122,7 @@ def incremental_rounds(round_, inserted, settled, max_rounds, one_round_above, c
             break
         m, now_settled, points, arc, ring, nxt, x, y, near, batch, hint = refine_round(
             tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, rings_s, rings_xy,
-            rings_start, convex, ring_length, lo, extent, shaken, tolerance, min_length, ratio, settled_share)
+            rings_start, convex, touching, ring_length, lo, extent, shaken, tolerance, min_length, ratio, settled_share)
         if m < 0:
             status = MORE_JITTER
             break

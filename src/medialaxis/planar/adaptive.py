@@ -89,7 +89,7 @@ def rounds_from_scratch(
             break
         conforming, radius = corner_piece_state(tri.simplices, inside, tri.radii, tri.centers, smp.next, smp.arc,
                                                 smp.ring, 0, closed.s, closed.xy, closed.start, closed.convex,
-                                                float(tolerance))
+                                                closed.touching, float(tolerance))
         arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length, RATIO)
         if arcs is None:
             break
@@ -138,7 +138,7 @@ def incremental_sample(
                 round_, inserted, settled, MAX_REFINEMENTS, ONE_ROUND_ABOVE, count, x, y, tv, tn, batch, hint, near,
                 points, centre, radius, where, memo, arc, ring, nxt, 1e-7 * extent, locator.segments, locator.start,
                 locator.members, locator.y0, locator.height, closed.s, closed.xy, closed.start, closed.convex,
-                ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO, SETTLED_SHARE)
+                closed.touching, ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO, SETTLED_SHARE)
             for _ in range(now - round_):  # the rounds done, for the progress bar
                 next(rounds, None)
             round_, inserted = now, status in (ASK_GEOS, MORE_JITTER)

@@ -21,11 +21,10 @@ import numpy as np
 import shapely
 
 from medialaxis.core.validate import MAX_COORDINATE, check_number
-from medialaxis.planar._corner_kernels import closed_rings
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar.adaptive import incremental_sample
 from medialaxis.planar.axis_arrays import NEAREST, AxisArrays, axis_of_sample, polygon_axis_arrays
-from medialaxis.planar.corners import RingArrays
+from medialaxis.planar.corners import closed_ring_arrays
 from medialaxis.planar.pipeline import MIN_RING_FRACTION, SIMPLIFY_ABOVE, parameters
 from medialaxis.planar.vectors import NEAR_DUPLICATE
 
@@ -185,7 +184,7 @@ def _one(region: Any, ring_ids: range, sliced: bool, size: float, rxy: np.ndarra
             return None  # polygon_axis_arrays raises
         xy = np.concatenate([rxy[rstart[r]:rstart[r + 1] - 1] for r in kept])
         start = np.concatenate([[0], np.cumsum([sizes[r] for r in kept])]).astype(np.int64)
-    closed = RingArrays(*closed_rings(np.ascontiguousarray(xy, np.float64), start))
+    closed = closed_ring_arrays(xy, start)
     locator = RegionLocator(region, segments[seg_start[ring_ids[0]]:seg_start[ring_ids[-1] + 1]])
     min_length = max(tolerance, lam / 8.0)
     found = incremental_sample(region, locator, closed, tolerance, min_length, show_progress=False)

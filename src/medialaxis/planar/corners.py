@@ -26,9 +26,10 @@ import dataclasses
 import numpy as np
 
 from medialaxis.planar._corner_kernels import closed_rings, corner_twins
+from medialaxis.planar._pinch_kernels import touching_vertices
 from medialaxis.planar.sampling import Rings
 
-__all__ = ["RingArrays", "ring_arrays", "ring_arrays_reference", "mirrored_corner_arcs"]
+__all__ = ["RingArrays", "closed_ring_arrays", "ring_arrays", "ring_arrays_reference", "mirrored_corner_arcs"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -46,12 +47,24 @@ class RingArrays:
     convex : (V,) bool ndarray
         Convex vertices (the region turns right there: rings are normalized,
         the region on their right).
+    touching : (V,) int ndarray
+        The vertices at the same point as another (rings touching at a
+        vertex): the next of them, in a cycle; -1 for the others and the
+        repeats (:func:`medialaxis.planar._pinch_kernels.touching_vertices`).
     """
 
     xy: np.ndarray
     s: np.ndarray
     start: np.ndarray
     convex: np.ndarray
+    touching: np.ndarray
+
+
+def closed_ring_arrays(vertices: np.ndarray, open_start: np.ndarray) -> RingArrays:
+    """The :class:`RingArrays` of rings given one after another, not closed, ring ``r`` at
+    ``open_start[r]:open_start[r + 1]`` (compiled: :func:`medialaxis.planar._corner_kernels.closed_rings`)."""
+    xy, s, start, convex = closed_rings(np.ascontiguousarray(vertices, np.float64), np.asarray(open_start, np.int64))
+    return RingArrays(xy, s, start, convex, touching_vertices(xy, start))
 
 
 def ring_arrays(rings: Rings) -> RingArrays:
@@ -60,7 +73,7 @@ def ring_arrays(rings: Rings) -> RingArrays:
     (:func:`medialaxis.planar._corner_kernels.closed_rings`; :func:`ring_arrays_reference` is the NumPy version)."""
     sizes = [len(v) for v in rings.vertices]
     vertices = np.ascontiguousarray(np.concatenate(rings.vertices), np.float64) if sizes else np.empty((0, 2))
-    return RingArrays(*closed_rings(vertices, np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)))
+    return closed_ring_arrays(vertices, np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64))
 
 
 def ring_arrays_reference(rings: Rings) -> RingArrays:
@@ -73,7 +86,18 @@ def ring_arrays_reference(rings: Rings) -> RingArrays:
     before = np.where(row == first, start[1:].repeat(np.diff(start)) - 2, row - 1)  # the vertex before, not the repeat
     after = np.where(row == start[1:].repeat(np.diff(start)) - 1, first + 1, row + 1)
     into, out = xy - xy[before], xy[after] - xy
-    return RingArrays(xy, np.concatenate(s), start, into[:, 0] * out[:, 1] - into[:, 1] * out[:, 0] < 0)
+    touching = np.full(len(xy), -1, np.int64)
+    real = np.flatnonzero(row != start[1:].repeat(np.diff(start)) - 1)  # not the repeats
+    for same in _groups(xy[real]):
+        touching[real[same]] = real[np.roll(same, -1)]
+    return RingArrays(xy, np.concatenate(s), start, into[:, 0] * out[:, 1] - into[:, 1] * out[:, 0] < 0, touching)
+
+
+def _groups(xy: np.ndarray) -> list[np.ndarray]:
+    """The rows of ``xy`` at one point, two or more, each group in ascending rows."""
+    _, inverse, counts = np.unique(xy, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    return [np.flatnonzero(inverse == g) for g in np.flatnonzero(counts > 1)]
 
 
 def mirrored_corner_arcs(
