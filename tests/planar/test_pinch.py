@@ -57,11 +57,31 @@ def test_the_axis_stays_in_the_water_by_an_island_spike_touching_the_shore(spike
     lines = mx.centerlines([lake], show_progress=False).geometry[0]
     assert shapely.distance(shapely.points(shapely.get_coordinates(shapely.segmentize(
         shapely.difference(lines, lake), 1e-4 * size))), lake.boundary).max(initial=0.0) <= 1e-6 * size
-    # the wedge between the spike and the shore keeps its own axis, up to its corner at the pinch
-    wedge = shapely.Polygon(affinity.rotate(shapely.Polygon(
-        [(0, 0), (-500, 2000), (-2000, 2000), (-length, length * np.tan(np.radians(spike)))]), angle,
-        origin=(0, 0)).exterior)
-    assert shapely.intersection(lines, wedge).length > 0.5 * shapely.distance(wedge.centroid, shapely.Point(0, 0))
+
+
+def test_contacts_on_the_island_and_the_shore_are_as_far_apart_as_the_shore_through_the_pinch() -> None:
+    """The arc of an edge whose contacts lie on two rings: along each ring to the pinch, the shorter way (shapely)."""
+    from medialaxis.planar.axis import raw_axis
+    from medialaxis.planar.corners import ring_arrays
+    from medialaxis.planar.pipeline import planar_stages
+
+    lake = _spiked(20.0, 900.0, 10.0)
+    st = planar_stages(lake)
+    smp, rings = st.samples, st.rings
+    raw = raw_axis(st.triangulation, st.inside, smp, rings.region, rings.locator, ring_arrays(rings))
+    across = np.flatnonzero(smp.ring[raw.contact[:, 0]] != smp.ring[raw.contact[:, 1]])
+    assert len(across) > 10
+    pinch = shapely.Point(0, 0)
+    loops = [shapely.LineString(c) for c in rings.closed]
+    for e in across:
+        total = 0.0
+        for sample in raw.contact[e]:
+            loop = loops[smp.ring[sample]]
+            along = abs(loop.project(shapely.Point(smp.points[sample])) - loop.project(pinch))
+            total += min(along, loop.length - along)
+        np.testing.assert_allclose(raw.contact_arc[e], total, rtol=1e-9, atol=1e-9 * loop.length)
+    unjoined = raw_axis(st.triangulation, st.inside, smp, rings.region, rings.locator)
+    assert np.isinf(unjoined.contact_arc[across]).all()  # rings that never meet: no arc between them
 
 
 def test_the_vertices_at_one_point_are_paired_as_numpy_pairs_them() -> None:

@@ -28,6 +28,7 @@ from medialaxis.planar._graph_kernels import (
     regrow_tips_kernel,
 )
 from medialaxis.planar._inside_kernels import locate_points
+from medialaxis.planar._pinch_kernels import pinch_arcs
 
 __all__ = ["inner_centres", "contact_arcs", "merged_nodes", "pruned_graph", "kept_edges", "selected_nodes",
            "pruned_axis"]
@@ -199,12 +200,14 @@ def selected_nodes(radii, edges, keep, label, lonely):  # type: ignore[no-untype
 
 @njit(cache=True, nogil=True)
 def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points, nxt, prv, arc, ring,  # type: ignore[no-untyped-def]
-                ring_length, tolerance, lam, detour, regrow_detour, k, segments, start, members, y0, height):
+                ring_length, rings_s, rings_start, touching, tolerance, lam, detour, regrow_detour, k, segments, start,
+                members, y0, height):
     """``(points, radii, edges)`` of the pruned axis whose raw nodes sit at ``pos`` in the triangles ``inner``.
 
     ``points``, ``nxt``, ``prv``, ``arc``, ``ring``, ``ring_length`` describe
     the boundary sample (more than ``k`` samples; radii from the pieces at
-    the ``k`` nearest), ``tri_points`` and ``tri_radii`` the triangulation's
+    the ``k`` nearest), ``rings_s``, ``rings_start``, ``touching`` the rings'
+    arc lengths and pinches (:func:`~medialaxis.planar._pinch_kernels.pinch_arcs`), ``tri_points`` and ``tri_radii`` the triangulation's
     vertices and circumradii (a node's ball in :func:`merged_nodes`),
     ``segments`` ... ``height`` the region's compiled inside test. A node's
     radius is the distance at its point (a merged node's at its mean point,
@@ -213,6 +216,7 @@ def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points,
     """
     edges, contact, diameter, adjacent = dual_edges(simplices, neighbors, inner, tri_points, nxt)
     contact_arc = contact_arcs(contact, arc, ring, ring_length)
+    pinch_arcs(contact_arc, contact, arc, ring, ring_length, rings_s, rings_start, touching)
     reach = np.empty(len(inner))
     for i in range(len(inner)):
         reach[i] = tri_radii[inner[i]]

@@ -24,6 +24,8 @@ from medialaxis.planar._distance_kernels import boundary_distance_kernel
 from medialaxis.planar._graph_kernels import dual_edges
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar._kernels import nearest_piece_distance, triangle_centroids
+from medialaxis.planar._pinch_kernels import pinch_arcs
+from medialaxis.planar.corners import RingArrays
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.sampling import BoundarySample
 
@@ -152,15 +154,21 @@ def axis_positions(
 
 
 def raw_axis(
-    tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region: Any, locator: RegionLocator | None = None
+    tri: Triangulation, inside: np.ndarray, smp: BoundarySample, region: Any, locator: RegionLocator | None = None,
+    closed: RingArrays | None = None,
 ) -> RawAxis:
-    """Build the inner Voronoi graph (see module docstring); ``locator``: the compiled inside test of ``region``."""
+    """Build the inner Voronoi graph (see module docstring); ``locator``: the compiled inside test of ``region``;
+    ``closed``: the sampled rings, whose pinches join the arcs of contacts on two rings
+    (:func:`medialaxis.planar._pinch_kernels.pinch_arcs`)."""
     t_in, pos = axis_positions(tri, inside, region, locator)
     # Dual edges between inner triangles (compiled; dual_edges_reference is the NumPy version)
     edges, contact, diameter, adjacent = dual_edges(tri.simplices, tri.neighbors, t_in.astype(np.int64),
                                                     np.ascontiguousarray(tri.points, dtype=np.float64),
                                                     np.asarray(smp.next, np.int64))
     arc = smp.arc_between(contact[:, 0], contact[:, 1])
+    if closed is not None and len(closed.start) - 1 == len(smp.ring_length):
+        pinch_arcs(arc, contact, np.asarray(smp.arc, np.float64), np.asarray(smp.ring, np.int64),
+                   np.asarray(smp.ring_length, np.float64), closed.s, closed.start, closed.touching)
     radii = boundary_distance(pos, smp)
     return RawAxis(pos, radii, edges, contact, diameter, arc, adjacent, t_in)
 

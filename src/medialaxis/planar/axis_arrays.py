@@ -18,6 +18,7 @@ import numpy as np
 from medialaxis.planar._axis_kernels import inner_centres, pruned_axis
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar.axis import axis_positions
+from medialaxis.planar.corners import RingArrays, ring_arrays
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.pipeline import _load, sampled, voronoi_medial_axis
 from medialaxis.planar.pruning import REGROW_DETOUR
@@ -79,12 +80,13 @@ def polygon_axis_arrays(shape: Any, *, lam: float | None = None, tolerance: floa
                                                              boundary="contour")
     if len(smp.points) <= NEAREST:
         return _whole_way(shape, *given)
-    return axis_of_sample(rings.region, rings.locator, smp, tri, inside, tolerance, lam, detour)
+    return axis_of_sample(rings.region, rings.locator, ring_arrays(rings), smp, tri, inside, tolerance, lam, detour)
 
 
-def axis_of_sample(region: Any, locator: RegionLocator, smp: BoundarySample, tri: Triangulation, inside: np.ndarray,
-                   tolerance: float, lam: float, detour: float) -> AxisArrays:
-    """The pruned axis of a sample (more than :data:`NEAREST` points) of ``region``, its triangulation and inner triangles."""
+def axis_of_sample(region: Any, locator: RegionLocator, closed: RingArrays, smp: BoundarySample, tri: Triangulation,
+                   inside: np.ndarray, tolerance: float, lam: float, detour: float) -> AxisArrays:
+    """The pruned axis of a sample (more than :data:`NEAREST` points) of ``region`` (its rings ``closed``), its
+    triangulation and inner triangles."""
     inner, pos, all_in = inner_centres(tri.centers, inside, locator.segments, locator.start, locator.members,
                                        locator.y0, locator.height)
     if not all_in:  # circumcentres to move, or an inside test for GEOS
@@ -93,7 +95,7 @@ def axis_of_sample(region: Any, locator: RegionLocator, smp: BoundarySample, tri
         pos, tri.simplices, tri.neighbors, inner.astype(np.int64), np.ascontiguousarray(tri.points, np.float64),
         np.asarray(tri.radii, np.float64), np.ascontiguousarray(smp.points, np.float64), np.asarray(smp.next, np.int64),
         np.asarray(smp.prev, np.int64), np.asarray(smp.arc, np.float64), np.asarray(smp.ring, np.int64), np.asarray(smp.ring_length, np.float64),
-        float(tolerance), float(lam), float(detour), REGROW_DETOUR, NEAREST, locator.segments, locator.start,
+        closed.s, closed.start, closed.touching, float(tolerance), float(lam), float(detour), REGROW_DETOUR, NEAREST, locator.segments, locator.start,
         locator.members, locator.y0, locator.height)
     return AxisArrays(points, radii, edges)
 

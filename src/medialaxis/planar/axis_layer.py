@@ -193,4 +193,4 @@ def _one(region: Any, ring_ids: range, sliced: bool, size: float, rxy: np.ndarra
     smp, tri, inside = found
     if not inside.any() or len(smp.points) <= NEAREST:
         return None
-    return axis_of_sample(region, locator, smp, tri, inside, tolerance, lam, detour)
+    return axis_of_sample(region, locator, closed, smp, tri, inside, tolerance, lam, detour)

@@ -22,6 +22,7 @@ from medialaxis.errors import ComputationError, InvalidInputError
 from medialaxis.planar._axis_kernels import merged_nodes
 from medialaxis.planar.adaptive import sample_and_triangulate
 from medialaxis.planar.axis import RawAxis, boundary_distance, raw_axis
+from medialaxis.planar.corners import ring_arrays
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.inputs import PlanarInput, load_planar
 from medialaxis.planar.labels import merged_label_axes
@@ -216,7 +217,7 @@ def _stages(
     """Every stage of the pipeline on a loaded input (``prune=False``: the result is the raw axis)."""
     tolerance, lam, detour, rings, smp, tri, inside = sampled(src, lam=lam, tolerance=tolerance, detour=detour,
                                                              boundary=boundary)
-    ax: RawAxis = raw_axis(tri, inside, smp, rings.region, rings.locator)
+    ax: RawAxis = raw_axis(tri, inside, smp, rings.region, rings.locator, ring_arrays(rings))
     region = src.region
     # Co-circular samples give clusters of coincident Voronoi vertices (the
     # centre of a disc, the mid-line of a rectangle): one node each, at the
