@@ -138,7 +138,7 @@ def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> No
 
 
 @pytest.mark.parametrize("seed", range(12))
-def test_the_bucketed_whole_circles_are_the_sorted_scans(seed: int) -> None:
+def test_the_fast_whole_circles_are_the_sorted_scans(seed: int) -> None:
     """Circles repeated exactly, within the scan's 1e-9 and just beyond it, equal x of different circles, not finite."""
     from medialaxis.planar._corner_kernels import _whole_circles, whole_circles
 

@@ -208,54 +208,48 @@ def _whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-d
 def whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-def]
     """:func:`_whole_circles` (its reference) without sorting every inside triangle.
 
-    Only a corner triangle can change, and only by a triangle that is not one
-    whose circle the sort would compare with it: their centres' ``x`` lie
-    within ``eps`` of the one first in ``x``, itself below the largest
-    ``eps``. Buckets of ``x`` at least that wide (a counting sort) give each
-    corner triangle its few candidates; each pair is then decided as the
-    sorted scan decides it. Equal ``x`` in such a pair, whose order the sort
-    would pick and that the order would decide, or a centre that is not
-    finite: the sorted scan itself.
+    Only a corner triangle can change, and only by an inside triangle that is
+    not one whose circle the sort would compare with it: their centres' ``x``
+    lie within the ``eps`` of the one first in ``x``, which is below twice
+    the corner's own (the two circles agree to ``eps``). One pass over the
+    inside triangles finds, among the few corner triangles sorted by ``x``,
+    those near each; each pair is then decided as the sorted scan decides
+    it. Equal ``x`` in such a pair, whose order the sort would pick and that
+    the order would decide, or a centre that is not finite: the sorted scan
+    itself.
     """
     rows = np.flatnonzero(inside)
     out = corner.copy()
-    if len(rows) < 2:
-        return out
-    lo, hi, widest = np.inf, -np.inf, 0.0
+    n_corner = 0
     for t in rows:
-        if not (np.isfinite(centres[t, 0]) and np.isfinite(centres[t, 1]) and np.isfinite(radii[t])):
+        n_corner += corner[t]
+    if len(rows) < 2 or n_corner == 0:
+        return out  # the sorted scan changes corner triangles only
+    corners = np.empty(n_corner, np.int64)
+    j = 0
+    reach = 0.0
+    for t in rows:
+        if corner[t]:
+            corners[j] = t
+            j += 1
+            reach = max(reach, 2e-9 * (radii[t] + abs(centres[t, 0]) + abs(centres[t, 1])))
+    corners = corners[np.argsort(centres[corners, 0])]
+    xs = centres[corners, 0]
+    for u in rows:
+        if not (np.isfinite(centres[u, 0]) and np.isfinite(centres[u, 1]) and np.isfinite(radii[u])):
             return _whole_circles(corner, inside, centres, radii)
-        lo, hi = min(lo, centres[t, 0]), max(hi, centres[t, 0])
-        widest = max(widest, 1e-9 * (radii[t] + abs(centres[t, 0]) + abs(centres[t, 1])))
-    width = max((hi - lo) / len(rows), widest, 1e-300)
-    n_buckets = int((hi - lo) / width) + 1
-    bucket = np.empty(len(rows), np.int64)
-    start = np.zeros(n_buckets + 1, np.int64)
-    for i in range(len(rows)):
-        bucket[i] = min(int((centres[rows[i], 0] - lo) / width), n_buckets - 1)
-        start[bucket[i] + 1] += 1
-    for b in range(n_buckets):
-        start[b + 1] += start[b]
-    fill = start[:-1].copy()
-    members = np.empty(len(rows), np.int64)
-    for i in range(len(rows)):
-        members[fill[bucket[i]]] = rows[i]
-        fill[bucket[i]] += 1
-    for i in range(len(rows)):
-        c = rows[i]
-        if not corner[c]:
+        if corner[u]:
             continue
-        for b in range(max(bucket[i] - 2, 0), min(bucket[i] + 2, n_buckets - 1) + 1):
-            for m in range(start[b], start[b + 1]):
-                u = members[m]
-                if corner[u] or abs(centres[u, 0] - centres[c, 0]) > widest:
-                    continue
-                first = _same_circle(c, u, centres, radii) if centres[c, 0] < centres[u, 0] else \
-                    _same_circle(u, c, centres, radii)
-                if centres[u, 0] == centres[c, 0] and first != _same_circle(c, u, centres, radii):
-                    return _whole_circles(corner, inside, centres, radii)  # the sort's order decides
-                if first:
-                    out[c] = False
+        for m in range(np.searchsorted(xs, centres[u, 0] - reach), len(xs)):
+            c = corners[m]
+            if centres[c, 0] > centres[u, 0] + reach:
+                break
+            first = _same_circle(c, u, centres, radii) if centres[c, 0] < centres[u, 0] else \
+                _same_circle(u, c, centres, radii)
+            if centres[u, 0] == centres[c, 0] and first != _same_circle(c, u, centres, radii):
+                return _whole_circles(corner, inside, centres, radii)  # the sort's order decides
+            if first:
+                out[c] = False
     return out
 
 

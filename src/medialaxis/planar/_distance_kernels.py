@@ -128,6 +128,17 @@ def piece_distance(points, nxt, prv, j, qx, qy):  # type: ignore[no-untyped-def]
     return best
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _squared_piece_distance(points, nxt, begin, qx, qy):  # type: ignore[no-untyped-def]
+    """The square of the distance from ``(qx, qy)`` to the piece ``(begin, nxt[begin])``, as :func:`piece_distance`."""
+    ax, ay = points[begin, 0], points[begin, 1]
+    bx, by = points[nxt[begin], 0] - ax, points[nxt[begin], 1] - ay
+    px, py = qx - ax, qy - ay
+    t = min(max((px * bx + py * by) / max(bx * bx + by * by, 1e-300), 0.0), 1.0)
+    dx, dy = px - t * bx, py - t * by
+    return dx * dx + dy * dy
+
+
 @njit(cache=True, nogil=True)
 def boundary_distance_kernel(query, points, nxt, prv, k):  # type: ignore[no-untyped-def]
     """Distance from each query to the pieces at its ``k`` nearest samples (N > k) and at every one tied with the k-th."""
@@ -143,10 +154,17 @@ def grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members): 
     for q in range(len(query)):
         qx, qy = query[q, 0], query[q, 1]
         best = np.inf
-        if sure[q]:
+        if sure[q]:  # each piece at the k samples once; the root of the least square (sqrt is monotone, exact)
+            least = np.inf
             for m in range(k):
-                best = min(best, piece_distance(points, nxt, prv, near[q, m], qx, qy))
-            out[q] = best
+                j = near[q, m]
+                least = min(least, _squared_piece_distance(points, nxt, j, qx, qy))
+                shared = False
+                for other in range(k):
+                    shared = shared or near[q, other] == prv[j]
+                if not shared:
+                    least = min(least, _squared_piece_distance(points, nxt, prv[j], qx, qy))
+            out[q] = np.sqrt(least)
             continue
         far = near[q, k - 1]  # every sample within the k-th distance (to 2e-9), from the cells that reach it
         kth = ((points[far, 0] - qx) ** 2 + (points[far, 1] - qy) ** 2) * (1.0 + 2e-9)
