@@ -26,7 +26,7 @@ def _planar() -> None:
     import medialaxis as mx
     from medialaxis.demo import data_path
 
-    mx.medial_axis(data_path("kimia_class1_01.png"))
+    mx.medial_axis(data_path("kimia_class1_01.png")).betti  # noqa: B018 (compiles the homology kernel)
     mx.medial_axis(data_path("bracket_two_holes.wkt").read_text())
     labels = np.zeros((40, 60), np.int32)
     labels[5:35, 5:25], labels[5:35, 30:55] = 1, 2

@@ -6,7 +6,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["peel_leaves_kernel", "peel_leaves_reference", "find_root", "branch_walks"]
+__all__ = ["peel_leaves_kernel", "peel_leaves_reference", "find_root", "branch_walks", "collapse_free_faces_kernel"]
 
 
 @njit(cache=True, nogil=True)
@@ -154,3 +154,58 @@ def neighbour_lists(n, edges):  # type: ignore[no-untyped-def]
             eids[fill[a]] = e
             fill[a] += 1
     return indptr, nbrs, eids, deg
+
+
+@njit(cache=True, nogil=True)
+def collapse_free_faces_kernel(of_face, face_alive, n_edges):  # type: ignore[no-untyped-def]
+    """Remove faces through free edges (an edge of one alive face) until none is left; in place.
+
+    ``of_face`` is ``(k, 3)``, the edge index of each face side; ``face_alive``
+    flags the faces taking part. A stack of free edges replaces rounds over
+    all faces (a sheet of a million faces collapses from its border inwards,
+    one ring of faces a round). Which faces are left does not depend on the
+    order: a face with a free edge keeps it until the face goes. Returns the
+    ``(n_edges,)`` flags of the edges left (those collapsed through are not).
+    """
+    count = np.zeros(n_edges, np.int64)
+    for f in range(of_face.shape[0]):
+        if face_alive[f]:
+            for j in range(3):
+                count[of_face[f, j]] += 1
+    ptr = np.zeros(n_edges + 1, np.int64)  # the alive faces of each edge
+    for e in range(n_edges):
+        ptr[e + 1] = ptr[e] + count[e]
+    fill = ptr[:-1].copy()
+    faces_of = np.empty(ptr[n_edges], np.int64)
+    for f in range(of_face.shape[0]):
+        if face_alive[f]:
+            for j in range(3):
+                e = of_face[f, j]
+                faces_of[fill[e]] = f
+                fill[e] += 1
+    edge_alive = np.ones(n_edges, np.bool_)
+    stack = np.empty(n_edges + 3 * of_face.shape[0], np.int64)
+    top = 0
+    for e in range(n_edges):
+        if count[e] == 1:
+            stack[top] = e
+            top += 1
+    while top > 0:
+        top -= 1
+        e = stack[top]
+        if count[e] != 1 or not edge_alive[e]:
+            continue
+        f = -1
+        for k in range(ptr[e], ptr[e + 1]):
+            if face_alive[faces_of[k]]:
+                f = faces_of[k]
+                break
+        face_alive[f] = False
+        edge_alive[e] = False
+        for j in range(3):
+            other = of_face[f, j]
+            count[other] -= 1
+            if count[other] == 1 and edge_alive[other]:
+                stack[top] = other
+                top += 1
+    return edge_alive
