@@ -6,10 +6,14 @@ minimization", ACM TOG 34(4), 2015) leave the tips of limbs and fins
 without a sphere. :func:`cover_repair` adds spheres one at a time at the
 surface sample farthest outside the interpolated spheres (the exact gaps of
 :mod:`medialaxis.mesh.envelope`): the medial candidate reaching nearest to it
-(:mod:`medialaxis.mesh.medial_candidates`), or the shrinking ball there (Ma,
-Bai, Song and Wang, "3D medial axis point approximation using nearest
-neighbors and the normal field", The Visual Computer 28(1), 2012) for at
-most ``PATCH_SHARE`` of them, brought inside the mesh (:func:`_inscribed`).
+(:mod:`medialaxis.mesh.medial_candidates`); where none reaches it (a tip,
+where the lambda pruning cut the axis), the end of the medial axis there:
+the largest inscribed ball touching two sides among those tangent near it
+(:meth:`~medialaxis.mesh.medial_candidates.MedialCandidates.tip`); where
+none of these reaches it either, the shrinking ball there (Ma, Bai, Song and
+Wang, "3D medial axis point approximation using nearest neighbors and the
+normal field", The Visual Computer 28(1), 2012) for at most ``PATCH_SHARE``
+of them, brought inside the mesh (:func:`_inscribed`): a patch.
 """
 
 from __future__ import annotations
@@ -35,6 +39,13 @@ PATCH_SHARE = 0.2
 
 #: A patch is inside when its centre is at least ``1 - INSCRIBED`` of its radius deep (:func:`_inscribed`).
 INSCRIBED = 1e-3
+
+#: :meth:`~medialaxis.mesh.medial_candidates.MedialCandidates.tip` looks for the end of the medial axis among the
+#: balls tangent within the larger of the gap and this many radii of the patch (the shrinking ball at the point).
+TIP_DISC = 2.0
+
+#: Of the tip balls reaching within this share of the gap, the largest is taken (else the one reaching nearest).
+TIP_REACH = 0.5
 
 #: A split is kept when the surface point it was made for lies at most this share as deep as before.
 SPLIT_GAIN = 0.8
@@ -134,7 +145,15 @@ def cover_repair(
         if gap[w] <= 0:
             break
         c, r = medial.cover(x[w]) if medial is not None else (x[w], -np.inf)
-        if np.linalg.norm(x[w] - c) - r > PATCH_GAP * gap[w]:  # no medial sphere reaches it: a patch
+        if np.linalg.norm(x[w] - c) - r > PATCH_GAP * gap[w]:  # no candidate reaches it: a tip
+            c_patch, r_patch = _medial_ball(x[w], normals[w], sample_tree, x, start)
+            if signed is not None and r_patch > 0.0:
+                c_patch, r_patch = _inscribed(x[w], normals[w], r_patch, signed)
+            if medial is not None:  # the end of the medial axis there, or a patch
+                c_tip, r_tip = medial.tip(x[w], max(gap[w], TIP_DISC * r_patch), TIP_REACH * gap[w])
+                if r_tip > 0.0 and np.linalg.norm(x[w] - c_tip) - r_tip < np.linalg.norm(x[w] - c) - r:
+                    c, r = c_tip, r_tip
+        if np.linalg.norm(x[w] - c) - r > PATCH_GAP * gap[w]:  # nor a tip ball: a patch
             if medial is not None and patches >= PATCH_SHARE * extra:  # passed over with its neighbours
                 passed += 1
                 if passed > extra:  # what is left is out of the candidates' reach
@@ -143,9 +162,7 @@ def cover_repair(
                 gap[settled] = 0.0
                 continue
             patches += 1
-            c, r = _medial_ball(x[w], normals[w], sample_tree, x, start)
-            if signed is not None and r > 0.0:
-                c, r = _inscribed(x[w], normals[w], r, signed)
+            c, r = c_patch, r_patch
         if r <= 0.0:
             settled[w] = True
             gap[w] = 0.0
