@@ -17,8 +17,8 @@ with three changes:
 * *corner triangles* do not count in the radius of their pieces. Each is
   checked, not assumed: its three samples lie on the two edges of one convex
   vertex, and its circumcentre lies on the inner side of both edges, projects
-  inside both, and is within ``tolerance / 4`` of their bisector (the bound
-  the split rule keeps elsewhere, ``h**2 / (16 R)`` with pieces over-split by 2);
+  inside both, and is within ``tolerance / OVER_SPLIT**2`` of their bisector (the
+  bound the split rule keeps elsewhere, ``h**2 / (16 R)`` with pieces over-split);
 * mirrored pieces (the pieces met walking from a convex vertex along both
   edges while the samples stay at equal distances from it) get the smaller
   radius of the two and are conforming only if both are, so they are split
@@ -37,14 +37,14 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.planar._kernels import piece_state
+from medialaxis.planar._kernels import OVER_SPLIT, piece_state
 from medialaxis.planar._pinch_kernels import pinched_radius
 
 __all__ = ["sample_edges", "corner_triangle", "corner_triangles", "corner_piece_state", "corner_piece_state_memo", "whole_circles", "closed_rings",
            "ERROR_SHARE"]
 
-#: A corner triangle's circumcentre is within this share of the tolerance of the bisector.
-ERROR_SHARE = 0.25
+#: A corner triangle's circumcentre is within this share of the tolerance of the bisector (the split rule's bound).
+ERROR_SHARE = 1.0 / OVER_SPLIT**2
 #: Mirrored samples go in from a corner's nearest samples, each this many times closer to the corner ...
 PROGRESSION = 3.0
 #: ... down to the pair ``2 * REACH * min_length`` apart (a hair above ``lam``, which is ``8 * min_length`` by

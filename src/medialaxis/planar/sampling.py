@@ -20,7 +20,7 @@ import shapely
 from scipy.spatial import cKDTree
 
 from medialaxis.planar._inside_kernels import RegionLocator
-from medialaxis.planar._kernels import split_pieces
+from medialaxis.planar._kernels import OVER_SPLIT, split_pieces
 from medialaxis.planar._simplify_kernels import flattening_is_safe
 
 __all__ = ["Rings", "BoundarySample", "simplify_rings", "initial_arcs", "sample", "refine_arcs", "refine_arcs_reference"]
@@ -176,8 +176,9 @@ def refine_arcs(
     bounds the offset of a Voronoi vertex from the medial axis, about
     ``h**2 / (16 R)``, by ``tolerance``. Pieces that are not Delaunay edges are
     split too (conformity). Nothing is split below ``min_length``. Over-split
-    by 2 so the radii, which shrink as the sample gets denser near corners
-    and tips, rarely need another round. Compiled
+    (:data:`~medialaxis.planar._kernels.OVER_SPLIT`, 1.75) so the radii, which
+    shrink as the sample gets denser near corners and tips, rarely need
+    another round. Compiled
     (:func:`medialaxis.planar._kernels.split_pieces`);
     :func:`refine_arcs_reference` is the NumPy version.
     """
@@ -221,7 +222,7 @@ def refine_arcs_reference(
     split = ((h > target) | ~conforming) & (h > 2.0 * min_length)
     if not split.any():
         return None
-    pieces = np.clip(np.ceil(2.0 * h / target), 2, 64).astype(np.int64)
+    pieces = np.clip(np.ceil(OVER_SPLIT * h / target), 2, 64).astype(np.int64)
     out = []
     for r, a in enumerate(arcs):
         idx = np.flatnonzero(split & (smp.ring == r))
