@@ -27,7 +27,8 @@ from scipy.spatial import cKDTree
 from medialaxis.core.result import MedialAxis
 from medialaxis.mesh._simplify_kernels import PENDING, kd_build, snap_many, span_cosines
 
-__all__ = ["MedialCandidates", "shrinking_balls", "SPAN", "ON_SPHERE", "SNAP", "DEPTH"]
+__all__ = ["MedialCandidates", "shrinking_balls", "inscribed_along", "SPAN", "ON_SPHERE", "SNAP", "DEPTH", "TIP_SAMPLES",
+           "TIP_SLACK", "TIP_SPAN"]
 
 #: Contacts spanning at least this many degrees from the centre make a sphere a candidate (the
 #: independent test asks 90 of the surface within 2% of the radius, which spans a little more than
@@ -226,12 +227,12 @@ class MedialCandidates:
 
         Near a tip the lambda pruning left no candidate and the shrinking balls of the samples next to ``x`` touch
         one side only. Here the shrinking balls of up to ``TIP_SAMPLES`` samples spread over the disc of ``radius``
-        about ``x``, each brought inside (the largest ball tangent at its sample, exact signed distance:
-        :func:`inscribed_radii`), that touch two sides: their two contacts (the sample and where the next larger
-        ball reaches out) span ``SPAN``, or the samples within ``ON_SPHERE`` of their sphere do (a cap: the end of
-        the axis at a rounded tip). Of those whose sphere reaches within ``within`` of ``x``, the largest (the
-        most stable under a change of the surface: the tip balls shrink to the sampling's scale); else the one
-        reaching nearest. ``(x, 0.0)`` when there is none.
+        about ``x``, each moved in along its normal as far as it still touches its sample (within ``TIP_SLACK``
+        of its radius; exact signed distance: :func:`inscribed_along`), that touch two sides: their two contacts
+        (the sample and where the ball one step further in reaches out) span ``TIP_SPAN``, or the samples within
+        ``ON_SPHERE`` of their sphere do (a cap: the end of the axis at a rounded tip). Of those whose sphere
+        reaches within ``within`` of ``x``, the largest (the most stable under a change of the surface: the tip
+        balls shrink to the sampling's scale); else the one reaching nearest. ``(x, 0.0)`` when there is none.
         """
         if self.sample is None or self.signed is None:
             return x, 0.0
@@ -245,7 +246,8 @@ class MedialCandidates:
         p, n = points[near], self.sample.normals[near]
         _, r, _ = shrinking_balls(p, n, self.start, points, self.sample_tree)
         c, r, q = inscribed_along(p, n, r, self.signed, slack=TIP_SLACK)
-        least = np.minimum(span_cosines(c, np.stack([p, q], axis=1), r, 0.0), span_cosines(c, self._band(c, r, p), r, ON_SPHERE))
+        two = span_cosines(c, np.stack([p, q], axis=1), r, 0.0)
+        least = np.minimum(two, span_cosines(c, self._band(c, r, p), r, ON_SPHERE))
         ok = (r > 0.0) & (least <= np.cos(np.radians(TIP_SPAN)))
         if not ok.any():
             return x, 0.0

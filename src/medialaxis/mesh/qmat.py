@@ -26,8 +26,10 @@ By default (``mode="medial"``) the spheres stand for the medial axis: the
 complex's spheres and each collapse's optimum are replaced by the nearby
 inscribed sphere whose contacts span 90 degrees or so (it touches two
 sides), and the spheres added at the farthest surface points are such
-spheres too (:mod:`medialaxis.mesh.medial_candidates`), but for at most
-``simplify_cover.PATCH_SHARE`` of them, patches where no such sphere reaches (tips).
+spheres too (:mod:`medialaxis.mesh.medial_candidates`; at a tip the
+lambda pruning cut, the end of the axis there:
+:meth:`~medialaxis.mesh.medial_candidates.MedialCandidates.tip`), but for at
+most ``simplify_cover.PATCH_SHARE`` of them, patches where no such sphere reaches.
 ``"packing"`` (before issue 31) fills the gaps along one side with small
 balls (a torus at 40 spheres: 60% of the spheres touch two sides).
 """

@@ -26,7 +26,7 @@ from scipy.spatial import cKDTree
 from medialaxis.mesh.envelope import envelope_gap
 from medialaxis.mesh.simplify_split import split_at
 
-__all__ = ["cover_repair", "PATCH_GAP", "PATCH_SHARE", "SPLIT_GAIN"]
+__all__ = ["cover_repair", "PATCH_GAP", "PATCH_SHARE", "SPLIT_GAIN", "TIP_DISC", "TIP_REACH"]
 
 #: In ``mode="medial"``, a surface point that no medial candidate reaches within this share of its
 #: gap gets the shrinking ball there instead (a patch: convex corners, where the medial spheres shrink
