@@ -176,7 +176,7 @@ def refine_arcs(
     bounds the offset of a Voronoi vertex from the medial axis, about
     ``h**2 / (16 R)``, by ``tolerance``. Pieces that are not Delaunay edges are
     split too (conformity). Nothing is split below ``min_length``. Over-split
-    (:data:`~medialaxis.planar._kernels.OVER_SPLIT`, 1.75) so the radii, which
+    (:data:`~medialaxis.planar._kernels.OVER_SPLIT`, 2) so the radii, which
     shrink as the sample gets denser near corners and tips, rarely need
     another round. Compiled
     (:func:`medialaxis.planar._kernels.split_pieces`);
