@@ -199,12 +199,12 @@ def selected_nodes(radii, edges, keep, label, lonely):  # type: ignore[no-untype
 
 
 @njit(cache=True, nogil=True)
-def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points, nxt, prv, arc, ring,  # type: ignore[no-untyped-def]
+def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points, nxt, arc, ring,  # type: ignore[no-untyped-def]
                 ring_length, rings_s, rings_start, touching, tolerance, lam, detour, regrow_detour, k, segments, start,
                 members, y0, height):
     """``(points, radii, edges)`` of the pruned axis whose raw nodes sit at ``pos`` in the triangles ``inner``.
 
-    ``points``, ``nxt``, ``prv``, ``arc``, ``ring``, ``ring_length`` describe
+    ``points``, ``nxt``, ``arc``, ``ring``, ``ring_length`` describe
     the boundary sample (more than ``k`` samples; radii from the pieces at
     the ``k`` nearest), ``rings_s``, ``rings_start``, ``touching`` the rings'
     arc lengths and pinches (:func:`~medialaxis.planar._pinch_kernels.pinch_arcs`), ``tri_points`` and ``tri_radii`` the triangulation's
@@ -215,6 +215,9 @@ def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points,
     those of components left without an edge, are measured.
     """
     edges, contact, diameter, adjacent = dual_edges(simplices, neighbors, inner, tri_points, nxt)
+    prv = np.empty_like(nxt)  # BoundarySample.prev
+    for i in range(len(nxt)):
+        prv[nxt[i]] = i
     contact_arc = contact_arcs(contact, arc, ring, ring_length)
     pinch_arcs(contact_arc, contact, arc, ring, ring_length, rings_s, rings_start, touching)
     reach = np.empty(len(inner))

@@ -21,7 +21,8 @@ from medialaxis._jit import njit
 from medialaxis.planar._delaunay_kernels import corner_square, insertion_order
 from medialaxis.planar._refine_kernels import CORNERS, insert_round, refine_round
 
-__all__ = ["DONE", "ASK_GEOS", "MORE_JITTER", "FAILED", "ROUND", "first_state", "incremental_rounds", "grown"]
+__all__ = ["DONE", "ASK_GEOS", "MORE_JITTER", "FAILED", "ROUND", "first_state", "sample_box", "incremental_rounds",
+           "grown"]
 
 #: What :func:`incremental_rounds` returns for: the sample is final ...
 DONE = 0
@@ -66,6 +67,22 @@ def first_state(first, first_arc, first_ring, first_next, lo, extent, far_corner
     batch = insertion_order(x[CORNERS:], y[CORNERS:]) + CORNERS
     return (points, arc, ring, nxt, x, y, np.zeros(CORNERS + n, np.int64), tv, tn, np.empty((slots, 2)),
             np.empty(slots), np.zeros(slots, np.int8), memo, batch, np.full(n, -1, np.int64))
+
+
+@njit(cache=True, nogil=True)
+def sample_box(points):  # type: ignore[no-untyped-def]
+    """``(lo, extent)``: ``points.min(0)`` and ``float((points.max(0) - lo).max())``, the same numbers (NumPy's
+    reductions along the rows of an (n, 2) array took 17 us a lake)."""
+    lo = np.empty(2)
+    extent = -np.inf
+    for k in range(2):
+        low, high = np.inf, -np.inf
+        for i in range(len(points)):
+            low = min(low, points[i, k])
+            high = max(high, points[i, k])
+        lo[k] = low
+        extent = max(extent, high - low)
+    return lo, extent
 
 
 @njit(cache=True, nogil=True)

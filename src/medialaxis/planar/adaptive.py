@@ -26,7 +26,15 @@ from medialaxis._progress import progress
 from medialaxis.planar._corner_kernels import corner_piece_state
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar._refine_kernels import CORNERS, assembled, first_sample
-from medialaxis.planar._rounds_kernels import ASK_GEOS, DONE, FAILED, MORE_JITTER, first_state, incremental_rounds
+from medialaxis.planar._rounds_kernels import (
+    ASK_GEOS,
+    DONE,
+    FAILED,
+    MORE_JITTER,
+    first_state,
+    incremental_rounds,
+    sample_box,
+)
 from medialaxis.planar.axis import inner_triangles
 from medialaxis.planar.corners import RingArrays, mirrored_corner_arcs, ring_arrays
 from medialaxis.planar.delaunay import FAR_CORNERS, Triangulation, jitter, triangulate
@@ -120,8 +128,7 @@ def incremental_sample(
     n_real = len(first)
     if n_real < 3:
         return None  # the reference raises the error
-    lo = first.min(0)
-    extent = float((first.max(0) - lo).max())
+    lo, extent = sample_box(first)
     if extent <= 0:
         return None
     shaken = jitter(max(4 * n_real, 4096))

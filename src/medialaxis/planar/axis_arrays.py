@@ -94,7 +94,7 @@ def axis_of_sample(region: Any, locator: RegionLocator, closed: RingArrays, smp:
     points, radii, edges = pruned_axis(
         pos, tri.simplices, tri.neighbors, inner.astype(np.int64), np.ascontiguousarray(tri.points, np.float64),
         np.asarray(tri.radii, np.float64), np.ascontiguousarray(smp.points, np.float64), np.asarray(smp.next, np.int64),
-        np.asarray(smp.prev, np.int64), np.asarray(smp.arc, np.float64), np.asarray(smp.ring, np.int64), np.asarray(smp.ring_length, np.float64),
+        np.asarray(smp.arc, np.float64), np.asarray(smp.ring, np.int64), np.asarray(smp.ring_length, np.float64),
         closed.s, closed.start, closed.touching, float(tolerance), float(lam), float(detour), REGROW_DETOUR, NEAREST, locator.segments, locator.start,
         locator.members, locator.y0, locator.height)
     return AxisArrays(points, radii, edges)
