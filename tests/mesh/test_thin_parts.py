@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
-from medialaxis.mesh.sampling import local_thickness
+from medialaxis.mesh.thin_parts import local_thickness
 
 trimesh = pytest.importorskip("trimesh")
 shapely = pytest.importorskip("shapely")
@@ -53,7 +53,7 @@ def test_an_extruded_l_plate_with_a_hole_keeps_its_tunnel(tmp_path):
 
 def test_a_thin_part_capped_below_its_count_is_warned_about_once(tmp_path, monkeypatch):
     # the thin-part check runs beside the Delaunay insertion; its warning still comes once, from the call
-    import medialaxis.mesh.sampling as sampling
+    import medialaxis.mesh.thin_parts as sampling
 
     trimesh.creation.box(extents=(10.0, 10.0, 0.2)).export(tmp_path / "plate.stl")
     monkeypatch.setattr(sampling, "THIN_SAMPLES", 30_000)  # the plate wants about 55,000
@@ -63,3 +63,19 @@ def test_a_thin_part_capped_below_its_count_is_warned_about_once(tmp_path, monke
     assert len(thin) == 1 and int(re.search(r"samples=(\d+)", str(thin[0].message)).group(1)) > 30_000
     assert thin[0].filename != sampling.__file__  # the caller's line, not the thread's
     assert 30_000 <= ma.metadata["n_samples"] < 40_000  # grown to the cap, not to what it wanted
+
+
+def test_a_flat_cavity_under_the_surface_and_a_slit_between_two_parts_keep_their_topology():
+    """Gaps thinner than the spacing are sampled finer (the outer side's shrinking balls): a flat cavity 0.2
+    thick, 0.1 under the top of a 10 x 10 x 4 box leaked into the outside, (1, 0, 0); two 4 x 4 x 1 boxes
+    0.02 apart were joined, (1, 15, 0). Truth from the construction: one cavity; two parts."""
+    box = trimesh.creation.box(extents=(10.0, 10.0, 4.0))
+    cavity = trimesh.creation.box(extents=(4.0, 4.0, 0.2))
+    cavity.apply_translation([0.0, 0.0, 2.0 - 0.1 - 0.1])
+    cavity.invert()
+    assert mx.medial_axis(trimesh.util.concatenate([box, cavity])).betti == (1, 0, 1)
+    lower, upper = trimesh.creation.box(extents=(4.0, 4.0, 1.0)), trimesh.creation.box(extents=(4.0, 4.0, 1.0))
+    upper.apply_translation([0.0, 0.0, 1.02])
+    ma = mx.medial_axis(trimesh.util.concatenate([lower, upper]))
+    assert ma.betti == (2, 0, 0)
+    assert ma.metadata["n_samples"] < 60_000  # finer near the slit only (22,000 before)

@@ -2,7 +2,7 @@
 
 The Delaunay insertion (:func:`~medialaxis.mesh.voronoi_diagram.tetrahedralise`)
 is serial; beside it, on the other core, run the check for thin parts of a
-default sample count (:func:`~medialaxis.mesh.sampling.thin_part_count`, on
+default sample count (:func:`~medialaxis.mesh.thin_parts.thin_part_count`, on
 most meshes keeping the sample being inserted), the crossing faces, the
 sampling density epsilon and the closest-point structures of the inside test.
 """
@@ -17,8 +17,9 @@ import numpy as np
 from medialaxis._jit import Beside
 from medialaxis.errors import MedialAxisError
 from medialaxis.mesh.crossings import crossing_pairs
-from medialaxis.mesh.sampling import measure_epsilon, thin_part_count
+from medialaxis.mesh.sampling import measure_epsilon
 from medialaxis.mesh.signed_distance import SignedDistance
+from medialaxis.mesh.thin_parts import thin_part_count
 from medialaxis.mesh.voronoi_diagram import tetrahedralise
 
 __all__ = ["tetrahedralised_sample"]

@@ -35,7 +35,6 @@ __all__ = [
     "adaptive_spacing",
     "shell_spacing",
     "sample_count",
-    "thin_part_count",
 ]
 
 #: Samples per unit area at spacing h on a triangular lattice: 2 / (sqrt(3) h^2).
@@ -45,15 +44,6 @@ MAX_SURFACE_SAMPLES = 20_000_000
 #: Fewest samples of the Voronoi route by default, and the most accepted.
 MIN_SAMPLES = 20_000
 MAX_SAMPLES = 2_000_000
-#: By default the sample grows until its spacing on ``THIN_SHARE`` of the
-#: surface is at most the local thickness over ``THIN_RATIO``
-#: (``voronoi_complex.THIN_SPACINGS`` with a margin: a plate keeps its sheet),
-#: up to ``THIN_SAMPLES`` samples, unless it is within ``THIN_SLACK`` of that
-#: (the surface next to a box's edges is thin: a box keeps its count).
-THIN_RATIO = 3.0
-THIN_SHARE = 0.75
-THIN_SLACK = 1.25
-THIN_SAMPLES = 250_000
 #: Spacing adapts to local feature size within this ratio (finest : coarsest).
 ADAPTIVE_RANGE = 4.0
 #: Fewest samples on each connected piece of the surface (a shell): a piece
@@ -342,49 +332,3 @@ def sample_count(samples: Any, n_vertices: int) -> int:
             f"samples must be between 1000 and {MAX_SAMPLES}, got {samples}"
         )
     return int(samples)
-
-
-def local_thickness(points: np.ndarray, normals: np.ndarray, cap: np.ndarray) -> np.ndarray:
-    """Diameter of the largest ball inside touching each sample point, up to ``cap``.
-
-    The shrinking ball (:func:`~medialaxis.mesh._flow_operators.medial_poles`)
-    started with the diameter ``cap``: a ball that starts empty gives
-    ``cap`` (the thickness is at least that), and no query is made far out.
-    """
-    from medialaxis.mesh._flow_operators import medial_poles
-
-    return 2.0 * medial_poles(np.asarray(points, np.float64), np.asarray(normals, np.float64),
-                              max_radius=0.5 * np.asarray(cap, np.float64))[1]
-
-
-def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoNormals) -> tuple[int, np.ndarray, str]:
-    """``count`` and ``spacing``, or more samples where the surface is mostly thin for them, and a warning.
-
-    The per-face ``spacing`` of :func:`adaptive_spacing` for ``count``
-    samples follows the coarse medial points of :func:`lfs_estimate`, which
-    miss plates thinner than their own spacing (a 10 x 10 x 0.2 CAD plate:
-    0.76 for 0.1); the local thickness of a coarse sample
-    (:func:`local_thickness`) sees them. Where the spacing is at most the
-    thickness over ``THIN_RATIO`` on ``THIN_SHARE`` of the surface (up to
-    ``THIN_SLACK``), both are kept; otherwise the count grows as needed,
-    up to ``THIN_SAMPLES`` (then the text returned last, a warning for the
-    caller to give, names the count that would do; it is empty otherwise),
-    and the spacing shrinks with it. No warning is given here: the Voronoi
-    route runs this on a second thread, beside the Delaunay insertion of the
-    sample it keeps on most meshes.
-    """
-    area = np.asarray(mesh.area_faces, np.float64)
-    h = face_spacing_for_count(area, np.ones(len(area)), max(count // 8, 2000))
-    coarse = sample_surface(mesh, h, normals, limit=len(mesh.vertices) + 100 * count)
-    at = spacing[coarse.face]
-    thickness = local_thickness(coarse.points, coarse.normals, 2.0 * THIN_RATIO * at)  # a ball far out is slow to query
-    need = float(np.percentile(THIN_RATIO * at / np.maximum(thickness, 1e-300), 100 * THIN_SHARE))
-    if need <= THIN_SLACK:
-        return count, spacing, ""
-    wanted = int(min(np.ceil(count * need**2), MAX_SAMPLES))
-    note = (
-        f"the mesh is mostly thin for its size (a quarter of its surface is under "
-        f"{np.percentile(thickness, 25):.3g} thick): {THIN_SAMPLES} samples are taken where about {wanted} "
-        f"would keep all its sheets; pass samples={wanted} for them" if wanted > THIN_SAMPLES else "")
-    grown = min(wanted, THIN_SAMPLES)
-    return grown, spacing * np.sqrt(count / grown), note

@@ -111,7 +111,7 @@ def voronoi_medial_axis(
         Target number of surface samples. Default ``max(20000,
         n_vertices)``, more for a mostly thin part (up to 250,000, so that
         a plate's two sides are three spacings apart:
-        :func:`~medialaxis.mesh.sampling.thin_part_count`); the mesh
+        :func:`~medialaxis.mesh.thin_parts.thin_part_count`); the mesh
         vertices are always included.
     simplify : int or float, optional
         Reduce the medial mesh by quadric error minimisation on spheres
