@@ -117,7 +117,7 @@ def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoN
         spacing, count, at = spacing * np.sqrt(count / grown), grown, at * np.sqrt(count / grown)
     # gaps narrower than the spacing (the outer side's balls), in spacings: a face by the median of its
     # samples, or by a sample whose ball's other contact faces back
-    gap = local_thickness(coarse.points, -coarse.normals, 2.0 * THIN_RATIO * at)
+    gap = local_thickness(coarse.points, -coarse.normals, LOCAL_THIN_RATIO * at)  # wider is not narrow
     local = gap / at
     facing = np.full(len(at), np.inf)
     rows = np.flatnonzero(local < LOCAL_THIN_RATIO)
