@@ -1,9 +1,9 @@
 """Betti numbers of medial complexes (points, edges and triangles) over GF(2).
 
 A medial complex is mostly made of sheets with free borders. Faces with a free
-edge (an edge of no other face) are collapsed with that edge, round after
-round, which keeps the homotopy type and leaves little or nothing of the
-sheets; what is left is counted: ``b0`` from the 1-skeleton, ``b2`` from the
+edge (an edge of no other face) are collapsed with that edge, one after
+another as edges become free (compiled), which keeps the homotopy type and
+leaves little or nothing of the sheets; what is left is counted: ``b0`` from the 1-skeleton, ``b2`` from the
 rank of the boundary matrix of the faces left, ``b1`` from the Euler
 characteristic.
 

@@ -18,7 +18,7 @@ from scipy.spatial import cKDTree
 from medialaxis.mesh.sampling import MAX_SAMPLES, PseudoNormals, face_spacing_for_count, sample_surface
 
 __all__ = ["thin_part_count", "local_thickness", "THIN_RATIO", "THIN_SHARE", "THIN_SLACK", "THIN_SAMPLES",
-           "LOCAL_THIN_RATIO", "LOCAL_THIN_FLOOR"]
+           "LOCAL_THIN_RATIO", "LOCAL_THIN_FLOOR", "LOCAL_THIN_GAIN"]
 
 #: By default the sample grows until its spacing on ``THIN_SHARE`` of the
 #: surface is at most the local thickness over ``THIN_RATIO``
@@ -33,6 +33,8 @@ THIN_SAMPLES = 250_000
 #: spacings are sampled up to ``1 / LOCAL_THIN_FLOOR`` times as finely (:func:`thin_part_count`).
 LOCAL_THIN_RATIO = 1.5
 LOCAL_THIN_FLOOR = 0.35
+#: ... where that makes them at least this factor finer.
+LOCAL_THIN_GAIN = 0.9
 
 
 def local_thickness(points: np.ndarray, normals: np.ndarray, cap: np.ndarray) -> np.ndarray:
@@ -117,10 +119,12 @@ def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoN
         spacing, count, at = spacing * np.sqrt(count / grown), grown, at * np.sqrt(count / grown)
     # gaps narrower than the spacing (the outer side's balls), in spacings: a face by the median of its
     # samples, or by a sample whose ball's other contact faces back
-    gap = local_thickness(coarse.points, -coarse.normals, LOCAL_THIN_RATIO * at)  # wider is not narrow
-    local = gap / at
+    cap = LOCAL_THIN_RATIO * at  # wider is not narrow: a ball left empty comes back as cap exactly
+    gap = local_thickness(coarse.points, -coarse.normals, cap)
+    narrow = gap < cap
+    local = np.where(narrow, gap / at, np.inf)
     facing = np.full(len(at), np.inf)
-    rows = np.flatnonzero(local < LOCAL_THIN_RATIO)
+    rows = np.flatnonzero(narrow)
     rows = rows[_facing_back(coarse.points, -coarse.normals, gap, rows)]
     facing[rows] = local[rows]
     order = np.lexsort((local, coarse.face))
@@ -130,7 +134,8 @@ def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoN
     ratio = np.full(len(spacing), np.inf)
     ratio[by_face[start]] = np.where(median < LOCAL_THIN_RATIO, median, np.inf)
     np.minimum.at(ratio, coarse.face, facing)
-    thin = ratio < LOCAL_THIN_RATIO
+    factor = np.maximum(ratio / LOCAL_THIN_RATIO, LOCAL_THIN_FLOOR)
+    thin = factor < LOCAL_THIN_GAIN  # a few per cent finer is not worth a second Delaunay insertion
     spacing = spacing.copy()
-    spacing[thin] *= np.maximum(ratio[thin] / LOCAL_THIN_RATIO, LOCAL_THIN_FLOOR)
+    spacing[thin] *= factor[thin]
     return count, spacing, note
