@@ -33,7 +33,9 @@ THIN_SAMPLES = 250_000
 #: spacings are sampled up to ``1 / LOCAL_THIN_FLOOR`` times as finely (:func:`thin_part_count`).
 LOCAL_THIN_RATIO = 1.5
 LOCAL_THIN_FLOOR = 0.35
-#: ... where that makes them at least this factor finer.
+#: ... where that makes them at least this factor finer. Each refined mesh costs a second Delaunay
+#: insertion (kitten, rocker-arm, camel: 10-20% longer); at 0.5 those ran once, but a box's flat
+#: cavity 1.4 spacings wide leaked out again.
 LOCAL_THIN_GAIN = 0.9
 
 
