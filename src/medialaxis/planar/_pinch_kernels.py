@@ -126,10 +126,8 @@ def pinch_arcs(contact_arc, contact, arc, ring, ring_length, rings_s, rings_star
     The arc from a contact to the pinch on its ring and from the pinch to
     the other contact on the other ring, each the shorter way round.
     """
-    n_pinch = 0
-    for g in range(len(touching)):
-        n_pinch += touching[g] >= 0
-    if n_pinch == 0:
+    pinch = np.flatnonzero(touching >= 0)  # loop over these only: a feature has thousands of vertices, a few pinches
+    if len(pinch) == 0:
         return
     ring_of = np.empty(len(touching), np.int64)
     for r in range(len(rings_start) - 1):
@@ -141,8 +139,8 @@ def pinch_arcs(contact_arc, contact, arc, ring, ring_length, rings_s, rings_star
         if ra == rb:
             continue
         best = contact_arc[e]
-        for g in range(len(touching)):  # a vertex of a's ring at a pinch, and its twins on b's ring
-            if touching[g] < 0 or ring_of[g] != ra:
+        for g in pinch:  # a vertex of a's ring at a pinch, and its twins on b's ring
+            if ring_of[g] != ra:
                 continue
             h = touching[g]
             while h != g:
