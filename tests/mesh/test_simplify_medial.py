@@ -215,3 +215,26 @@ def test_patches_at_the_points_of_a_star_are_inside():
     assert len(s.points) == 30
     assert _inside_share(star, s.points, s.radii) == 1.0
     assert _medial_share(star, s.points, s.radii) >= 0.75
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_gaps_after_a_split_are_those_of_the_split_mesh(seed):
+    """The cover repair updates the gaps after a split only where the pieces it removed were the nearest
+    (``_gap_after``); the truth is ``envelope_gap`` of the split mesh from scratch, at points inside and
+    outside, near the corner spheres too (which the update leaves out of the pieces removed)."""
+    from medialaxis.mesh.envelope import envelope_gap
+    from medialaxis.mesh.simplify_cover import _gap_after
+
+    rng = np.random.default_rng(seed)
+    spheres = np.c_[rng.uniform(-1, 1, (6, 3)), rng.uniform(0.1, 0.4, 6)]
+    faces = np.array([[0, 1, 2], [1, 2, 3], [2, 3, 4]], np.int64)
+    curve = np.array([[4, 5]], np.int64)
+    x = np.r_[rng.uniform(-1.5, 1.5, (400, 3)), spheres[:, :3] + 0.05 * rng.normal(size=(6, 3))]
+    gap = envelope_gap(x, spheres[:, :3], spheres[:, 3], curve, faces)
+    new = np.r_[spheres, [np.r_[spheres[[1, 2, 3], :3].mean(axis=0), 0.3]], [np.r_[spheres[[4, 5], :3].mean(axis=0), 0.2]]]
+    split_faces = np.r_[faces[[0, 2]], [[1, 2, 6], [2, 3, 6], [3, 1, 6]]]
+    split_curve = np.array([[4, 7], [7, 5]], np.int64)
+    got = _gap_after(x, gap, spheres, curve, faces, new, split_curve, split_faces)
+    want = envelope_gap(x, new[:, :3], new[:, 3], split_curve, split_faces)
+    assert (np.abs(want - gap) > 1e-3).sum() > 10  # the split changes the gaps
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-12)

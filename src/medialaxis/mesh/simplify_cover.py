@@ -188,10 +188,20 @@ def _gap_after(
     """:func:`envelope_gap` of the split mesh, computed again only where the primitives it removed were the nearest."""
     gone_c, gone_f = _rows_not_in(curve, new_curve), _rows_not_in(faces, new_faces)
     made_c, made_f = _rows_not_in(new_curve, curve), _rows_not_in(new_faces, faces)
-    c, r = new_spheres[:, :3], new_spheres[:, 3]
-    out = np.minimum(gap, envelope_gap(x, c, r, made_c, made_f))
-    was = envelope_gap(x, spheres[:, :3], spheres[:, 3], gone_c, gone_f)
+    out = np.minimum(gap, _pieces_gap(x, new_spheres, made_c, made_f))
+    was = _pieces_gap(x, spheres, gone_c, gone_f)
     again = was <= gap + 1e-12 * max(1.0, float(np.abs(gap).max()))
     if again.any():
-        out[again] = envelope_gap(x[again], c, r, new_curve, new_faces)
+        out[again] = envelope_gap(x[again], new_spheres[:, :3], new_spheres[:, 3], new_curve, new_faces)
     return out
+
+
+def _pieces_gap(x: np.ndarray, spheres: np.ndarray, curve: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """:func:`envelope_gap` of the edges ``curve`` and triangles ``faces`` alone (with their corners, not every sphere).
+
+    A cone or slab holds its corner spheres, so these add nothing to its gap; the other spheres are
+    left out: the split keeps them, and counting them flagged every point nearest a sphere as changed.
+    """
+    used, inverse = np.unique(np.r_[curve.ravel(), faces.ravel()], return_inverse=True)
+    return envelope_gap(x, spheres[used, :3], spheres[used, 3], inverse[: curve.size].reshape(-1, 2),
+                        inverse[curve.size :].reshape(-1, 3))
