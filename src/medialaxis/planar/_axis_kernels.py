@@ -5,7 +5,7 @@
 coincident Voronoi vertices of :mod:`medialaxis.planar.pipeline` and
 :func:`medialaxis.planar.pruning.prune_graph` compute, with the same kernels
 (:func:`~medialaxis.planar._graph_kernels.dual_edges`,
-:func:`~medialaxis.planar._distance_kernels.grid_distance`,
+:func:`~medialaxis.planar._distance_kernels.delaunay_distance`,
 :func:`~medialaxis.planar._graph_kernels.merge_clusters`, the leaf peeling and
 the regrowing of tips) and the same arithmetic (NumPy's elementwise
 operations, ``np.bincount``'s sums in index order, ``np.lexsort``'s first
@@ -19,7 +19,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 from medialaxis.core._kernels import peel_leaves_kernel
-from medialaxis.planar._distance_kernels import grid_distance, sample_grid
+from medialaxis.planar._distance_kernels import delaunay_distance, site_neighbours
 from medialaxis.planar._graph_kernels import (
     adjacency_lists,
     component_labels,
@@ -209,7 +209,9 @@ def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points,
     the ``k`` nearest), ``rings_s``, ``rings_start``, ``touching`` the rings'
     arc lengths and pinches (:func:`~medialaxis.planar._pinch_kernels.pinch_arcs`), ``tri_points`` and ``tri_radii`` the triangulation's
     vertices and circumradii (a node's ball in :func:`merged_nodes`),
-    ``segments`` ... ``height`` the region's compiled inside test. A node's
+    ``segments`` ... ``height`` the region's compiled inside test. The nearest
+    samples of a node are found along the triangulation's edges (``simplices``,
+    ``neighbors``) from a vertex of one of its triangles. A node's
     radius is the distance at its point (a merged node's at its mean point,
     a single one's at its own), so only the nodes the pruning keeps, and
     those of components left without an edge, are measured.
@@ -238,8 +240,11 @@ def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points,
             wanted[node_edges[e, 0]] = True
             wanted[node_edges[e, 1]] = True
     measured = np.flatnonzero(wanted)
-    x0, y0, cell, g, start, members = sample_grid(points)
+    seed = np.empty(n, np.int64)  # a vertex of a member's triangle: the walk to the nearest samples starts there
+    for i in range(len(inner)):
+        seed[cluster[i]] = simplices[inner[i], 0]
+    indptr, nbrs = site_neighbours(len(points), simplices, neighbors)
     node_radii = np.full(n, np.nan)
-    node_radii[measured] = grid_distance(node_points[measured], points, nxt, prv, k, x0, y0, cell, g, start, members)
+    node_radii[measured] = delaunay_distance(node_points[measured], seed[measured], points, nxt, prv, k, indptr, nbrs)
     old, out = selected_nodes(node_radii, node_edges, keep, label, lonely)
     return node_points[old], node_radii[old], out

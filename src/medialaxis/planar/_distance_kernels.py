@@ -9,6 +9,17 @@ distance agree to rounding (samples mirrored about a corner's bisector are
 equidistant from its axis points), at every sample tied with the ``k``-th,
 found in the grid instead of by the brute force of
 :func:`medialaxis.planar._kernels.nearest_with_ties` (its reference in the tests).
+
+:func:`delaunay_distance` is the same distance with the ``k`` nearest found
+along the edges of the samples' Delaunay triangulation (:func:`site_neighbours`)
+instead of in the grid: the ``i``-th nearest sample of any point is a Delaunay
+neighbour of one of the ``i - 1`` nearer ones (shrink the disc about the point
+through the ``i``-th towards it until it meets one of them: that disc is empty,
+so the two are Delaunay neighbours), so a best-first walk from the nearest sample
+meets them in order, and every sample within a distance forms a connected
+set with the nearest. The grid visits every cell within the ``k``-th
+distance, most of them empty where the point lies far from the boundary (the
+middle of a lake); the walk reads a few dozen samples.
 """
 
 from __future__ import annotations
@@ -17,7 +28,8 @@ import numpy as np
 
 from medialaxis._jit import njit
 
-__all__ = ["sample_grid", "nearest_in_grid", "piece_distance", "boundary_distance_kernel", "grid_distance"]
+__all__ = ["sample_grid", "nearest_in_grid", "piece_distance", "boundary_distance_kernel", "grid_distance",
+           "site_neighbours", "delaunay_distance"]
 
 
 @njit(cache=True, nogil=True)
@@ -146,6 +158,22 @@ def boundary_distance_kernel(query, points, nxt, prv, k):  # type: ignore[no-unt
     return grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members)
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _sure_distance(near, k, points, nxt, prv, qx, qy):  # type: ignore[no-untyped-def]
+    """Distance to the pieces at the ``k`` samples ``near``: each piece once, the root of the least square (sqrt
+    is monotone, exact)."""
+    least = np.inf
+    for m in range(k):
+        j = near[m]
+        least = min(least, _squared_piece_distance(points, nxt, j, qx, qy))
+        shared = False
+        for other in range(k):
+            shared = shared or near[other] == prv[j]
+        if not shared:
+            least = min(least, _squared_piece_distance(points, nxt, prv[j], qx, qy))
+    return np.sqrt(least)
+
+
 @njit(cache=True, nogil=True)
 def grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members):  # type: ignore[no-untyped-def]
     """:func:`boundary_distance_kernel` in the grid of :func:`sample_grid` made already."""
@@ -154,17 +182,8 @@ def grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members): 
     for q in range(len(query)):
         qx, qy = query[q, 0], query[q, 1]
         best = np.inf
-        if sure[q]:  # each piece at the k samples once; the root of the least square (sqrt is monotone, exact)
-            least = np.inf
-            for m in range(k):
-                j = near[q, m]
-                least = min(least, _squared_piece_distance(points, nxt, j, qx, qy))
-                shared = False
-                for other in range(k):
-                    shared = shared or near[q, other] == prv[j]
-                if not shared:
-                    least = min(least, _squared_piece_distance(points, nxt, prv[j], qx, qy))
-            out[q] = np.sqrt(least)
+        if sure[q]:
+            out[q] = _sure_distance(near[q], k, points, nxt, prv, qx, qy)
             continue
         far = near[q, k - 1]  # every sample within the k-th distance (to 2e-9), from the cells that reach it
         kth = ((points[far, 0] - qx) ** 2 + (points[far, 1] - qy) ** 2) * (1.0 + 2e-9)
@@ -181,3 +200,101 @@ def grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members): 
                         best = min(best, piece_distance(points, nxt, prv, p, qx, qy))
         out[q] = best
     return out
+
+
+@njit(cache=True, nogil=True)
+def site_neighbours(n, simplices, neighbors):  # type: ignore[no-untyped-def]
+    """``(indptr, nbrs)``: the Delaunay neighbours of sample ``i`` are ``nbrs[indptr[i]:indptr[i + 1]]``.
+
+    ``neighbors[t, j]`` is the triangle across the edge opposite vertex ``j``
+    (-1: none), so that each edge is listed once per direction.
+    """
+    degree = np.zeros(n + 1, np.int64)
+    for t in range(len(simplices)):
+        for j in range(3):
+            u = neighbors[t, j]
+            if u < 0 or u > t:
+                degree[simplices[t, (j + 1) % 3] + 1] += 1
+                degree[simplices[t, (j + 2) % 3] + 1] += 1
+    for i in range(n):
+        degree[i + 1] += degree[i]
+    fill = degree[:-1].copy()
+    nbrs = np.empty(degree[n], np.int64)
+    for t in range(len(simplices)):
+        for j in range(3):
+            u = neighbors[t, j]
+            if u < 0 or u > t:
+                a, b = simplices[t, (j + 1) % 3], simplices[t, (j + 2) % 3]
+                nbrs[fill[a]] = b
+                fill[a] += 1
+                nbrs[fill[b]] = a
+                fill[b] += 1
+    return degree, nbrs
+
+
+@njit(cache=True, nogil=True)
+def delaunay_distance(query, seed, points, nxt, prv, k, indptr, nbrs):  # type: ignore[no-untyped-def]
+    """:func:`boundary_distance_kernel` with the nearest samples found along the Delaunay edges ``indptr``,
+    ``nbrs`` (:func:`site_neighbours`) from the sample ``seed[q]`` of each query (any sample; one near it walks
+    least). The same distances, bit for bit: the same samples (the ``k`` nearest, or every one within the
+    ``k``-th distance where that and the next agree to rounding), the same arithmetic."""
+    n = len(points)
+    seen = np.full(n, -1, np.int64)
+    heap_i = np.empty(n, np.int64)  # the walk's frontier: samples next to those taken, unsorted (each once)
+    heap_d = np.empty(n)
+    taken = np.empty(n, np.int64)
+    taken_d = np.empty(n)
+    out = np.empty(len(query))
+    for q in range(len(query)):
+        qx, qy = query[q, 0], query[q, 1]
+        s = seed[q]
+        ds = (points[s, 0] - qx) ** 2 + (points[s, 1] - qy) ** 2
+        while True:  # down to the nearest sample: one Delaunay neighbour of any other is nearer
+            step, dstep = s, ds
+            for m in range(indptr[s], indptr[s + 1]):
+                v = nbrs[m]
+                d = (points[v, 0] - qx) ** 2 + (points[v, 1] - qy) ** 2
+                nearer = d < dstep
+                step = v if nearer else step
+                dstep = d if nearer else dstep
+            if step == s:
+                break
+            s, ds = step, dstep
+        seen[s] = q
+        heap_i[0], heap_d[0] = s, ds
+        front, count, limit = 1, 0, np.inf
+        while front:
+            best, d = 0, heap_d[0]
+            for m in range(1, front):  # the nearest of the frontier (no branch: the test is a coin toss)
+                nearer = heap_d[m] < d
+                best = m if nearer else best
+                d = heap_d[m] if nearer else d
+            v = heap_i[best]
+            if count > k and d > limit:
+                break  # every sample left is farther
+            front -= 1
+            heap_i[best], heap_d[best] = heap_i[front], heap_d[front]
+            taken[count], taken_d[count] = v, d
+            count += 1
+            if count == k + 1:
+                if taken_d[k] - taken_d[k - 1] > 1e-9 * taken_d[k]:
+                    break  # the k nearest, surely
+                limit = taken_d[k - 1] * (1.0 + 2e-9)  # a tie: every sample within the k-th distance
+            for m in range(indptr[v], indptr[v + 1]):
+                w = nbrs[m]
+                if seen[w] == q:
+                    continue
+                seen[w] = q
+                heap_i[front] = w
+                heap_d[front] = (points[w, 0] - qx) ** 2 + (points[w, 1] - qy) ** 2
+                front += 1
+        if count == k + 1 and limit == np.inf:
+            out[q] = _sure_distance(taken, k, points, nxt, prv, qx, qy)
+            continue
+        best_d = np.inf
+        for m in range(count):
+            if taken_d[m] <= limit or count <= k:
+                best_d = min(best_d, piece_distance(points, nxt, prv, taken[m], qx, qy))
+        out[q] = best_d
+    return out
+
