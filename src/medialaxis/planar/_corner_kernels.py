@@ -87,14 +87,17 @@ def corner_triangle(a, b, c, centre_x, centre_y, edge, at_vertex, ring, rings_xy
 
 
 @njit(cache=True, nogil=True)
-def corner_triangles(simplices, slots, centres, edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance):  # type: ignore[no-untyped-def]
-    """Whether each triangle ``simplices[slots[j]]`` is a corner triangle (see the module docstring).
+def corner_triangles(simplices, slots, centres, edge, at_vertex, ring, rings_xy, rings_start, convex, tolerance,  # type: ignore[no-untyped-def]
+                     over_split=OVER_SPLIT):
+    """Whether each triangle ``simplices[slots[j]]`` is a corner triangle (see the module docstring; its
+    circumcentre within ``tolerance / over_split**2`` of the bisector).
 
     One call for all the triangles, the test written out in the loop: a
     compiled call per triangle with array arguments costs two atomic
     reference counts per array.
     """
     out = np.zeros(len(slots), np.bool_)
+    share = 2.0 / (over_split * over_split)  # abs(d1 - d2) is the distance to the bisector times 2 half_sine
     for j in range(len(slots)):
         t = slots[j]
         a, b, c = simplices[t, 0], simplices[t, 1], simplices[t, 2]
@@ -124,7 +127,7 @@ def corner_triangles(simplices, slots, centres, edge, at_vertex, ring, rings_xy,
             f2 = (wx * cx + wy * cy) / l2
             half_sine = np.sqrt(max(0.5 * (1.0 + (ux * wx + uy * wy) / (l1 * l2)), 0.0))  # sin of half the inner angle
             if (d1 >= 0.0 and d2 >= 0.0 and 0.0 <= f1 <= l1 and 0.0 <= f2 <= l2
-                    and abs(d1 - d2) <= 2.0 * ERROR_SHARE * tolerance * half_sine):
+                    and abs(d1 - d2) <= share * tolerance * half_sine):
                 out[j] = True
                 break
     return out
@@ -132,17 +135,17 @@ def corner_triangles(simplices, slots, centres, edge, at_vertex, ring, rings_xy,
 
 @njit(cache=True, nogil=True)
 def corner_piece_state(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy, rings_start,
-                       convex, touching, tolerance):  # type: ignore[no-untyped-def]
+                       convex, touching, tolerance, over_split=OVER_SPLIT):  # type: ignore[no-untyped-def]
     """``(conforming, radius)`` of every piece ``(i, nxt[i])``, corner triangles left out and mirrored pieces alike;
     the pieces at vertices ``touching`` another get the radii of both (:mod:`medialaxis.planar._pinch_kernels`)."""
     memo = np.full((len(simplices), 4), -1, np.int64)
     return corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy,
-                                   rings_start, convex, touching, tolerance, memo)
+                                   rings_start, convex, touching, tolerance, memo, over_split)
 
 
 @njit(cache=True, nogil=True)
 def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, offset, rings_s, rings_xy, rings_start,
-                            convex, touching, tolerance, memo):  # type: ignore[no-untyped-def]
+                            convex, touching, tolerance, memo, over_split=OVER_SPLIT):  # type: ignore[no-untyped-def]
     """:func:`corner_piece_state` that keeps each slot's corner test in ``memo`` (rows ``a, b, c, corner``).
 
     A slot whose triangle has the same vertices, in the same order, as when
@@ -165,7 +168,7 @@ def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, o
             n_tested += 1
         memo[t, 0], memo[t, 1], memo[t, 2], memo[t, 3] = a, b, c, 0
     tested = corner_triangles(simplices, slots[:n_tested], centres, edge, at_vertex, ring, rings_xy, rings_start,
-                              convex, tolerance)
+                              convex, tolerance, over_split)
     for j in range(n_tested):
         corner[slots[j]] = tested[j]
         memo[slots[j], 3] = 1 if tested[j] else 0

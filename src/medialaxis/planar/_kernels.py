@@ -32,14 +32,18 @@ from medialaxis.planar._distance_kernels import nearest_in_grid, piece_distance,
 
 __all__ = ["nearest_piece_distance", "nearest_piece_distance_reference", "triangle_centroids", "piece_state",
            "piece_state_reference", "circumcircles_kernel", "circle_through", "split_pieces", "split_count",
-           "nearest_samples", "nearest_with_ties", "OVER_SPLIT"]
+           "nearest_samples", "nearest_with_ties", "OVER_SPLIT", "DRAWING_OVER_SPLIT"]
 
 #: A piece too long for the split rule is cut into pieces this many times shorter than the rule asks (``ceil(OVER_SPLIT
 #: * h / target)`` of them), so the radii, which shrink as the sample gets denser, rarely need another round, and a
-#: Voronoi vertex lies within ``tolerance / OVER_SPLIT**2`` of the axis. 1.75 took 8% less time on the tuning half
-#: of ``benchmarks/bench_centerlines.py`` with the same spurious branches and coverage, but a stroked frame's median
-#: radius (tests/test_drawings_cli.py) 0.107% off instead of under 0.1%.
-OVER_SPLIT = 2.0
+#: Voronoi vertex lies within ``tolerance / OVER_SPLIT**2`` of the axis. 1.75 rather than 2: 10% less time per lake
+#: on the tuning half of ``benchmarks/bench_centerlines.py`` (546 nodes a lake instead of 610), the same spurious
+#: branches, coverage and inside share (1.5: 14% less, one spurious branch more; 1.25: lost circumcentres outside
+#: that a test of the planar arrays needs).
+OVER_SPLIT = 1.75
+#: Drawings (SVG, DXF) keep 2: their strokes' widths are asked to 0.1% (a stroked frame's median radius came out
+#: 0.107% off its 3.0 with 1.75, tests/test_drawings_cli.py), a polygon's or an image's axis to its tolerance.
+DRAWING_OVER_SPLIT = 2.0
 
 
 @njit(cache=True, nogil=True)
@@ -212,19 +216,21 @@ def _insertion_sort(values, lo, hi):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True, inline="always")
-def split_count(points, i, j, radius, conforming, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
-    """Into how many parts the piece from sample ``i`` to ``j`` is cut (0: kept), as :func:`split_pieces` decides."""
+def split_count(points, i, j, radius, conforming, tolerance, min_length, ratio, over_split):  # type: ignore[no-untyped-def]
+    """Into how many parts the piece from sample ``i`` to ``j`` is cut (0: kept), as :func:`split_pieces` decides
+    (``over_split``: :data:`OVER_SPLIT` or a caller's own)."""
     dx = points[j, 0] - points[i, 0]
     dy = points[j, 1] - points[i, 1]
     h = np.sqrt(dx * dx + dy * dy)
     target = max(min(ratio * radius, np.sqrt(16.0 * radius * tolerance)), min_length)
     if ((h > target) or not conforming) and h > 2.0 * min_length:
-        return int(min(max(np.ceil(OVER_SPLIT * h / target), 2.0), 64.0))
+        return int(min(max(np.ceil(over_split * h / target), 2.0), 64.0))
     return 0
 
 
 @njit(cache=True, nogil=True)
-def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, conforming, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
+def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, conforming, tolerance, min_length, ratio,  # type: ignore[no-untyped-def]
+                 over_split=OVER_SPLIT):
     """The refinement of :func:`medialaxis.planar.sampling.refine_arcs` on concatenated arcs.
 
     Returns ``(new_arcs, new_offsets)``; ``new_offsets[0] == -1`` when no piece is split.
@@ -233,7 +239,8 @@ def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, confor
     count = np.zeros(n, np.int64)
     any_split = False
     for i in range(n):
-        count[i] = split_count(points, i, nxt[i], piece_radius[i], conforming[i], tolerance, min_length, ratio)
+        count[i] = split_count(points, i, nxt[i], piece_radius[i], conforming[i], tolerance, min_length, ratio,
+                               over_split)
         any_split = any_split or count[i] > 0
     new_offsets = np.zeros(len(a_offsets), np.int64)
     if not any_split:

@@ -24,7 +24,7 @@ from medialaxis._jit import njit
 from medialaxis.planar._corner_kernels import corner_piece_state_memo, corner_twins
 from medialaxis.planar._delaunay_kernels import drop_corners, insert_points, insertion_order, scratch
 from medialaxis.planar._inside_kernels import UNSURE, locate_points, triangle_centroid
-from medialaxis.planar._kernels import circle_through, split_count
+from medialaxis.planar._kernels import OVER_SPLIT, circle_through, split_count
 
 __all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp", "insert_round", "refine_round",
            "first_sample", "assembled"]
@@ -91,7 +91,8 @@ def fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, seg
 
 
 @njit(cache=True, nogil=True)
-def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, n, tolerance, min_length, ratio):  # type: ignore[no-untyped-def]
+def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, n, tolerance, min_length, ratio,  # type: ignore[no-untyped-def]
+                 over_split=OVER_SPLIT):
     """Split the pieces ``(i, nxt[i])`` of the vertices ``CORNERS .. n - 1`` that are too long.
 
     The same pieces and arc positions as :func:`medialaxis.planar._kernels.split_pieces`;
@@ -103,7 +104,8 @@ def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, 
     count = np.zeros(n, np.int64)
     total = 0
     for i in range(CORNERS, n):
-        count[i] = split_count(points, i, nxt[i], piece_radius[i], conforming[i], tolerance, min_length, ratio)
+        count[i] = split_count(points, i, nxt[i], piece_radius[i], conforming[i], tolerance, min_length, ratio,
+                               over_split)
         total += max(count[i] - 1, 0)
     new_arc = np.empty(total)
     new_ring = np.empty(total, np.int64)
@@ -173,8 +175,9 @@ def insert_round(x, y, tv, tn, count, order, hint, near, points, centre, radius,
 
 
 @njit(cache=True, nogil=True)
-def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,
-                 convex, touching, ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share):  # type: ignore[no-untyped-def]
+def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,  # type: ignore[no-untyped-def]
+                 convex, touching, ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share,
+                 over_split=OVER_SPLIT):
     """The pieces' state, their splits and the new samples of one round, over the ``n = len(nxt)`` vertices.
 
     ``rings_s`` and ``rings_xy`` hold each closed ring's cumulative arc
@@ -190,14 +193,14 @@ def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points,
     arc, ring, nxt, x, y, near, order, hint)``: ``m`` new samples (0: none to
     split; -1: ``jitter`` holds too few rows, nothing done), the arrays
     extended by them, and their insertion order (BRIO) with the vertex of
-    their piece.
+    their piece. ``over_split``: see :data:`medialaxis.planar._kernels.OVER_SPLIT`.
     """
     n = len(nxt)
     conforming, piece_radius = corner_piece_state_memo(tv[:count], where[:count] == 1, radius[:count], centre[:count],
                                                        nxt, arc, ring, CORNERS, rings_s, rings_xy, rings_start, convex,
-                                                       touching, tolerance, memo)
+                                                       touching, tolerance, memo, over_split)
     new_arc, new_ring, piece, nxt_out = split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming,
-                                                     n, tolerance, min_length, ratio)
+                                                     n, tolerance, min_length, ratio, over_split)
     m = len(new_arc)
     settled = m < settled_share * (n - CORNERS)
     for i in range(CORNERS, n):

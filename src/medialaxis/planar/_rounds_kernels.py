@@ -19,6 +19,7 @@ import numpy as np
 
 from medialaxis._jit import njit
 from medialaxis.planar._delaunay_kernels import corner_square, insertion_order
+from medialaxis.planar._kernels import OVER_SPLIT
 from medialaxis.planar._refine_kernels import CORNERS, insert_round, refine_round
 
 __all__ = ["DONE", "ASK_GEOS", "MORE_JITTER", "FAILED", "ROUND", "first_state", "sample_box", "incremental_rounds",
@@ -113,13 +114,13 @@ def _grown_rows(array, rows, keep):  # type: ignore[no-untyped-def]
 def incremental_rounds(round_, inserted, settled, max_rounds, one_round_above, count, x, y, tv, tn, batch, hint,  # type: ignore[no-untyped-def]
                        near, points, centre, radius, where, memo, arc, ring, nxt, sliver, segments, start, members,
                        y0, height, rings_s, rings_xy, rings_start, convex, touching, ring_length, lo, extent, shaken, tolerance,
-                       min_length, ratio, settled_share):
+                       min_length, ratio, settled_share, over_split=OVER_SPLIT):
     """The rounds from ``round_`` on (``inserted``: its samples are in already), until one of the statuses.
 
     Returns ``(status, round_, settled, count, x, y, tv, tn, batch, hint,
     near, points, centre, radius, where, memo, arc, ring, nxt, unsure, gx,
     gy)``: the state to resume from, and for :data:`ASK_GEOS` the slots and
-    centroids to ask about.
+    centroids to ask about. ``over_split``: see :data:`medialaxis.planar._kernels.OVER_SPLIT`.
     """
     no_slots = np.empty(0, np.int64)
     no_xy = np.empty(0)
@@ -139,7 +140,8 @@ def incremental_rounds(round_, inserted, settled, max_rounds, one_round_above, c
             break
         m, now_settled, points, arc, ring, nxt, x, y, near, batch, hint = refine_round(
             tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, rings_s, rings_xy,
-            rings_start, convex, touching, ring_length, lo, extent, shaken, tolerance, min_length, ratio, settled_share)
+            rings_start, convex, touching, ring_length, lo, extent, shaken, tolerance, min_length, ratio, settled_share,
+            over_split)
         if m < 0:
             status = MORE_JITTER
             break

@@ -25,6 +25,7 @@ import shapely
 from medialaxis._progress import progress
 from medialaxis.planar._corner_kernels import corner_piece_state
 from medialaxis.planar._inside_kernels import RegionLocator
+from medialaxis.planar._kernels import OVER_SPLIT
 from medialaxis.planar._refine_kernels import CORNERS, assembled, first_sample
 from medialaxis.planar._rounds_kernels import (
     ASK_GEOS,
@@ -66,23 +67,25 @@ def _start_arcs(
 
 
 def sample_and_triangulate(
-    rings: Rings, region: Any, tolerance: float, min_length: float
+    rings: Rings, region: Any, tolerance: float, min_length: float, over_split: float = OVER_SPLIT
 ) -> tuple[BoundarySample, Triangulation, np.ndarray]:
     """Samples of ``rings``, their Delaunay triangulation and its triangles inside ``region``.
 
     Pieces start about ``sqrt(area) / 8`` long (never below ``min_length``)
     and are split until they conform and are within ``tolerance``, at most
-    :data:`MAX_REFINEMENTS` rounds.
+    :data:`MAX_REFINEMENTS` rounds; a piece too long is cut ``over_split``
+    times finer than that asks (:data:`medialaxis.planar._kernels.OVER_SPLIT`).
     """
     if region is rings.region:
-        found = _incremental(rings, tolerance, min_length)
+        found = incremental_sample(rings.region, rings.locator, ring_arrays(rings), tolerance, min_length,
+                                   over_split=over_split)
         if found is not None:
             return found
-    return rounds_from_scratch(rings, region, tolerance, min_length)
+    return rounds_from_scratch(rings, region, tolerance, min_length, over_split)
 
 
 def rounds_from_scratch(
-    rings: Rings, region: Any, tolerance: float, min_length: float
+    rings: Rings, region: Any, tolerance: float, min_length: float, over_split: float = OVER_SPLIT
 ) -> tuple[BoundarySample, Triangulation, np.ndarray]:
     """:func:`sample_and_triangulate` with every round's sample triangulated anew."""
     closed = ring_arrays(rings)
@@ -97,8 +100,8 @@ def rounds_from_scratch(
             break
         conforming, radius = corner_piece_state(tri.simplices, inside, tri.radii, tri.centers, smp.next, smp.arc,
                                                 smp.ring, 0, closed.s, closed.xy, closed.start, closed.convex,
-                                                closed.touching, float(tolerance))
-        arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length, RATIO)
+                                                closed.touching, float(tolerance), float(over_split))
+        arcs = refine_arcs(arcs, smp, radius, conforming, tolerance, min_length, RATIO, over_split)
         if arcs is None:
             break
         # Only a handful of pieces near tips were split: triangulate once more and stop.
@@ -106,20 +109,15 @@ def rounds_from_scratch(
     return smp, tri, inside
 
 
-def _incremental(
-    rings: Rings, tolerance: float, min_length: float
-) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
-    """:func:`rounds_from_scratch`, each round inserting only its new samples; None where the kernel gives up."""
-    return incremental_sample(rings.region, rings.locator, ring_arrays(rings), tolerance, min_length)
-
-
 def incremental_sample(
     region: Any, locator: RegionLocator, closed: RingArrays, tolerance: float, min_length: float,
-    show_progress: bool | None = None,
+    show_progress: bool | None = None, over_split: float = OVER_SPLIT,
 ) -> tuple[BoundarySample, Triangulation, np.ndarray] | None:
-    """:func:`_incremental` from the parts of the rings it reads: ``region`` (the rings' region), its
-    ``locator`` and the rings' arrays ``closed`` (:func:`medialaxis.planar.corners.ring_arrays`);
-    ``show_progress`` False: no bar over the rounds (a layer has its own over the features)."""
+    """:func:`rounds_from_scratch`, each round inserting only its new samples; None where the kernel gives up.
+
+    It reads of the rings ``region`` (their region), its ``locator`` and the rings' arrays ``closed``
+    (:func:`medialaxis.planar.corners.ring_arrays`); ``show_progress`` False: no bar over the rounds (a layer
+    has its own over the features)."""
     # sample(rings, _start_arcs(...)) in one compiled call
     first, first_arc, first_ring, first_next = first_sample(
         closed.xy, closed.s, closed.start, _start_length(region, min_length), float(tolerance), float(min_length),
@@ -145,7 +143,8 @@ def incremental_sample(
                 round_, inserted, settled, MAX_REFINEMENTS, ONE_ROUND_ABOVE, count, x, y, tv, tn, batch, hint, near,
                 points, centre, radius, where, memo, arc, ring, nxt, 1e-7 * extent, locator.segments, locator.start,
                 locator.members, locator.y0, locator.height, closed.s, closed.xy, closed.start, closed.convex,
-                closed.touching, ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO, SETTLED_SHARE)
+                closed.touching, ring_length, lo, extent, shaken, float(tolerance), float(min_length), RATIO, SETTLED_SHARE,
+                float(over_split))
             for _ in range(now - round_):  # the rounds done, for the progress bar
                 next(rounds, None)
             round_, inserted = now, status in (ASK_GEOS, MORE_JITTER)

@@ -20,6 +20,7 @@ from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError
 from medialaxis.planar._axis_kernels import merged_nodes
+from medialaxis.planar._kernels import DRAWING_OVER_SPLIT, OVER_SPLIT
 from medialaxis.planar.adaptive import sample_and_triangulate
 from medialaxis.planar.axis import RawAxis, boundary_distance, raw_axis
 from medialaxis.planar.corners import ring_arrays
@@ -204,7 +205,8 @@ def sampled(
         rings = simplify_rings(region, tolerance if simplify else 0.0)
         _check_resolution(rings, size)
         min_length = max(tolerance, lam / 8.0)
-        smp, tri, inside = sample_and_triangulate(rings, rings.region, tolerance, min_length)
+        over_split = DRAWING_OVER_SPLIT if src.drawing is not None else OVER_SPLIT
+        smp, tri, inside = sample_and_triangulate(rings, rings.region, tolerance, min_length, over_split)
     if not inside.any():
         raise ComputationError("no Delaunay triangle lies inside the shape; is it degenerate?")
     return tolerance, lam, detour, rings, smp, tri, inside

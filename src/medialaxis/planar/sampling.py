@@ -166,6 +166,7 @@ def refine_arcs(
     tolerance: float,
     min_length: float,
     ratio: float = 0.5,
+    over_split: float = OVER_SPLIT,
 ) -> list[np.ndarray] | None:
     """Insert samples into the pieces that are too long; ``None`` when none is.
 
@@ -176,7 +177,7 @@ def refine_arcs(
     bounds the offset of a Voronoi vertex from the medial axis, about
     ``h**2 / (16 R)``, by ``tolerance``. Pieces that are not Delaunay edges are
     split too (conformity). Nothing is split below ``min_length``. Over-split
-    (:data:`~medialaxis.planar._kernels.OVER_SPLIT`, 2) so the radii, which
+    (``over_split`` times, :data:`~medialaxis.planar._kernels.OVER_SPLIT` by default) so the radii, which
     shrink as the sample gets denser near corners and tips, rarely need
     another round. Compiled
     (:func:`medialaxis.planar._kernels.split_pieces`);
@@ -184,7 +185,7 @@ def refine_arcs(
     """
     out, offsets = split_pieces(smp.arc, _offsets(arcs), smp.points, smp.next, smp.ring_length,
                                 np.asarray(piece_radius, np.float64), np.asarray(conforming, bool),
-                                float(tolerance), float(min_length), float(ratio))
+                                float(tolerance), float(min_length), float(ratio), float(over_split))
     if offsets[0] < 0:
         return None
     return [out[offsets[r] : offsets[r + 1]] for r in range(len(arcs))]
@@ -215,6 +216,7 @@ def refine_arcs_reference(
     tolerance: float,
     min_length: float,
     ratio: float = 0.5,
+    over_split: float = OVER_SPLIT,
 ) -> list[np.ndarray] | None:
     """NumPy version of :func:`refine_arcs` (for the tests)."""
     h = np.linalg.norm(smp.points[smp.next] - smp.points, axis=1)
@@ -222,7 +224,7 @@ def refine_arcs_reference(
     split = ((h > target) | ~conforming) & (h > 2.0 * min_length)
     if not split.any():
         return None
-    pieces = np.clip(np.ceil(OVER_SPLIT * h / target), 2, 64).astype(np.int64)
+    pieces = np.clip(np.ceil(over_split * h / target), 2, 64).astype(np.int64)
     out = []
     for r, a in enumerate(arcs):
         idx = np.flatnonzero(split & (smp.ring == r))
