@@ -140,7 +140,7 @@ def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> No
 @pytest.mark.parametrize("seed", range(12))
 def test_the_fast_whole_circles_are_the_sorted_scans(seed: int) -> None:
     """Circles repeated exactly, within the scan's 1e-9 and just beyond it, equal x of different circles, not finite."""
-    from medialaxis.planar._corner_kernels import _whole_circles, whole_circles
+    from medialaxis.planar._circle_kernels import _whole_circles, whole_circles
 
     rng = np.random.default_rng(seed)
     n = 400
@@ -161,3 +161,27 @@ def test_the_fast_whole_circles_are_the_sorted_scans(seed: int) -> None:
     corner = inside & (rng.random(n) < 0.3)
     np.testing.assert_array_equal(whole_circles(corner, inside, centres, radii),
                                   _whole_circles(corner, inside, centres, radii))
+
+
+@pytest.mark.parametrize("share", [0.0, 0.003, 0.05, 0.9])
+def test_the_whole_circles_buckets_find_what_the_sorted_scan_finds(share: float) -> None:
+    """One corner triangle, corners all at one x, few or most triangles corners: the bucketed search's answer."""
+    from medialaxis.planar._circle_kernels import _whole_circles, whole_circles
+
+    rng = np.random.default_rng(int(share * 1000))
+    n = 300
+    centres = rng.uniform(-5, 5, (n, 2))
+    radii = rng.uniform(0.1, 5, n)
+    inside = rng.random(n) < 0.95
+    corner = inside & (rng.random(n) < share)
+    twins = rng.integers(0, n, (80, 2))
+    centres[twins[:, 1]], radii[twins[:, 1]] = centres[twins[:, 0]], radii[twins[:, 0]]  # shared circles
+    c, u = np.flatnonzero(inside)[:2]  # a corner triangle whose circle an inside triangle shares: not a corner's
+    corner[c], corner[u] = True, False
+    centres[u], radii[u] = centres[c], radii[c]
+    for same_x in (False, True):
+        if same_x:
+            centres[corner, 0] = centres[corner][0, 0]
+        np.testing.assert_array_equal(whole_circles(corner, inside, centres, radii),
+                                      _whole_circles(corner, inside, centres, radii))
+        assert not whole_circles(corner, inside, centres, radii)[c]
