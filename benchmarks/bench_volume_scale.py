@@ -126,7 +126,7 @@ def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
         done = os.environ.get("BENCH_DONE")
         if done:
             Path(done).touch()  # the parent stops sampling the tree here
-        out["blocks"] = ma.metadata.get("blocks")
+        out["blocks"] = dict(ma.metadata.get("blocks") or {}, **(ma.metadata.get("timings") or {}))
         out["halo"] = ma.metadata.get("halo")
         out["mesh_halo"] = ma.metadata.get("mesh_halo")
         points, faces, radii = (read_ply(str(ply)) if tool == "cluster" else (ma.points, ma.faces, ma.radii))
@@ -261,18 +261,18 @@ def main() -> None:
         b = r.get("blocks")
         if b:
             print(f"{r['size']}^3 {r['tool']} x{r['jobs']}: {b['blocks']} blocks ({b['sheet_blocks']} with sheet), "
-                  f"first pass {b['medial_seconds']:.1f} s, mesh pass {b['mesh_seconds']:.1f} s "
-                  f"({b['mesh_block_seconds'] / max(b['sheet_blocks'], 1):.2f} s, "
-                  f"{b.get('mesh_block_cpu_seconds', float('nan')) / max(b['sheet_blocks'], 1):.2f} s CPU per sheet block), sheet "
+                  f"first pass {b['medial']:.1f} s, mesh pass {b['mesh']:.1f} s "
+                  f"({b['mesh_blocks'] / max(b['sheet_blocks'], 1):.2f} s, "
+                  f"{b.get('mesh_blocks_cpu', float('nan')) / max(b['sheet_blocks'], 1):.2f} s CPU per sheet block), sheet "
                   f"{b['sheet_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.2f} MiB and piece "
                   f"{b['piece_bytes'] / max(b['sheet_blocks'], 1) / 2**20:.3f} MiB per sheet block, "
                   f"{b['medial_voxels']} medial voxels, mesh halo {r.get('mesh_halo')}")
             if "cpu_seconds" in r:
                 halo = max(r.get("halo") or [0])
                 read = (r["chunks"] + 2 * halo) ** 3 * 2  # uint16 voxels each block reads (core and halo)
-                first = r["cpu_seconds"] - b.get("mesh_block_cpu_seconds", 0.0)
+                first = r["cpu_seconds"] - b.get("mesh_blocks_cpu", 0.0)
                 print(f"  CPU {r['cpu_seconds']:.0f} s in all: the rest (first pass, stitching) {first / b['blocks']:.2f} s CPU per block, "
-                      f"mesh {b.get('mesh_block_cpu_seconds', 0.0) / max(b['sheet_blocks'], 1):.2f} s CPU per sheet block; "
+                      f"mesh {b.get('mesh_blocks_cpu', 0.0) / max(b['sheet_blocks'], 1):.2f} s CPU per sheet block; "
                       f"each block reads {read / 2**20:.1f} MiB (halo {halo})")
     print(f"\nchunks=min({args.chunks}, size/2), n_jobs={args.jobs}; targets: peak <= 8 GiB at 1024^3, >= 2.6 M voxels/s (goal 5), "
           "p99 <= 1 voxel, >= 98% covered, one piece, thickness within 10% of 8")

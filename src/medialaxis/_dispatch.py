@@ -47,9 +47,11 @@ RESULT = "result"
 #: Options a saved result accepts: they re-prune it (see :meth:`MedialAxis.prune`).
 PRUNING_OPTIONS = ("lam", "detour")
 
-#: Re-pruning entry points, keyed by domain.
-REPRUNERS: dict[str, str] = {
-    "planar": "medialaxis.planar.pipeline:reprune",
+#: Re-pruning entry points, keyed by (domain, method): where lambda means something and the result keeps what
+#: it was selected from (the planar unpruned axis, the mesh Voronoi method's full complex).
+REPRUNERS: dict[tuple[str, str], str] = {
+    ("planar", "voronoi"): "medialaxis.planar.pipeline:reprune",
+    ("mesh", "voronoi"): "medialaxis.mesh.reprune:reprune",
 }
 
 #: File extensions per domain. ``.tif``/``.tiff``/``.npy`` are resolved by peeking.
@@ -184,10 +186,10 @@ def call_checked(fn: Callable[..., Any], shape: Any, options: Mapping[str, Any])
 
 def repruner(metadata: Mapping[str, Any]) -> Callable[..., Any]:
     """The re-pruning function of the domain that produced ``metadata``."""
-    domain = metadata.get("domain")
-    if domain not in REPRUNERS:
-        raise InvalidInputError(f"results of domain {domain!r} cannot be re-pruned")
-    return _load(REPRUNERS[domain])
+    key = (metadata.get("domain"), metadata.get("method"))
+    if key not in REPRUNERS:
+        raise InvalidInputError(f"results of the {key[0]!r} domain's {key[1]!r} method cannot be re-pruned")
+    return _load(REPRUNERS[key])  # type: ignore[index]
 
 
 def load_result(path: str | os.PathLike[str], method: str | None, options: Mapping[str, Any]) -> MedialAxis:

@@ -57,7 +57,7 @@ def reconstruction_error(
     else:
         from medialaxis.planar.inputs import load_planar
 
-        if "image_shape" in ma.metadata:
+        if ma.frame == "image":
             spacing = ma.metadata.get("spacing") if spacing is None else spacing
             foreground = ma.metadata.get("foreground", "auto") if foreground is None else foreground
         region = load_planar(shape, threshold=threshold, spacing=spacing, foreground=foreground or "auto").region

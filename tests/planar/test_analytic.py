@@ -139,7 +139,7 @@ def test_spacing_scales_index_coordinates():
     np.testing.assert_allclose(b.points[b.junctions][:, 0], 19.5 * 0.5, atol=0.3)
     # isotropic spacing scales everything
     np.testing.assert_allclose(np.sort(c.radii), np.sort(2 * a.radii), rtol=1e-9, atol=1e-9)
-    assert b.metadata["spacing"] == (0.5, 1.0)
+    assert b.metadata["spacing"] == [0.5, 1.0]
 
 
 def test_canny_route_gives_the_same_structure():

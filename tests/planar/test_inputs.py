@@ -49,7 +49,7 @@ def test_image_files(tmp_path, fmt):
     Image.fromarray(img).save(path)
     ma = mx.medial_axis(path)
     _check_rect(ma)
-    assert ma.metadata["image_shape"] == (80, 120)
+    assert ma.metadata["image_shape"] == [80, 120]
     assert 30 <= ma.metadata["threshold"] < 220
 
 

@@ -130,7 +130,7 @@ def save_match_picture(
     hue = np.linspace(0.0, 1.0, max(len(points_a), 1))
     for ma, ax, title, matched in zip((a, b), axes, titles, (points_a, points_b)):
         sig = shape_signature(ma, prune=prune)
-        raster = "image_shape" in ma.metadata
+        raster = ma.frame == "image"
 
         def xy(p: np.ndarray, raster: bool = raster) -> np.ndarray:
             return p[:, ::-1] if raster else p
@@ -172,7 +172,7 @@ def save_search_grid(query: Path, results: list[tuple[Path, float]], path: Path,
         draw_axis(ax, ma, color_by_radius=False, lw=1.0)
         ax.autoscale_view()
         ax.set_aspect("equal")
-        if "image_shape" in ma.metadata:
+        if ma.frame == "image":
             ax.invert_yaxis()
         ax.set_title(f"{title}\n{shape_path.name}", fontsize=9, color=colour)
         ax.set_xticks([])

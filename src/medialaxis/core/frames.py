@@ -30,7 +30,7 @@ PICTURE_SIZE = 800.0
 
 def from_image(ma: Any) -> bool:
     """A 2D result in image index order (row, column)."""
-    return ma.dim == 2 and "image_shape" in ma.metadata
+    return ma.dim == 2 and ma.frame == "image"
 
 
 def svg_drawing(ma: Any) -> Mapping[str, Any] | None:

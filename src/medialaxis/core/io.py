@@ -214,8 +214,11 @@ def check_kind(ma: MedialAxis, path: str | os.PathLike[str]) -> None:
         raise UnsupportedFormatError(f"{str(path)!r}: {reason}")
 
 
-def save(ma: MedialAxis, path: str | os.PathLike[str]) -> None:
+def save(ma: MedialAxis, path: str | os.PathLike[str], *, timings: bool = False) -> None:
     """Write ``ma`` to ``path``; the extension picks the format (see module docstring).
+
+    ``timings=True`` keeps the wall-clock ``metadata["timings"]`` in a
+    lossless file (``.json``, ``.npz``); it is left out by default.
 
     Raises
     ------
@@ -230,4 +233,7 @@ def save(ma: MedialAxis, path: str | os.PathLike[str]) -> None:
     if ext not in WRITERS:
         raise UnsupportedFormatError(f"unsupported output format {ext or '(none)'!r}; choose one of {', '.join(WRITERS)}")
     check_kind(ma, path)
-    WRITERS[ext](ma, path)
+    if timings and ext in LOSSLESS:
+        WRITERS[ext](ma, path, timings=True)  # type: ignore[call-arg]
+    else:
+        WRITERS[ext](ma, path)

@@ -15,7 +15,7 @@ __all__ = ["plot", "plot_axis", "png_bytes", "draw_region", "draw_axis"]
 
 def _xy(ma: Any, pts: np.ndarray) -> np.ndarray:
     # Raster results are (row, col): draw col to the right and row downwards.
-    return pts[:, ::-1] if "image_shape" in ma.metadata else pts
+    return pts[:, ::-1] if ma.frame == "image" else pts
 
 
 def draw_region(ax: Any, ma: Any, region: Any, **style: Any) -> None:

@@ -49,6 +49,6 @@ def reconstruct(ma: Any, *, raster: bool = False, resolution: int = 16) -> Any:
     geom = union_of_discs(ma.points, ma.radii, ma.edges, int(resolution))
     if not raster:
         return geom
-    if "image_shape" not in ma.metadata:
+    if ma.frame != "image":
         raise InvalidInputError("raster=True needs an axis computed from an image")
     return rasterize(geom, tuple(ma.metadata["image_shape"]), ma.metadata.get("spacing", (1.0, 1.0)))

@@ -6,13 +6,15 @@ import dataclasses
 from collections.abc import Mapping
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
 from medialaxis.core import graph as _graph
 from medialaxis.core import interop
+from medialaxis.core.branch import Branch
 from medialaxis.core.homology import betti_numbers
+from medialaxis.core.metadata import frozen_metadata
 from medialaxis.core.summary import branch_table
 from medialaxis.errors import InvalidInputError
 
@@ -34,41 +36,6 @@ def _frozen(array: Any, dtype: Any, width: int | None, name: str) -> np.ndarray:
 
 def _rebuild(*fields: Any) -> MedialAxis:
     return MedialAxis(*fields)
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class Branch:
-    """A chain of the axis between two nodes that are junctions or endpoints.
-
-    Attributes
-    ----------
-    indices : (p,) int64 ndarray
-        Point indices along the chain, in order. For a closed loop without
-        junctions the first index is repeated at the end.
-    points : (p, d) float64 ndarray
-        The chain's coordinates.
-    radii : (p,) float64 ndarray
-        The radius function along the chain.
-    """
-
-    indices: np.ndarray
-    points: np.ndarray
-    radii: np.ndarray
-
-    @property
-    def length(self) -> float:
-        """Polyline length of the chain."""
-        return float(np.linalg.norm(np.diff(self.points, axis=0), axis=1).sum())
-
-    @property
-    def is_cycle(self) -> bool:
-        """True when the chain closes on itself."""
-        return len(self.indices) > 1 and self.indices[0] == self.indices[-1]
-
-    def __repr__(self) -> str:
-        ends = "cycle" if self.is_cycle else f"{int(self.indices[0])}->{int(self.indices[-1])}"
-        radius = f"{self.radii.min():.4g}..{self.radii.max():.4g}" if len(self.radii) else "-"
-        return f"Branch({ends}, points={len(self.indices)}, length={self.length:.4g}, radius={radius})"
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -95,7 +62,11 @@ class MedialAxis:
         ``edge_contact_diameter`` (m,) here.
     metadata : mapping
         Method name, parameters actually used (``lam``, ``tolerance``...),
-        ``spacing`` and, for raster inputs, ``image_shape``.
+        ``spacing`` and, for raster inputs, ``image_shape``; wall-clock
+        seconds per stage under ``timings`` (left out of saved files unless
+        asked for). Read-only and JSON-like: text keys, lists, plain Python
+        numbers (:func:`~medialaxis.core.metadata.frozen_metadata`), so that
+        a saved result reads back equal.
     shape : object, optional
         The input region the axis belongs to, when the method keeps it: a
         shapely geometry for planar inputs, the input mesh (trimesh) for the
@@ -139,7 +110,7 @@ class MedialAxis:
             arr.setflags(write=False)
             extras[key] = arr
         set_(self, "extras", MappingProxyType(extras))
-        set_(self, "metadata", MappingProxyType(dict(self.metadata)))
+        set_(self, "metadata", frozen_metadata(self.metadata))
 
     def __reduce__(self) -> tuple[Any, ...]:
         # Read-only mappings do not pickle; rebuild from plain dicts (for
@@ -162,6 +133,29 @@ class MedialAxis:
             f"MedialAxis(method={method!r}, dim={self.dim}, points={len(self.points)}, "
             f"edges={len(self.edges)}, faces={len(self.faces)})"
         )
+
+    # ------------------------------------------------------------------ kind
+    @property
+    def domain(self) -> str | None:
+        """The input domain that made the result: ``"planar"``, ``"mesh"`` or ``"volume"`` (None if built by hand)."""
+        return self.metadata.get("domain")
+
+    @property
+    def method(self) -> str | None:
+        """The method that made the result (``"voronoi"``, ``"flow"``, ``"midsurface"``, ``"voxels"``), or None."""
+        return self.metadata.get("method")
+
+    @property
+    def frame(self) -> Literal["image", "world"]:
+        """``"image"``: array index order (row first) times ``spacing``; ``"world"``: the input's own coordinates."""
+        return "image" if "image_shape" in self.metadata else "world"
+
+    @property
+    def kind(self) -> str:
+        """``"planar curves"``, ``"space curves"``, ``"surfaces"`` or ``"voxel sets"`` (``outputs.result_kind``)."""
+        from medialaxis.core.outputs import result_kind
+
+        return result_kind(self)
 
     # ------------------------------------------------------------------ graph
     @property
@@ -230,7 +224,15 @@ class MedialAxis:
         return [Branch(c, self.points[c], self.radii[c]) for c in chains]
 
     def summary(self, *, style: str = "medialaxis") -> Any:
-        """One row per branch (a pandas DataFrame).
+        """A table of the result (a pandas DataFrame): what a row is follows :attr:`kind`.
+
+        Curves (``"planar curves"``, ``"space curves"``): one row per branch,
+        below. Surfaces: one row per sheet, with its area, thickness
+        min/mean/max and free and junction edge lengths
+        (:func:`medialaxis.core.summary.sheet_table`). Voxel sets: one row
+        per class of voxel, with counts and radii
+        (:func:`medialaxis.core.summary.voxel_count_table`). ``style="skan"``
+        is for curves only.
 
         Parameters
         ----------
@@ -247,6 +249,13 @@ class MedialAxis:
         -------
         pandas.DataFrame
         """
+        kind = self.kind
+        if kind in ("surfaces", "voxel sets"):
+            if style != "medialaxis":
+                raise InvalidInputError(f"style={style!r} is for curve skeletons; this result holds {kind}")
+            from medialaxis.core.summary import sheet_table, voxel_count_table
+
+            return sheet_table(self) if kind == "surfaces" else voxel_count_table(self)
         return branch_table(self, style=style)
 
     # ------------------------------------------------------------- notebook
@@ -343,6 +352,12 @@ class MedialAxis:
     def prune(self, lam: float | None = None, **options: Any) -> MedialAxis:
         """Re-prune the axis with another ``lam`` without recomputing it.
 
+        Planar results re-prune their unpruned axis (any ``lam`` and
+        ``detour``); mesh Voronoi results collapse their full complex down to
+        the facets at least ``lam`` wide, homotopy kept, and compact it again
+        (``lam`` at least the one it was computed with;
+        :func:`medialaxis.mesh.reprune.reprune`).
+
         Parameters
         ----------
         lam : float, optional
@@ -358,15 +373,17 @@ class MedialAxis:
         Raises
         ------
         InvalidInputError
-            If the result does not carry its unpruned axis.
+            If the result does not carry what it was pruned from, or its
+            method has no lambda to re-prune by (flow skeletons, volume results).
         """
-        if self.raw is None:
+        from medialaxis._dispatch import repruner
+
+        reprune = repruner(self.metadata)  # refuses the methods that have no lambda to re-prune by
+        if self.raw is None and "face_contact_diameter" not in self.extras:  # a mesh's full complex is its own
             raise InvalidInputError(
                 f"this {self.metadata.get('method', '?')!r} result keeps no unpruned axis to re-prune"
             )
-        from medialaxis._dispatch import repruner
-
-        return repruner(self.metadata)(self, lam=lam, **options)
+        return reprune(self, lam=lam, **options)
 
     def reconstruct(self, *, raster: bool = False, resolution: int = 64) -> Any:
         """Union of the medial balls.
@@ -387,14 +404,17 @@ class MedialAxis:
 
         return reconstruct(self, raster=raster, resolution=resolution)
 
-    def save(self, path: Any) -> None:
+    def save(self, path: Any, *, timings: bool = False) -> None:
         """Write the result; the format follows the extension.
 
-        ``.json`` and ``.npz`` are lossless (read back with
-        :func:`medialaxis.load`); ``.graphml``, ``.geojson`` export the graph;
+        ``.json`` and ``.npz`` are lossless (read back equal with
+        :func:`medialaxis.load`: arrays, metadata, the input shape and the
+        unpruned axis); ``.graphml``, ``.geojson`` export the graph;
         ``.svg`` draws the axis over the shape; ``.png`` plots it coloured by
         radius. The file is written to a temporary name, then renamed.
+        ``timings=True`` keeps the wall-clock ``metadata["timings"]`` in the
+        file (left out by default: the same result gives the same file).
         """
         from medialaxis.core.io import save
 
-        save(self, path)
+        save(self, path, timings=timings)

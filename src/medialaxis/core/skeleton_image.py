@@ -133,7 +133,7 @@ def to_image(ma: MedialAxis) -> SkeletonImage:
     >>> bool(skeleton[20, 40]), bool(skeleton[15, 40]), round(float(distance[20, 40]))
     (True, False, 10)
     """
-    if "image_shape" not in ma.metadata:
+    if ma.frame != "image":
         method = ma.metadata.get("method", "?")
         raise InvalidInputError(
             f"to_image() draws the axis on the input's pixel grid, and this {method!r} result came from an input "

@@ -1,4 +1,5 @@
-"""A table of branches (one row per chain between junctions and endpoints), as skan's ``summarize``.
+"""Tables of a result: branches of curves (one row per chain between junctions and endpoints, as skan's
+``summarize``), sheets of surfaces, classes of voxel sets.
 
 Two column sets over the same rows: ours (``style="medialaxis"``, the
 default) and skan's (``style="skan"``: the names, branch-type codes and
@@ -20,7 +21,7 @@ from medialaxis.errors import InvalidInputError
 if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.core.result import MedialAxis
 
-__all__ = ["branch_table", "BRANCH_KINDS", "STYLES"]
+__all__ = ["branch_table", "sheet_table", "voxel_count_table", "BRANCH_KINDS", "STYLES"]
 
 #: Branch kinds by the degrees of their two ends; the position is skan's
 #: ``branch_type`` code (0 endpoint-endpoint, 1 junction-endpoint,
@@ -83,7 +84,7 @@ def _medialaxis_table(pd: Any, ma: MedialAxis, rows: list[dict[str, Any]]) -> An
 
 def _skan_table(pd: Any, ma: MedialAxis, rows: list[dict[str, Any]]) -> Any:
     dim = ma.points.shape[1]
-    spacing = ma.metadata.get("spacing") if "image_shape" in ma.metadata else None
+    spacing = ma.metadata.get("spacing") if ma.frame == "image" else None
     _, skeleton_id = np.unique(np.asarray([row["component"] for row in rows], np.int64), return_inverse=True)
     table: dict[str, Any] = {
         "skeleton_id": skeleton_id.reshape(-1).astype(np.int64),
@@ -165,3 +166,78 @@ def branch_table(ma: MedialAxis, *, style: str = "medialaxis") -> Any:
     pd = _optional.require("pandas", "pandas")
     rows = _rows(ma)
     return _skan_table(pd, ma, rows) if style == "skan" else _medialaxis_table(pd, ma, rows)
+
+
+def sheet_table(ma: MedialAxis) -> Any:
+    """One row per sheet of a surface result: its triangles joined across the edges two of them share.
+
+    Columns: ``sheet`` (numbered from 0, largest area first), ``faces``,
+    ``area``, ``thickness_min``, ``thickness_mean`` (area-weighted over its
+    corners), ``thickness_max`` (thickness: twice the radius),
+    ``free_edge_length`` (sides of one triangle only: where the sheet ends)
+    and ``junction_edge_length`` (sides of three or more triangles: where
+    sheets meet). Curve pieces of the result are not sheets.
+
+    Examples
+    --------
+    >>> import medialaxis as mx
+    >>> square = mx.MedialAxis([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [0.5] * 4, faces=[[0, 1, 2], [0, 2, 3]])
+    >>> row = sheet_table(square).iloc[0]
+    >>> float(row["area"]), float(row["thickness_mean"]), float(row["free_edge_length"])
+    (1.0, 1.0, 4.0)
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    pd = _optional.require("pandas", "pandas")
+    faces = np.asarray(ma.faces, np.int64)
+    k, n = len(faces), len(ma.points)
+    sides = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    _, side, uses = np.unique(sides[:, 0] * n + sides[:, 1], return_inverse=True, return_counts=True)
+    side = side.reshape(-1)
+    owner = np.repeat(np.arange(k), 3)
+    # triangles on a side of exactly two: joined (the side's two entries, after sorting by side)
+    order = np.argsort(side, kind="stable")
+    pair = (uses[side[order]] == 2)[:-1] & (side[order][1:] == side[order][:-1])
+    a, b = owner[order][:-1][pair], owner[order][1:][pair]
+    _, label = connected_components(coo_matrix((np.ones(len(a)), (a, b)), shape=(k, k)), directed=False)
+    tri = np.asarray(ma.points, np.float64)[faces]
+    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    length = np.linalg.norm(ma.points[sides[:, 0]] - ma.points[sides[:, 1]], axis=1)
+    thick = 2.0 * np.asarray(ma.radii, np.float64)[faces]
+    n_sheets = int(label.max()) + 1 if k else 0
+    sheet_area = np.bincount(label, area, n_sheets)
+    rows = {
+        "faces": np.bincount(label, minlength=n_sheets),
+        "area": sheet_area,
+        "thickness_min": np.full(n_sheets, np.inf),
+        "thickness_mean": np.bincount(label, area * thick.mean(axis=1), n_sheets) / np.maximum(sheet_area, 1e-300),
+        "thickness_max": np.zeros(n_sheets),
+        "free_edge_length": np.bincount(label[owner], length * (uses[side] == 1), n_sheets),
+        # a junction side is counted once for each sheet it bounds
+        "junction_edge_length": np.bincount(label[owner], length * (uses[side] >= 3), n_sheets),
+    }
+    np.minimum.at(rows["thickness_min"], label, thick.min(axis=1))
+    np.maximum.at(rows["thickness_max"], label, thick.max(axis=1))
+    table = pd.DataFrame(rows).sort_values("area", ascending=False, kind="stable").reset_index(drop=True)
+    table.insert(0, "sheet", np.arange(n_sheets))
+    return table
+
+
+def voxel_count_table(ma: MedialAxis) -> Any:
+    """One row per class of voxel of a voxel set (``extras["voxel_kind"]``, named by ``metadata["voxel_kinds"]``).
+
+    Columns: ``kind``, ``voxels``, ``radius_min``, ``radius_mean``,
+    ``radius_max``; one row ``"all"`` when the result has no classes.
+    """
+    pd = _optional.require("pandas", "pandas")
+    radii = np.asarray(ma.radii, np.float64)
+    codes = np.asarray(ma.extras["voxel_kind"], np.int64) if "voxel_kind" in ma.extras else np.zeros(len(radii), np.int64)
+    names = ma.metadata.get("voxel_kinds") if "voxel_kind" in ma.extras else ("all",)
+    rows = []
+    for code in np.unique(codes) if len(codes) else []:
+        r = radii[codes == code]
+        name = names[code] if names is not None and 0 <= code < len(names) else str(int(code))
+        rows.append({"kind": name, "voxels": len(r), "radius_min": float(r.min()), "radius_mean": float(r.mean()),
+                     "radius_max": float(r.max())})
+    return pd.DataFrame(rows, columns=["kind", "voxels", "radius_min", "radius_mean", "radius_max"])

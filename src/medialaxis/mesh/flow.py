@@ -343,8 +343,7 @@ def flow_skeleton(
         "repairs": list(repairs),
         "refined_vertices": refined,
         "n_vertices": n_input,
-        "flow_seconds": t_flow,
-        "seconds": time.perf_counter() - t_start,
+        "timings": {"flow": t_flow, "total": time.perf_counter() - t_start},
     }
     return MedialAxis(
         nodes, radii, node_edges, extras={"correspondence": correspondence}, metadata=metadata, shape=clean

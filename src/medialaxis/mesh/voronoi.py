@@ -173,7 +173,8 @@ def voronoi_medial_axis(
         (k,) the Delaunay edge length of each triangle's facet,
         ``face_certified`` (k,) whether that facet is one of Algorithm 5 (at least
         ``lam`` wide, all vertices inside and no nearer the mesh than their circumradius
-        minus ``EMPTY_BALL_SLACK`` epsilons) rather than kept for topology. Metadata:
+        minus ``EMPTY_BALL_SLACK`` epsilons) rather than kept for topology, ``face_thin`` (k,)
+        whether it spans a part thinner than ``lam`` (kept whatever lambda). Metadata:
         ``lam``, ``epsilon`` (measured ``max d(x, P)``), ``epsilon_lfs``
         (the same relative to the estimated local feature size),
         ``lam_bound`` (the lambda of Algorithm 5 step 3 as we read the
@@ -374,6 +375,7 @@ def voronoi_medial_axis(
         "closest": closest[used],
         "face_contact_diameter": cx.face_length,
         "face_certified": cx.face_certified,
+        "face_thin": cx.face_thin,
         "inside": inside,
         "contacts": dt.points[dt.simplices[used]],
     }

@@ -84,6 +84,8 @@ class MedialComplex:
     face_certified : (k,) bool ndarray
         The facet is at least lambda wide and all its vertices are inside
         (a facet of Algorithm 5); the others are kept for topology only.
+    face_thin : (k,) bool ndarray
+        The facet spans a thin part (kept whatever lambda; ``THIN_SPACINGS``).
     edges : (m, 2) int64 ndarray
         Curve pieces (no facet), then facet sides on the surface boundary or
         where three or more facets meet.
@@ -97,6 +99,7 @@ class MedialComplex:
     faces: np.ndarray
     face_length: np.ndarray
     face_certified: np.ndarray
+    face_thin: np.ndarray
     edges: np.ndarray
     n_curve_edges: int
     facet_ij: np.ndarray
@@ -355,12 +358,13 @@ def medial_complex(
         keep &= ~open_cells(dt, inner, edge_ij, keep, length)
     ring_ptr, ring_tets = _select(ring_ptr, ring_tets, keep)
     length = length[keep]
-    wide = length >= lam
+    wide, thin = length >= lam, np.zeros(len(length), bool)
     if spacing is not None:
         pairs = edge_ij[keep]
         local = np.maximum(spacing[pairs[:, 0]], spacing[pairs[:, 1]])
         ball = ring_max(ring_ptr, ring_tets, dt.radii)
-        wide |= (length >= THIN_SPACINGS * local) & (length >= THIN_SPAN * ball)
+        thin = (length >= THIN_SPACINGS * local) & (length >= THIN_SPAN * ball)
+        wide |= thin
     if topology != "lambda":
         tets = unique_ints(ring_tets[np.repeat(wide, np.diff(ring_ptr))])
         medial[tets] = centre_inside(tets)
@@ -397,7 +401,7 @@ def medial_complex(
         kept[ring_tets] = True
         kept[curve.ravel()] = True
         alone = _last_points(lost_components(inner, side_ends, kept), dt, centre_inside, spacing)
-    length, certified = length[alive], certified[alive]
+    length, certified, thin = length[alive], certified[alive], thin[alive]
     tris, owner = fan_triangles(ring_ptr, ring_tets)
     border_ids = odd_sides(side_id, 4 * n_tets)
     border = _by_ends(np.c_[border_ids // 4, dt.neighbors.ravel()[border_ids]], n_tets)
@@ -405,5 +409,5 @@ def medial_complex(
     new_index = np.full(n_tets, -1, np.int64)
     new_index[used] = np.arange(len(used))
     edges = new_index[np.concatenate([curve, border]).astype(np.int64)].reshape(-1, 2)
-    return MedialComplex(used, new_index[tris].reshape(-1, 3), length[owner], certified[owner], edges, n_curve,
-                         edge_ij[keep][alive])
+    return MedialComplex(used, new_index[tris].reshape(-1, 3), length[owner], certified[owner], thin[owner], edges,
+                         n_curve, edge_ij[keep][alive])

@@ -354,7 +354,8 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
                          "chunks": list(state["chunks"]), "halo": state["halo"].tolist(),
                          "mesh_halo": max(c["halo"] for c in counts), "decompressed": _decompressed(source),
-                         "blocks": _block_figures(state, counts, folder, medial_seconds, time.perf_counter() - started)})
+                         "blocks": _block_figures(state, counts, folder),
+                         "timings": _block_timings(counts, medial_seconds, time.perf_counter() - started)})
         shell = shell_of_source(source, state["iso"], state["spacing"])
         if out is not None:
             vertices, faces = stream_out(out, folder, counts, state["chunks"], [i for _, i in state["items"]], source,
@@ -370,20 +371,24 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def _block_figures(state: dict[str, Any], counts: list[dict[str, Any]], folder: str, medial_seconds: float,
-                   seconds: float) -> dict[str, float]:
-    """Costs per block (for planning a cluster): seconds of the passes, bytes of the sheets and pieces."""
+def _block_figures(state: dict[str, Any], counts: list[dict[str, Any]], folder: str) -> dict[str, int]:
+    """Sizes per block (for planning a cluster): blocks, bytes of the sheets and pieces, medial voxels."""
     sheets = sum(f.stat().st_size for f in Path(folder).glob("sheet_*.npz"))
-    return {"blocks": len(state["items"]), "sheet_blocks": len(counts), "medial_seconds": medial_seconds,
-            "mesh_seconds": seconds - medial_seconds, "mesh_block_seconds": float(sum(c["seconds"] for c in counts)),
-            "mesh_block_cpu_seconds": float(sum(c["cpu_seconds"] for c in counts)),
-            "sheet_bytes": sheets, "piece_bytes": int(sum(c["bytes"] for c in counts)),
-            "medial_voxels": int(sum(p.count for p in state["parts"]))}
+    return {"blocks": len(state["items"]), "sheet_blocks": len(counts), "sheet_bytes": sheets,
+            "piece_bytes": int(sum(c["bytes"] for c in counts)), "medial_voxels": int(sum(p.count for p in state["parts"]))}
+
+
+def _block_timings(counts: list[dict[str, Any]], medial_seconds: float, seconds: float) -> dict[str, float]:
+    """Seconds of the two passes (wall clock), and the mesh pass's blocks summed (wall clock and CPU)."""
+    return {"medial": medial_seconds, "mesh": seconds - medial_seconds,
+            "mesh_blocks": float(sum(c["seconds"] for c in counts)),
+            "mesh_blocks_cpu": float(sum(c["cpu_seconds"] for c in counts)), "total": seconds}
 
 
 def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], spill: Any = None, **options: Any) -> MedialAxis:
     """The medial voxels of a volume by blocks (``method="voxels"``)."""
     from medialaxis.volume.polygonize import classify_voxels
+    from medialaxis.volume.regions import VOXEL_KINDS
     from medialaxis.volume.voxel_table import voxel_table
 
     folder = _sheet_folder(spill)
@@ -399,7 +404,8 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], spill: Any = No
         kind = classify_voxels(voxel_table(medial.voxels, grid.shape), medial.voxels)
         metadata = stage_metadata("voxels", state["iso"], plates, state["lam"], dropped, state["spacing"], source.shape,
                                   threshold_method=state["threshold_method"])
-        metadata.update({"chunks": list(state["chunks"]), "halo": state["halo"].tolist(), "decompressed": _decompressed(source)})
+        metadata.update({"chunks": list(state["chunks"]), "halo": state["halo"].tolist(), "decompressed": _decompressed(source),
+                         "voxel_kinds": VOXEL_KINDS})
         return MedialAxis(
             grid.physical(medial.voxels), medial.radius,
             extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},

@@ -172,6 +172,7 @@ def volume_stages(
     t0 = time.perf_counter()
     shell = isosurface_shell(src)
     timings["shell"] = time.perf_counter() - t0
+    metadata["timings"] = timings
     result, steps = assemble(state, metadata, shell)
     return VolumeStages(src, state["features"], state["thickness"], state["lam"], state["medial"], state["mesh"], result,
                         timings, steps)
@@ -394,7 +395,7 @@ def medial_voxel_axis(
     >>> len(ma.faces), sorted(set(ma.points[:, 0].tolist()))
     (0, [9.0])
     """
-    from medialaxis.volume.polygonize import classify_voxels
+    from medialaxis.volume.regions import VOXEL_KINDS, classify_voxels
     from medialaxis.volume.voxel_table import voxel_table
 
     sizes = use_chunks(volume, chunks, scheduler, raw_shape, raw_dtype)
@@ -402,6 +403,7 @@ def medial_voxel_axis(
         return chunked_voxels(volume, chunks=sizes, iso=_iso(iso, threshold), thickness=thickness, lam=lam,
                               spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype, scheduler=scheduler,
                               n_jobs=n_jobs, show_progress=show_progress)
+    started = time.perf_counter()
     src = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
     features = feature_transform(src)
     plates, lam_value = _thickness_and_lam(features, thickness, lam)
@@ -410,6 +412,7 @@ def medial_voxel_axis(
     kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
     metadata = stage_metadata("voxels", src.iso, plates, lam_value, dropped, src.spacing, src.mask.shape,
                               threshold_method=src.threshold_method)
+    metadata.update(voxel_kinds=VOXEL_KINDS, timings={"total": time.perf_counter() - started})
     return MedialAxis(
         features.physical(medial.voxels), medial.radius,
         extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},

@@ -21,6 +21,8 @@ __all__ = ["SURFACE", "BOUNDARY", "JUNCTION", "EXTENSION", "classify_voxels", "s
 
 #: Vertex / voxel classes.
 SURFACE, BOUNDARY, JUNCTION, EXTENSION = 0, 1, 2, 3
+#: The names of those codes, as voxel results give them (``metadata["voxel_kinds"]``).
+VOXEL_KINDS = ("surface", "boundary", "junction", "extension")
 
 
 def _neighbours(table: VoxelTable | np.ndarray, voxels: np.ndarray) -> np.ndarray:
