@@ -34,7 +34,7 @@ METHODS: dict[str, dict[str, str]] = {
     },
     "volume": {
         "midsurface": "medialaxis.volume.pipeline:midsurface_medial_axis",
-        "voxels": "medialaxis.volume.pipeline:medial_voxel_axis",
+        "voxels": "medialaxis.volume.voxel_axis:medial_voxel_axis",
     },
 }
 

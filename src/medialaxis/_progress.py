@@ -1,14 +1,44 @@
-"""Progress bars (tqdm, shown only on a terminal) and cooperative cancellation."""
+"""Progress bars (tqdm, shown only on a terminal), the callback protocol of every method, and cooperative
+cancellation."""
 
 from __future__ import annotations
 
+import dataclasses
+import itertools
 import sys
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any, TypeVar
 
 from medialaxis.errors import Cancelled
 
-__all__ = ["progress", "check_cancel"]
+__all__ = ["Progress", "progress", "check_cancel", "stage_callback"]
+
+
+@dataclasses.dataclass(frozen=True)
+class Progress:
+    """What the ``callback`` of every method receives, at each stage or step; a callback returning ``False`` cancels.
+
+    Attributes
+    ----------
+    method : str
+        ``"flow"``, ``"midsurface"`` or ``"voxels"``.
+    stage : str
+        The stage about to run (``"distance"``, a block pass ...) or ``"diffusion flow"``.
+    step : int
+        How many calls came before this one in this run (from 0).
+    total : int or None
+        How many calls the run makes, when known.
+    state : object
+        What the method shows of its work, or None: the flow's
+        :class:`~medialaxis.mesh.flow_mesh.FlowState` (the contracting mesh, for a
+        progressive display).
+    """
+
+    method: str
+    stage: str
+    step: int
+    total: int | None = None
+    state: Any = None
 
 T = TypeVar("T")
 
@@ -44,3 +74,11 @@ def check_cancel(callback: Any, state: Any) -> None:
     """Call a user ``callback(state)``; a return value of ``False`` cancels."""
     if callback is not None and callback(state) is False:
         raise Cancelled("cancelled by callback")
+
+
+def stage_callback(callback: Callable[[Progress], Any] | None, method: str) -> Callable[[str], Any] | None:
+    """A user's ``callback(Progress)`` as a ``callback(stage)`` (of tasks that name their stage only), counting calls."""
+    if callback is None:
+        return None
+    calls = itertools.count()
+    return lambda stage: callback(Progress(method, stage, next(calls)))

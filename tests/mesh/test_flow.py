@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 import medialaxis as mx
+from medialaxis._progress import Progress
 from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.flow import FlowState, nonmanifold_vertices
 from medialaxis.mesh.flow_samples import capsules_mesh, segment_distance, tripod_mesh, tripod_segments
@@ -132,8 +133,11 @@ def test_two_components_give_two_skeletons():
 
 # ------------------------------------------------------------ user control
 def test_callback_sees_every_step(capsule):
-    states: list[FlowState] = []
-    sk = mx.medial_axis(capsule, method="flow", callback=states.append)
+    heard: list[Progress] = []
+    sk = mx.medial_axis(capsule, method="flow", callback=heard.append)
+    assert {(p.method, p.stage, p.total) for p in heard} == {("flow", "diffusion flow", 60)}  # the default max_steps
+    assert [p.step for p in heard] == list(range(len(heard)))
+    states: list[FlowState] = [p.state for p in heard]
     assert [s.step for s in states] == list(range(1, sk.metadata["steps"] + 1))
     assert states[-1].frozen.all()
     assert states[0].positions.shape == (len(states[0].frozen), 3)
@@ -145,7 +149,7 @@ def test_callback_sees_every_step(capsule):
 
 def test_callback_can_cancel(capsule):
     with pytest.raises(mx.Cancelled):
-        mx.medial_axis(capsule, method="flow", callback=lambda state: False)
+        mx.medial_axis(capsule, method="flow", callback=lambda progress: False)
 
 
 def test_fixed_point_is_reached_and_connected(capsule):

@@ -108,7 +108,11 @@ def test_a_callback_cancels_between_blocks(small16):
 
     with pytest.raises(Cancelled):
         mx.medial_axis(small16, chunks=16, n_jobs=1, callback=stop)
-    assert len(seen) == 3
+    assert len(seen) == 3 and [(p.method, p.step) for p in seen] == [("midsurface", k) for k in range(3)]
+    seen.clear()
+    with pytest.raises(Cancelled):
+        mx.medial_axis(small16, method="voxels", chunks=16, n_jobs=1, callback=stop)
+    assert [(p.method, p.step) for p in seen] == [("voxels", k) for k in range(3)]
 
 
 def test_anisotropic_voxels_give_the_same_voxels(small16, same_voxels):

@@ -124,8 +124,26 @@ def test_voxels_method(small_t):
 
 
 def test_callback_cancels(flat_plate):
+    heard = []
+
+    def until_polygonize(progress):
+        heard.append(progress)
+        return progress.stage != "polygonize"
+
     with pytest.raises(mx.Cancelled):
-        mx.medial_axis(flat_plate, method="midsurface", callback=lambda stage: stage != "polygonize")
+        mx.medial_axis(flat_plate, method="midsurface", callback=until_polygonize)
+    assert [(p.method, p.stage, p.step, p.total) for p in heard] == [
+        ("midsurface", stage, k, 6) for k, stage in enumerate(("binarize", "distance", "medial voxels", "polygonize"))]
+
+
+def test_the_voxel_route_reports_its_stages_and_cancels(flat_plate):
+    from medialaxis.volume.voxel_axis import STAGES
+
+    heard = []
+    ma = mx.medial_axis(flat_plate, method="voxels", callback=heard.append)
+    assert len(ma.points) and [(p.method, p.stage, p.step) for p in heard] == [("voxels", s, k) for k, s in enumerate(STAGES)]
+    with pytest.raises(mx.Cancelled):
+        mx.medial_axis(flat_plate, method="voxels", callback=lambda progress: progress.stage != "classify")
 
 
 def test_reproducible_for_a_seed(small_t):

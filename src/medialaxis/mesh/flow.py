@@ -49,7 +49,7 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import linalg as splinalg
 
-from medialaxis._progress import check_cancel, progress
+from medialaxis._progress import Progress, check_cancel, progress
 from medialaxis.core import graph as _graph
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.result import MedialAxis
@@ -85,7 +85,7 @@ def flow_skeleton(
     fixed_points: Any = None,
     region: Any = None,
     curvature_threshold: float | None = None,
-    callback: Callable[[FlowState], Any] | None = None,
+    callback: Callable[[Progress], Any] | None = None,
     max_steps: int | None = None,
     attraction: float = 4.0,
     collapse: float = 0.01,
@@ -126,8 +126,9 @@ def flow_skeleton(
         the tips, at the centres of their inner balls. Patches of total
         curvature below ``MIN_TIP_CURVATURE`` (pi/16) are noise and ignored.
     callback : callable, optional
-        ``callback(FlowState)`` after every step; returning ``False`` cancels
-        (:class:`~medialaxis.errors.Cancelled`).
+        ``callback(Progress)`` after every step, its ``state`` the
+        :class:`~medialaxis.mesh.flow_mesh.FlowState` (the contracting mesh);
+        returning ``False`` cancels (:class:`~medialaxis.errors.Cancelled`).
     max_steps : int, optional
         Upper bound on the steps (default 60). Vertices still moving then are
         frozen where they are and ``metadata["converged"]`` is ``False``.
@@ -284,7 +285,8 @@ def flow_skeleton(
         # a vertex is skeletal once its one-ring has collapsed or it has stopped
         collapsed = ~frozen & ((ops.vertex_areas(p, faces) < collapse * mass0) | (moved < settle))
         frozen = frozen | collapsed
-        check_cancel(callback, FlowState(step, readonly(p), readonly(frozen), readonly(faces), step * dt_rel))
+        state = FlowState(step, readonly(p), readonly(frozen), readonly(faces), step * dt_rel)
+        check_cancel(callback, Progress("flow", "diffusion flow", step - 1, max_steps, state))
         if frozen.all():
             converged = True
             break

@@ -19,7 +19,7 @@ __all__ = ["FrameWriter"]
 
 
 class FrameWriter:
-    """Callback that saves each :class:`~medialaxis.mesh.flow.FlowState`.
+    """Callback that saves each :class:`~medialaxis.mesh.flow_mesh.FlowState` the flow reports (``Progress.state``).
 
     Parameters
     ----------
@@ -59,7 +59,8 @@ class FrameWriter:
         self._subset: np.ndarray | None = None
         self._first_mesh: tuple[np.ndarray, np.ndarray] = (np.zeros((0, 3)), np.zeros((0, 3), np.int64))
 
-    def __call__(self, state: Any) -> None:
+    def __call__(self, progress: Any) -> None:
+        state = getattr(progress, "state", progress)  # the flow's Progress, or its FlowState itself
         trimesh = require("trimesh", "medialaxis[mesh]")
         colours = np.where(state.frozen[:, None], [[220, 40, 40, 255]], [[170, 170, 170, 255]]).astype(np.uint8)
         mesh = trimesh.Trimesh(np.asarray(state.positions), np.asarray(state.faces), vertex_colors=colours, process=False)

@@ -22,10 +22,12 @@ from __future__ import annotations
 
 import time
 import warnings
+from collections.abc import Callable
 from typing import Any, Literal
 
 import numpy as np
 
+from medialaxis._progress import Progress, check_cancel
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import (
@@ -85,6 +87,7 @@ def voronoi_medial_axis(
     repair: bool = False,
     rng: Any = 0,
     compact: bool = True,
+    callback: Callable[[Progress], Any] | None = None,
 ) -> MedialAxis:
     """Lambda-medial surface of a closed mesh from the Voronoi diagram of a surface sample.
 
@@ -156,6 +159,9 @@ def voronoi_medial_axis(
         box's its few planar sheets) and flat sheets take few triangles;
         ``ma.raw`` is the full complex. ``False``: the full complex, every
         Voronoi facet kept. ``simplify`` starts from the complex chosen here.
+    callback : callable, optional
+        ``callback(Progress)`` before each stage (``"sampling"`` with the tetrahedralisation, ``"inside"``,
+        ``"facets"``, ``"compact"``, ``"simplify"``); returning ``False`` cancels.
 
     Returns
     -------
@@ -242,6 +248,12 @@ def voronoi_medial_axis(
         if simplify is None:
             raise InvalidInputError("simplify_mode needs simplify or simplify_error")
         check_simplify(simplify, simplify_mode)
+    stages = ["sampling", "inside", "facets"] + ["compact"] * bool(compact) + ["simplify"] * (simplify is not None)
+
+    def stage(name: str) -> None:
+        check_cancel(callback, Progress("voronoi", name, stages.index(name), len(stages)))
+
+    stage("sampling")
     while True:  # once more on the surface of the solid if the mesh passes through itself
         diag = float(np.linalg.norm(np.ptp(np.asarray(work.vertices), axis=0)))
         t0 = time.perf_counter()
@@ -273,6 +285,7 @@ def voronoi_medial_axis(
                 raise dt
             dt = None
         if not len(pairs):
+            stage("inside")
             t0 = time.perf_counter()
             inner = inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
             union_volume = float(dt.volume[inner].sum())
@@ -297,6 +310,7 @@ def voronoi_medial_axis(
             f"{src.volume:.6g} ({100 * abs(union_volume / src.volume - 1):.2g}% apart): the sample may miss thin or "
             "sharp parts; raise samples", MedialAxisWarning, stacklevel=2)
 
+    stage("facets")
     t0, n_tets = time.perf_counter(), len(dt.simplices)
     signed = np.full(n_tets, np.inf)  # of the circumcentres queried (negative inside)
     closest = np.full((n_tets, 3), np.nan)
@@ -383,6 +397,7 @@ def voronoi_medial_axis(
     if compact:
         from medialaxis.mesh.compact import COMPACT_TOLERANCE, compact_medial_axis
 
+        stage("compact")
         t0 = time.perf_counter()
         contact_faces = smp.face[dt.simplices[used]]  # the faces of each sphere's four samples
         result = compact_medial_axis(
@@ -401,4 +416,5 @@ def voronoi_medial_axis(
         return result
     from medialaxis.mesh.qmat import simplify_medial_mesh
 
+    stage("simplify")
     return simplify_medial_mesh(result, simplify, surface=src.mesh, signed=sd, mode=simplify_mode)

@@ -7,8 +7,9 @@ medial voxels. Both are reached through :func:`medialaxis.medial_axis`.
 """
 
 from medialaxis.volume.inputs import VolumeInput, load_volume
-from medialaxis.volume.pipeline import VolumeStages, medial_voxel_axis, midsurface_medial_axis, volume_stages
+from medialaxis.volume.pipeline import VolumeStages, midsurface_medial_axis, volume_stages
 from medialaxis.volume.readers import read_volume
+from medialaxis.volume.voxel_axis import medial_voxel_axis
 
 __all__ = [
     "midsurface_medial_axis",

@@ -44,7 +44,7 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis._progress import check_cancel
+from medialaxis._progress import Progress, check_cancel, stage_callback
 from medialaxis.core.parallel import check_jobs, check_scheduler, run_tasks
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.scene3d import Surface
@@ -163,7 +163,8 @@ def _sheet(parts: list[SheetPart]) -> tuple[MedialVoxels, Grid | None, int]:
 def chunked_medial_voxels(
     volume: Any, *, chunks: tuple[int, int, int], iso: Any = None, thickness: Any = None, lam: Any = None,
     spacing: Any = None, raw_shape: Any = None, raw_dtype: Any = None, scheduler: Any = None, n_jobs: int | None = None,
-    callback: Callable[[str], Any] | None = None, show_progress: bool | None = None, folder: str,
+    callback: Callable[[Progress], Any] | None = None, show_progress: bool | None = None, folder: str,
+    method: str = "midsurface",
 ) -> dict[str, Any]:
     """Passes 1-3: the medial voxels of a volume, block by block, each block's written to ``folder``.
 
@@ -183,10 +184,12 @@ def chunked_medial_voxels(
 
         jobs = _local_jobs(n_jobs, chunks)
 
+        heard = stage_callback(callback, method)  # the passes and their blocks
+
         def run(fn: Callable[..., Any], items: list[Any], *args: Any, desc: str) -> list[Any]:
-            check_cancel(callback, desc)
+            check_cancel(heard, desc)
             return run_tasks(fn, items, *args, scheduler=scheduler, n_jobs=jobs, desc=desc,
-                             show_progress=show_progress, callback=callback)
+                             show_progress=show_progress, callback=heard)
 
         iso_value, minimum, threshold_method = block_iso(source, blocks, iso, run)
         unit = float(spacing.min())
@@ -394,7 +397,7 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], spill: Any = No
     folder = _sheet_folder(spill)
     source = None
     try:
-        state = chunked_medial_voxels(volume, chunks=chunks, folder=folder, **options)
+        state = chunked_medial_voxels(volume, chunks=chunks, folder=folder, method="voxels", **options)
         source = state["source"]
         grid, plates = state["grid"], state["plates"]
         medial = load_sheet(folder, [i for _, i in state["items"]])

@@ -25,11 +25,11 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis._progress import check_cancel, progress
+from medialaxis._progress import Progress, check_cancel, progress
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
-from medialaxis.volume.chunked import check_out, chunked_midsurface, chunked_voxels, use_chunks
+from medialaxis.volume.chunked import check_out, chunked_midsurface, use_chunks
 from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
@@ -48,7 +48,7 @@ from medialaxis.volume.stages import (
 )
 from medialaxis.volume.stitch import write_zarr_mesh
 
-__all__ = ["midsurface_medial_axis", "medial_voxel_axis", "volume_stages", "VolumeStages"]
+__all__ = ["midsurface_medial_axis", "volume_stages", "VolumeStages", "iso_of", "thickness_and_lam"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -84,13 +84,14 @@ class VolumeStages:
     steps: dict[str, MedialAxis] = dataclasses.field(default_factory=dict)
 
 
-def _iso(iso: Any, threshold: Any) -> Any:
+def iso_of(iso: Any, threshold: Any) -> Any:
+    """The iso level given as ``iso`` or ``threshold`` (they must agree)."""
     if iso is not None and threshold is not None and float(iso) != float(threshold):
         raise InvalidInputError(f"iso={iso!r} and threshold={threshold!r} disagree; give one")
     return iso if iso is not None else threshold
 
 
-def _thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[PlateThickness, float | None]:
+def thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[PlateThickness, float | None]:
     """The plate thickness (one value, or per plate) and ``lam`` (``None``: per plate)."""
     deepest = 2.0 * float(features.distance.max()) + float(features.spacing.max())
     lam_value = None if lam is None else check_number(lam, "lam", positive=True)
@@ -144,14 +145,14 @@ def volume_stages(
     density = check_number(density, "density", positive=True)
     stages = ["binarize", "distance", "medial voxels", "polygonize", "dents", "extension"]
     state: dict[str, Any] = {}
-    for stage in progress(stages, desc="mid-surface", show=show_progress):
-        check_cancel(callback, stage)
+    for step, stage in enumerate(progress(stages, desc="mid-surface", show=show_progress)):
+        check_cancel(callback, Progress("midsurface", stage, step, len(stages)))
         t0 = time.perf_counter()
         if stage == "binarize":
-            state["source"] = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
+            state["source"] = load_volume(volume, iso=iso_of(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
         elif stage == "distance":
             state["features"] = feature_transform(state["source"])
-            state["plates"], state["lam"] = _thickness_and_lam(state["features"], thickness, lam)
+            state["plates"], state["lam"] = thickness_and_lam(state["features"], thickness, lam)
             state["thickness"] = state["plates"].value
         elif stage == "medial voxels":
             state["medial"] = medial_voxels(state["features"], state["lam"], state["plates"])
@@ -337,7 +338,7 @@ def midsurface_medial_axis(
     sizes = use_chunks(volume, chunks, scheduler, raw_shape, raw_dtype)
     if sizes is not None:
         return chunked_midsurface(
-            volume, chunks=sizes, iso=_iso(iso, threshold), thickness=thickness, lam=lam, spacing=spacing, extend=extend,
+            volume, chunks=sizes, iso=iso_of(iso, threshold), thickness=thickness, lam=lam, spacing=spacing, extend=extend,
             remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype,
             scheduler=scheduler, n_jobs=n_jobs, callback=callback, show_progress=show_progress, out=out, spill=spill,
         )
@@ -356,65 +357,3 @@ def midsurface_medial_axis(
         else:
             result.save(out)
     return result
-
-
-def medial_voxel_axis(
-    volume: Any,
-    *,
-    iso: float | None = None,
-    threshold: float | None = None,
-    thickness: float | None = None,
-    lam: float | None = None,
-    spacing: Any = None,
-    raw_shape: Any = None,
-    raw_dtype: Any = None,
-    chunks: Any = None,
-    scheduler: Any = None,
-    n_jobs: int | None = None,
-    show_progress: bool | None = None,
-) -> MedialAxis:
-    """The medial voxels themselves (``method="voxels"``): points and radii, no faces.
-
-    Parameters are as :func:`midsurface_medial_axis`; the chunked route
-    (``chunks``, ``scheduler``) gives the same voxels.
-
-    Returns
-    -------
-    MedialAxis
-        ``points (n, 3)``: voxel centres (index times ``spacing``); ``radii``:
-        half the distance between the two nearest boundary points; extras
-        ``position (n, 3)`` (sub-voxel mid-point), ``normal (n, 3)`` and
-        ``voxel_kind (n,)`` (0 surface, 1 free edge, 2 junction); metadata
-        as :func:`midsurface_medial_axis`.
-
-    Examples
-    --------
-    >>> import numpy as np, medialaxis as mx
-    >>> v = np.zeros((20, 30, 30), bool); v[7:13, 5:25, 5:25] = True
-    >>> ma = mx.medial_axis(v, method="voxels")
-    >>> len(ma.faces), sorted(set(ma.points[:, 0].tolist()))
-    (0, [9.0])
-    """
-    from medialaxis.volume.regions import VOXEL_KINDS, classify_voxels
-    from medialaxis.volume.voxel_table import voxel_table
-
-    sizes = use_chunks(volume, chunks, scheduler, raw_shape, raw_dtype)
-    if sizes is not None:
-        return chunked_voxels(volume, chunks=sizes, iso=_iso(iso, threshold), thickness=thickness, lam=lam,
-                              spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype, scheduler=scheduler,
-                              n_jobs=n_jobs, show_progress=show_progress)
-    started = time.perf_counter()
-    src = load_volume(volume, iso=_iso(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
-    features = feature_transform(src)
-    plates, lam_value = _thickness_and_lam(features, thickness, lam)
-    medial = medial_voxels(features, lam_value, plates)
-    dropped = dropped_report(medial, plates, lam_value)
-    kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
-    metadata = stage_metadata("voxels", src.iso, plates, lam_value, dropped, src.spacing, src.mask.shape,
-                              threshold_method=src.threshold_method)
-    metadata.update(voxel_kinds=VOXEL_KINDS, timings={"total": time.perf_counter() - started})
-    return MedialAxis(
-        features.physical(medial.voxels), medial.radius,
-        extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},
-        metadata=metadata, shape=isosurface_shell(src),
-    )
