@@ -166,7 +166,9 @@ def mesh_result(points: np.ndarray, radii: np.ndarray, kind: np.ndarray, faces: 
             f"no mid-surface: the {len(points)} medial points found make no sheet (rods, tubes and blobs have no "
             f"plates); {TUBE_ROUTE}")
     faces = faces[np.lexsort(faces.T[::-1])]
-    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1), axis=0)
+    # edges: the sheets' free edges (one triangle) and junctions (three or more), as every surface result has them
+    sides, uses = np.unique(np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0, return_counts=True)
+    edges = sides[uses != 2]
     return MedialAxis(points, radii, edges, faces, extras={"thickness": 2.0 * radii, "vertex_kind": kind},
                       metadata=metadata, shape=shell)
 
