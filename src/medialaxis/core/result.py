@@ -74,8 +74,8 @@ class MedialAxis:
         for the volume methods. Used by :meth:`reconstruct` and the pictures;
         only the planar geometry is saved with the result.
     raw : MedialAxis, optional
-        The unpruned axis the result was pruned from, which :meth:`prune`
-        re-prunes without recomputing.
+        What the result was made from without recomputing (:meth:`prune` starts there): the planar unpruned
+        axis; a mesh Voronoi result's full complex; a simplified medial mesh's compact complex.
     """
 
     points: np.ndarray
