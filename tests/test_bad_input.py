@@ -58,7 +58,8 @@ def test_self_intersecting_polygon_is_repaired_and_says_so():
     bowtie = shapely.Polygon([(0, 0), (4, 4), (4, 0), (0, 4)])
     assert not bowtie.is_valid
     ma = mx.medial_axis(bowtie)
-    assert "repaired" in ma.metadata and "Self-intersection" in ma.metadata["repaired"]
+    assert len(ma.metadata["repairs"]) == 1 and "Self-intersection" in ma.metadata["repairs"][0]
+    assert mx.medial_axis(shapely.box(0, 0, 4, 1)).metadata["repairs"] == []
     assert ma.n_components == 2  # two triangles touching at a point
 
 

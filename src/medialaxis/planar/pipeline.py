@@ -249,8 +249,7 @@ def _stages(
         metadata["foreground"] = src.side
     if src.channels is not None:
         metadata["channels"] = src.channels
-    if src.repaired:
-        metadata["repaired"] = src.repaired
+    metadata["repairs"] = [src.repaired] if src.repaired else []  # the mesh routes' name: one list of what was mended
     if src.drawing is not None:
         metadata["drawing"] = src.drawing
     raw = MedialAxis(
