@@ -193,3 +193,16 @@ def test_one_callback_protocol_for_the_methods_that_take_one():
         with pytest.raises(mx.Cancelled):
             call(lambda progress, last=last: progress.step < last)  # cancelled at the last report
     assert [p.stage for p in heard] == ["binarize", "distance", "medial voxels", "classify"]
+
+
+def test_edges_mean_one_thing(results):
+    """Curve pieces, and on surfaces the sides where a sheet ends or sheets meet: never a side inside a sheet."""
+    for name, ma in results.items():
+        if not len(ma.faces):
+            assert ma.kind != "surfaces", name
+            continue
+        sides = np.sort(ma.faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+        uniq, uses = np.unique(sides, axis=0, return_counts=True)
+        listed = {tuple(e) for e in np.sort(ma.edges, axis=1).tolist()}
+        assert {tuple(e) for e in uniq[uses != 2].tolist()} <= listed, name
+        assert not {tuple(e) for e in uniq[uses == 2].tolist()} & listed, name

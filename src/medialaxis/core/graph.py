@@ -23,6 +23,7 @@ __all__ = [
     "peel_leaves",
     "compact",
     "to_networkx",
+    "sheet_edges",
 ]
 
 
@@ -193,3 +194,17 @@ def to_networkx(points: np.ndarray, radii: np.ndarray, edges: np.ndarray) -> Any
     for (a, b), length in zip(edges.tolist(), np.asarray(lengths).tolist()):
         g.add_edge(a, b, length=length)
     return g
+
+
+def sheet_edges(faces: np.ndarray) -> np.ndarray:
+    """The sides of a surface's triangles where a sheet ends (one triangle) or sheets meet (three or more).
+
+    What every surface result lists in ``edges`` besides its curve pieces; a
+    side inside a sheet (two triangles) is not one.
+
+    >>> sheet_edges(np.array([[0, 1, 2], [0, 2, 3]])).tolist()
+    [[0, 1], [0, 3], [1, 2], [2, 3]]
+    """
+    faces = np.asarray(faces, np.int64).reshape(-1, 3)
+    sides, uses = np.unique(np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0, return_counts=True)
+    return sides[uses != 2].reshape(-1, 2)

@@ -41,6 +41,7 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.graph import sheet_edges
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import InvalidInputError
 from medialaxis.mesh._simplify_kernels import collapse, kd_build
@@ -191,7 +192,8 @@ def simplify_medial_mesh(
     metadata["n_spheres"] = int(len(centres))
     metadata["timings"] = dict(ma.metadata.get("timings", {}), simplify=time.perf_counter() - t_start,
                                simplify_cpu=time.process_time() - cpu_start)
-    return MedialAxis(centres, radii, curve, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
+    edges = np.concatenate([np.asarray(curve, np.int64).reshape(-1, 2), sheet_edges(out_faces)])  # as every surface
+    return MedialAxis(centres, radii, edges, out_faces, metadata=metadata, shape=ma.shape, raw=ma)
 
 
 def _fewest(

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.graph import sheet_edges
 from medialaxis.core.result import MedialAxis
 from medialaxis.errors import EmptyShapeError, InvalidInputError, MedialAxisWarning
 from medialaxis.volume.dents import bent_vertices
@@ -166,10 +167,7 @@ def mesh_result(points: np.ndarray, radii: np.ndarray, kind: np.ndarray, faces: 
             f"no mid-surface: the {len(points)} medial points found make no sheet (rods, tubes and blobs have no "
             f"plates); {TUBE_ROUTE}")
     faces = faces[np.lexsort(faces.T[::-1])]
-    # edges: the sheets' free edges (one triangle) and junctions (three or more), as every surface result has them
-    sides, uses = np.unique(np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1), axis=0, return_counts=True)
-    edges = sides[uses != 2]
-    return MedialAxis(points, radii, edges, faces, extras={"thickness": 2.0 * radii, "vertex_kind": kind},
+    return MedialAxis(points, radii, sheet_edges(faces), faces, extras={"thickness": 2.0 * radii, "vertex_kind": kind},
                       metadata=metadata, shape=shell)
 
 
