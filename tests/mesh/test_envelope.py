@@ -120,3 +120,29 @@ def test_two_overlapping_spheres_against_their_capsule():
     to_mat, from_mat = two_sided_distance(centres, [1.0, 1.0], np.zeros((0, 2), int), np.zeros((0, 3), int), capsule)
     assert abs(from_mat - (1 - np.sqrt(3) / 2)) < 1e-3
     assert abs(to_mat - (np.sqrt(5) / 2 - 1)) < 1e-3
+
+
+def test_the_exhaustive_check_ends_where_every_local_distance_overstates():
+    """A triangle soup's local closest-point search finds no near face for most points: every local distance
+    overstates. The exact search must then reach the true largest distance, in few batches (it took over
+    40 minutes 64 points at a time, the whole array sorted each round)."""
+    from medialaxis.mesh.signed_distance import SignedDistance
+
+    sphere = trimesh.creation.icosphere(subdivisions=4)
+    exact = SignedDistance(sphere)
+    calls = []
+
+    class Overstating:
+        def query(self, z, faces):
+            return np.full(len(z), 10.0), None  # no near face found: far too far
+
+        def exact(self, z):
+            calls.append(len(z))
+            return exact.exact(z)
+
+    centres, radii = np.zeros((1, 3)), [0.8]
+    _, from_mat = two_sided_distance(centres, radii, np.zeros((0, 2), int), np.zeros((0, 3), int), sphere,
+                                     signed=Overstating())
+    _, truth = two_sided_distance(centres, radii, np.zeros((0, 2), int), np.zeros((0, 3), int), sphere)
+    assert from_mat == pytest.approx(truth, rel=1e-4) and from_mat == pytest.approx(0.2, abs=0.01)
+    assert len(calls) <= int(np.log2(sum(calls) / 64 + 1)) + 1  # batches doubling from 64
