@@ -20,6 +20,7 @@ within 0.2 % on a 16-sided torus tube).
 
 from __future__ import annotations
 
+import dataclasses
 import time
 import warnings
 from collections.abc import Callable
@@ -249,7 +250,6 @@ def voronoi_medial_axis(
             raise InvalidInputError("simplify_mode needs simplify or simplify_error")
         check_simplify(simplify, simplify_mode)
     stages = ["sampling", "inside", "facets"] + ["compact"] * bool(compact) + ["simplify"] * (simplify is not None)
-
     def stage(name: str) -> None:
         check_cancel(callback, Progress("voronoi", name, stages.index(name), len(stages)))
 
@@ -404,8 +404,8 @@ def voronoi_medial_axis(
             result, COMPACT_TOLERANCE * eps, exact=sd.exact, shells=int(shell_labels(work).max()) + 1,
             signed=lambda x, near: sd.query(x, contact_faces[near].reshape(len(x), -1))[0],
         )
-        timings["compact"] = time.perf_counter() - t0
-        timings["total"] = time.perf_counter() - t_start
+        timings.update(compact=time.perf_counter() - t0, total=time.perf_counter() - t_start)
+        result = dataclasses.replace(result, metadata=dict(result.metadata, timings=timings))  # metadata is a copy
     solid_chi = metadata["solid_betti"][0] - metadata["solid_betti"][1] + metadata["solid_betti"][2]
     if topology == "preserve" and result.metadata["euler_characteristic"] != solid_chi:
         warnings.warn(
