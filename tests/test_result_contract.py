@@ -208,3 +208,13 @@ def test_edges_mean_one_thing(results):
         listed = {tuple(e) for e in np.sort(ma.edges, axis=1).tolist()}
         assert {tuple(e) for e in uniq[uses != 2].tolist()} <= listed, name
         assert not {tuple(e) for e in uniq[uses == 2].tolist()} & listed, name
+
+
+def test_a_corrupt_saved_shape_is_refused(results, tmp_path):
+    ma = results["mesh voronoi"]
+    ma.save(tmp_path / "m.json")
+    doc = json.loads((tmp_path / "m.json").read_text())
+    doc["shape"]["faces"] = {"dtype": "<i8", "shape": [1, 3], "base64": "AAAAAAAAAAABAAAAAAAAAOcDAAAAAAAA"}  # 0, 1, 999
+    (tmp_path / "bad.json").write_text(json.dumps(doc))
+    with pytest.raises(mx.InputFileError, match="faces name no vertex"):
+        mx.load(tmp_path / "bad.json")

@@ -1,7 +1,7 @@
 """Results saved losslessly and read back equal: ``.json`` and ``.npz``, validated on load.
 
 A result reads back with the same arrays, the same metadata (value for value:
-:func:`~medialaxis.core.result.frozen_metadata` keeps it JSON-like), its input
+:func:`~medialaxis.core.metadata.frozen_metadata` keeps it JSON-like), its input
 shape (a planar geometry as WKT; a mesh or an isosurface as vertices and
 faces, a mesh read back as a ``trimesh.Trimesh`` when trimesh is installed)
 and its unpruned axis, so :meth:`~medialaxis.core.result.MedialAxis.prune`
@@ -261,6 +261,10 @@ def _check_loaded(ma: MedialAxis, what: str) -> None:
     for key, value in ma.extras.items():
         if value.dtype.kind not in "biuf":
             raise InputFileError(f"{what} is corrupt: its extra {key!r} holds {value.dtype} values, not numbers")
+    if hasattr(ma.shape, "vertices") and hasattr(ma.shape, "faces"):
+        vertices, faces = np.asarray(ma.shape.vertices), np.asarray(ma.shape.faces)
+        if not np.isfinite(vertices).all() or (faces.size and (faces.min() < 0 or faces.max() >= len(vertices))):
+            raise InputFileError(f"{what} is corrupt: its shape's vertices are not finite or its faces name no vertex")
     if ma.raw is not None:
         _check_loaded(ma.raw, what + " (unpruned axis)")
 
