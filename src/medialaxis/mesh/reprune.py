@@ -133,7 +133,7 @@ def _collapsed(full: MedialAxis, lam: float) -> MedialAxis:
     new_faces = index[faces[alive]]
     new_edges = index[edges]
     metadata = dict(full.metadata, lam=lam, lam_default=False, repruned_from=float(full.metadata["lam"]),
-                    n_curve_edges=int((side_alive & (uses == 0)).sum()),
+                    n_curve_edges=int((side_alive & (uses == 0)).sum()), n_filling_faces=int((~certified[alive]).sum()),
                     euler_characteristic=int(len(used) - len(complex_edges(new_faces, new_edges, len(used))[0])
                                              + len(new_faces)))
     metadata.pop("timings", None)
