@@ -72,7 +72,7 @@ class MedialAxis:
         shapely geometry for planar inputs, the input mesh (trimesh) for the
         mesh methods, the isosurface (:class:`~medialaxis.core.scene3d.Surface`)
         for the volume methods. Used by :meth:`reconstruct` and the pictures;
-        only the planar geometry is saved with the result.
+        saved with the result (a surface as its vertices and faces).
     raw : MedialAxis, optional
         What the result was made from without recomputing (:meth:`prune` starts there): the planar unpruned
         axis; a mesh Voronoi result's full complex; a simplified medial mesh's compact complex.
