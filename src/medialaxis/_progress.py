@@ -21,7 +21,7 @@ class Progress:
     Attributes
     ----------
     method : str
-        ``"flow"``, ``"midsurface"`` or ``"voxels"``.
+        ``"voronoi"`` or ``"flow"`` (meshes), ``"midsurface"`` or ``"voxels"`` (volumes).
     stage : str
         The stage about to run (``"distance"``, a block pass ...) or ``"diffusion flow"``.
     step : int

@@ -31,7 +31,7 @@ MIN_TIP_CURVATURE = np.pi / 16
 
 @dataclasses.dataclass(frozen=True)
 class FlowState:
-    """What ``callback(state)`` receives after every step of the flow.
+    """What the flow's ``callback`` receives after every step, as ``Progress.state``.
 
     Attributes
     ----------
