@@ -15,12 +15,12 @@ import base64
 import json
 import os
 import re
-from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from medialaxis.core.metadata import jsonable
 from medialaxis.core.outputs import atomic_write
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.scene3d import Surface
@@ -35,18 +35,6 @@ LOSSLESS = (".json", ".npz")
 #: 2: the input shape of every method (a mesh's or an isosurface's vertices and faces, not only a planar
 #: geometry's WKT), metadata without the wall-clock ``timings`` unless asked for. Version 1 files still load.
 FORMAT_VERSION = 2
-
-
-def jsonable(value: Any) -> Any:
-    if isinstance(value, Mapping):
-        return {str(k): jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [jsonable(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    return value
 
 
 def _metadata(ma: MedialAxis, timings: bool) -> dict[str, Any]:

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["frozen_metadata"]
+__all__ = ["frozen_metadata", "jsonable"]
 
 
 def frozen_metadata(value: Mapping[str, Any]) -> Mapping[str, Any]:
@@ -22,16 +22,17 @@ def frozen_metadata(value: Mapping[str, Any]) -> Mapping[str, Any]:
     >>> frozen_metadata({"spacing": (0.5, np.float64(1.0)), "shape": np.array([2, 3]), 1: {"a": (None,)}})
     mappingproxy({'spacing': [0.5, 1.0], 'shape': [2, 3], '1': {'a': [None]}})
     """
-    return MappingProxyType(_plain(dict(value)))
+    return MappingProxyType(jsonable(dict(value)))
 
 
-def _plain(value: Any) -> Any:
+def jsonable(value: Any) -> Any:
+    """``value`` as JSON holds it: mappings as dicts with text keys, sequences and arrays as lists, Python numbers."""
     if isinstance(value, Mapping):
-        return {str(k): _plain(v) for k, v in value.items()}
+        return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
+        return [jsonable(v) for v in value]
     if isinstance(value, np.ndarray):
-        return _plain(value.tolist())
+        return value.tolist()
     if isinstance(value, np.generic):
         return value.item()
     return value
