@@ -1,4 +1,8 @@
-"""Validation of a medial axis by rebuilding the shape (paper 000, section III)."""
+"""Validation of a medial axis by rebuilding the shape.
+
+Section III of "A Qualitative Approach for Medial Computation" (docs/references.md):
+the axis is validated by rebuilding the boundary from its balls.
+"""
 
 from __future__ import annotations
 
@@ -37,6 +41,11 @@ def reconstruction_error(
     -------
     ReconstructionError
         ``iou``, ``hausdorff`` and ``mean_distance`` (output units).
+
+    References
+    ----------
+    .. [1] "A Qualitative Approach for Medial Computation" (Voronoi/Delaunay medial axis of a 2D
+           image; authors, venue and year unconfirmed: docs/references.md).
 
     Examples
     --------

@@ -1,8 +1,9 @@
 """Comparing shapes through their medial axes.
 
-Paper 000 builds the medial axis "for comparing two shapes"; this layer does
-it by walking around the axis. The walk (the axis's Euler tour) meets the
-axis's parts in the order the boundary does; samples along it are medial
+"A Qualitative Approach for Medial Computation" builds the medial axis "for
+comparing two shapes" (docs/references.md); this layer does it by walking
+around the axis. The walk (the axis's Euler tour) meets the axis's parts in
+the order the boundary does; samples along it are medial
 points, each described by its radius and by a log-polar histogram of where
 the axis's swept area lies around it, seen from the walk direction
 (:mod:`medialaxis.compare.tour`). Two shapes are compared by aligning their

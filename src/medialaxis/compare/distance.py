@@ -211,9 +211,12 @@ def shape_distance(a: Any, b: Any, *, prune: float = DEFAULT_PRUNE, **options: A
 
     References
     ----------
-    Paper 000 (the axis "for comparing two shapes"); S. Belongie, J. Malik and
-    J. Puzicha, "Shape matching and object recognition using shape contexts",
-    IEEE TPAMI 24(4), 2002 (the histograms, here of medial mass).
+    .. [1] "A Qualitative Approach for Medial Computation" (Voronoi/Delaunay medial axis of a 2D
+           image; authors, venue and year unconfirmed: docs/references.md): the axis "for comparing
+           two shapes".
+    .. [2] S. Belongie, J. Malik, J. Puzicha, "Shape matching and object recognition using shape
+           contexts", IEEE Transactions on Pattern Analysis and Machine Intelligence
+           24(4):509-522, 2002. doi:10.1109/34.993558 (the histograms, here of medial mass).
 
     Examples
     --------

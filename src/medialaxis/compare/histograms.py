@@ -79,6 +79,12 @@ def mass_histograms(
     bins: ``n_angular`` soft bins over ``[0, period)`` measured from
     ``heading`` (``pi`` for an unsigned tangent, ``2 pi`` for a direction).
     Returns ``(len(pos), N_RADIAL * n_angular)``, flattened distance-major.
+
+    References
+    ----------
+    .. [1] S. Belongie, J. Malik, J. Puzicha, "Shape matching and object recognition using shape
+           contexts", IEEE Transactions on Pattern Analysis and Machine Intelligence
+           24(4):509-522, 2002. doi:10.1109/34.993558
     """
     d = mid[None, :, :] - pos[:, None, :]
     dist = np.linalg.norm(d, axis=2) / scale

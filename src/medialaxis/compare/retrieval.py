@@ -87,6 +87,11 @@ def diffusion_rerank(D: Any, *, neighbours: int = 7, iterations: int = 2) -> np.
     (n, n) float64 ndarray
         Symmetric dissimilarity for ranking.
 
+    References
+    ----------
+    .. [1] Yang, Koknar-Tezel, Latecki, locally constrained diffusion process for shape
+           retrieval, CVPR 2009 (title, pages and DOI unconfirmed).
+
     Examples
     --------
     >>> D = [[0, 1, 5, 6], [1, 0, 5, 6], [5, 5, 0, 1], [6, 6, 1, 0]]

@@ -166,6 +166,14 @@ def tour_context(
     positions : (k, 2) float64 ndarray
         Sample positions (input units), for pictures.
 
+    References
+    ----------
+    .. [1] S. Belongie, J. Malik, J. Puzicha, "Shape matching and object recognition using shape
+           contexts", IEEE Transactions on Pattern Analysis and Machine Intelligence
+           24(4):509-522, 2002. doi:10.1109/34.993558
+    .. [2] H. Ling, D. W. Jacobs, "Shape classification using the inner-distance", IEEE
+           Transactions on Pattern Analysis and Machine Intelligence 29(2):286-299, 2007.
+
     Examples
     --------
     >>> import numpy as np

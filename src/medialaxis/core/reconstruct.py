@@ -1,4 +1,8 @@
-"""Rebuild a shape as the union of its medial balls (paper 000's validation step)."""
+"""Rebuild a shape as the union of its medial balls.
+
+The validation step of "A Qualitative Approach for Medial Computation"
+(docs/references.md).
+"""
 
 from __future__ import annotations
 
@@ -41,7 +45,13 @@ def rasterize(geom: Any, image_shape: tuple[int, int], spacing: Any) -> np.ndarr
 
 
 def reconstruct(ma: Any, *, raster: bool = False, resolution: int = 16) -> Any:
-    """See :meth:`medialaxis.MedialAxis.reconstruct`."""
+    """See :meth:`medialaxis.MedialAxis.reconstruct`.
+
+    References
+    ----------
+    .. [1] "A Qualitative Approach for Medial Computation" (Voronoi/Delaunay medial axis of a 2D
+           image; authors, venue and year unconfirmed: docs/references.md).
+    """
     if ma.dim != 2:
         raise InvalidInputError("reconstruct() rebuilds planar shapes; this axis is 3D")
     if int(resolution) < 1:

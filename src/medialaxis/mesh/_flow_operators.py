@@ -1,8 +1,8 @@
 """Discrete differential operators on triangle meshes for the diffusion flow.
 
 Everything here is vectorised NumPy/SciPy over the face list: the cotangent
-Laplacian and lumped mass, the angle-defect Gaussian curvature of paper 003
-(eq. 7), area-weighted vertex normals and the inward "medial poles" found by
+Laplacian and lumped mass, the angle-defect Gaussian curvature of Du and Qin
+(SM '04, eq. 7), area-weighted vertex normals and the inward "medial poles" found by
 the shrinking-ball iteration (Ma, Bae & Choi 2012), which the flow uses as an
 attraction target that scales to large meshes (aimed along fitted planes'
 normals on voxel staircases, :func:`robust_poles`).
@@ -132,10 +132,16 @@ def corner_angles(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
 
 
 def gaussian_curvature(points: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Angle-defect Gaussian curvature per vertex ``(n,)``, paper 003 eq. (7).
+    """Angle-defect Gaussian curvature per vertex ``(n,)``, eq. (7) of Du and Qin [1]_.
 
     ``K_i = (2 pi - sum of corner angles at i) / (area of incident triangles / 3)``
     (closed surfaces only).
+
+    References
+    ----------
+    .. [1] H. Du, H. Qin, "Medial axis extraction and shape manipulation of solid objects using
+           parabolic PDEs", Proc. 9th ACM Symposium on Solid Modeling and Applications (SM '04),
+           2004 (DOI unconfirmed).
     """
     angle_sum = np.bincount(faces.ravel(), weights=corner_angles(points, faces).ravel(), minlength=len(points))
     area = vertex_areas(points, faces)
@@ -188,6 +194,11 @@ def medial_poles(
     -------
     centres : (n, 3) float64 ndarray
     radii : (n,) float64 ndarray
+
+    References
+    ----------
+    .. [1] J. Ma, S. W. Bae, S. Choi, "3D medial axis point approximation using nearest
+           neighbors and the normal field", The Visual Computer 28(1):7-19, 2012.
     """
     tree = cKDTree(points)
     n = len(points)

@@ -2,7 +2,7 @@
 
 :func:`collapse` runs the edge collapses of least spherical quadric error
 (Li et al., "Q-MAT: Computing medial axis transform by quadratic error
-minimization", ACM TOG 34(4), 2015; Garland and Heckbert, "Surface
+minimization", ACM TOG 35(1), 2015; Garland and Heckbert, "Surface
 simplification using quadric error metrics", SIGGRAPH 1997) with a binary
 heap of ``(cost, i, j, version i, version j)`` popped in the order of
 Python's tuples, so the collapses are those of the loop it replaced. Each

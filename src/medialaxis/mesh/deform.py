@@ -1,4 +1,4 @@
-"""Skeleton-driven deformation of a mesh (paper 003, section 4.3).
+"""Skeleton-driven deformation of a mesh (Du and Qin, SM '04, section 4.3).
 
 Move the nodes of a curve skeleton computed by ``method="flow"`` and the
 surface follows: every vertex is carried by the rigid frame (rotation plus
@@ -106,7 +106,9 @@ def deform(mesh: Any, skeleton: Any, new_points: Any, *, smoothing: float = 0.5)
 
     References
     ----------
-    Paper 003, section 4.3 (skeleton-based shape sculpting).
+    .. [1] H. Du, H. Qin, "Medial axis extraction and shape manipulation of solid objects using
+           parabolic PDEs", Proc. 9th ACM Symposium on Solid Modeling and Applications (SM '04),
+           2004 (DOI unconfirmed), section 4.3 (skeleton-based shape sculpting).
 
     Examples
     --------

@@ -163,6 +163,15 @@ def envelope_gap(
     (q,) float64 ndarray
         Distance to the union of the spheres outside it, minus the depth in
         the deepest sphere inside it.
+
+    References
+    ----------
+    .. [1] J.-M. Thiery, E. Guy, T. Boubekeur, "Sphere-Meshes: Shape approximation using
+           spherical quadric error metrics", ACM Transactions on Graphics (Proc. SIGGRAPH Asia),
+           2013. doi:10.1145/2508363.2508384
+    .. [2] P. Li, B. Wang, F. Sun, X. Guo, C. Zhang, W. Wang, "Q-MAT: Computing medial axis
+           transform by quadratic error minimization", ACM Transactions on Graphics
+           35(1):8:1-8:16, 2015. doi:10.1145/2753755
     """
     spheres = np.ascontiguousarray(np.c_[centres, radii], np.float64)
     prims = primitives(len(spheres), edges, faces)

@@ -109,6 +109,15 @@ def centre_nodes(
     points : (s, 3) float64 ndarray
     radii : (s,) float64 ndarray
         Mean distance from each node to its surface vertices.
+
+    References
+    ----------
+    .. [1] O. K.-C. Au, C.-L. Tai, H.-K. Chu, D. Cohen-Or, T.-Y. Lee, "Skeleton extraction by
+           mesh contraction", ACM Transactions on Graphics 27(3):44, 2008.
+           doi:10.1145/1360612.1360643
+    .. [2] A. Tagliasacchi, I. Alhashim, M. Olson, H. Zhang, "Mean curvature skeletons",
+           Computer Graphics Forum 31(5):1735-1744 (Proc. SGP), 2012.
+           doi:10.1111/j.1467-8659.2012.03178.x
     """
     s = len(points)
     out = np.array(points, dtype=np.float64, copy=True)

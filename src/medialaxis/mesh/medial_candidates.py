@@ -9,10 +9,10 @@ simplification (:mod:`medialaxis.mesh.qmat`, ``mode="medial"``) keeps only
 such spheres.
 
 The complex is pruned by lambda (Chazal and Lieutier, "The lambda-medial
-axis", Graphical Models 67(4), 2005): its small spheres near the tips of
+axis", Graphical Models, 2005, doi:10.1016/j.gmod.2005.01.002): its small spheres near the tips of
 limbs and ears are gone, and a surface point there was covered by a ball
-touching one side only. The shrinking balls of the surface samples (Ma, Bai,
-Song and Wang, "3D medial axis point approximation using nearest neighbors
+touching one side only. The shrinking balls of the surface samples (Ma, Bae and
+Choi, "3D medial axis point approximation using nearest neighbors
 and the normal field", The Visual Computer 28(1), 2012) give the medial balls
 there too; those whose two contacts span ``SPAN`` join the candidates.
 """
@@ -78,6 +78,11 @@ def shrinking_balls(points: np.ndarray, normals: np.ndarray, start: float | None
         ``0`` where no ball was found (the normal points along the surface).
     other : (n, 3) ndarray
         The second contact ``q`` of each ball.
+
+    References
+    ----------
+    .. [1] J. Ma, S. W. Bae, S. Choi, "3D medial axis point approximation using nearest
+           neighbors and the normal field", The Visual Computer 28(1):7-19, 2012.
     """
     points = np.asarray(points, np.float64)
     normals = np.asarray(normals, np.float64)

@@ -1,8 +1,8 @@
 """Q-MAT-style simplification of a medial mesh by quadric error minimisation on spheres.
 
-The step past the papers (Li, Wang, Yuan, Tu, Wang, Sun and Wang, "Q-MAT:
+The step past the papers (Li, Wang, Sun, Guo, Zhang and Wang, "Q-MAT:
 Computing medial axis transform by quadratic error minimization", ACM TOG
-2015). Each medial vertex is a sphere ``s = (c, r)`` in R^4. A contact point
+35(1), 2015). Each medial vertex is a sphere ``s = (c, r)`` in R^4. A contact point
 ``p`` with outward surface normal ``n`` gives the tangent plane of the input
 surface there; the signed distance of sphere ``s`` to that plane is
 ``n . (p - c) - r``, linear in ``s``, so its square is a quadric in R^4 (the
@@ -149,8 +149,14 @@ def simplify_medial_mesh(
 
     References
     ----------
-    Li et al., Q-MAT (ACM TOG 34(4), 2015); Thiery, Guy and Boubekeur,
-    Sphere-Meshes (SQEM, ACM TOG 2013).
+    .. [1] P. Li, B. Wang, F. Sun, X. Guo, C. Zhang, W. Wang, "Q-MAT: Computing medial axis
+           transform by quadratic error minimization", ACM Transactions on Graphics
+           35(1):8:1-8:16, 2015. doi:10.1145/2753755
+    .. [2] J.-M. Thiery, E. Guy, T. Boubekeur, "Sphere-Meshes: Shape approximation using
+           spherical quadric error metrics", ACM Transactions on Graphics (Proc. SIGGRAPH Asia),
+           2013. doi:10.1145/2508363.2508384
+    .. [3] M. Garland, P. S. Heckbert, "Surface simplification using quadric error metrics",
+           Proc. SIGGRAPH 97, 209-216, 1997. doi:10.1145/258734.258849
 
     Examples
     --------

@@ -2,7 +2,7 @@
 
 Edge collapses of least quadric error (:mod:`medialaxis.mesh.qmat`, after
 Li et al., "Q-MAT: Computing medial axis transform by quadratic error
-minimization", ACM TOG 34(4), 2015) leave the tips of limbs and fins
+minimization", ACM TOG 35(1), 2015) leave the tips of limbs and fins
 without a sphere. :func:`cover_repair` adds spheres one at a time at the
 surface sample farthest outside the interpolated spheres (the exact gaps of
 :mod:`medialaxis.mesh.envelope`): the medial candidate reaching nearest to it
@@ -116,6 +116,14 @@ def cover_repair(
     (:func:`~medialaxis.mesh.simplify_split.split_at`). The gaps are exact
     (:func:`medialaxis.mesh.envelope.envelope_gap`). Returns ``(centres,
     radii, curve, faces)``.
+
+    References
+    ----------
+    .. [1] P. Li, B. Wang, F. Sun, X. Guo, C. Zhang, W. Wang, "Q-MAT: Computing medial axis
+           transform by quadratic error minimization", ACM Transactions on Graphics
+           35(1):8:1-8:16, 2015. doi:10.1145/2753755
+    .. [2] J. Ma, S. W. Bae, S. Choi, "3D medial axis point approximation using nearest
+           neighbors and the normal field", The Visual Computer 28(1):7-19, 2012.
     """
     x, normals = sample.points, sample.normals
     sample_tree = cKDTree(x)

@@ -1,4 +1,4 @@
-"""Paper 000's boundary route: Canny edge pixels as the point set.
+"""The boundary route of "A Qualitative Approach for Medial Computation": Canny edge pixels as the point set.
 
 The edge pixels of the image (:func:`skimage.feature.canny`) choose the
 samples: each edge pixel is moved to its nearest point on the sub-pixel
@@ -43,7 +43,15 @@ def edge_pixels(src: PlanarInput, sigma: float = 1.0) -> np.ndarray:
 
 
 def canny_stages(src: PlanarInput, tolerance: float) -> tuple[BoundarySample, Rings, Triangulation, np.ndarray]:
-    """Sample, rings, triangulation and inner-triangle mask of the Canny route."""
+    """Sample, rings, triangulation and inner-triangle mask of the Canny route.
+
+    References
+    ----------
+    .. [1] "A Qualitative Approach for Medial Computation" (Voronoi/Delaunay medial axis of a 2D
+           image; authors, venue and year unconfirmed: docs/references.md).
+    .. [2] J. Canny, "A computational approach to edge detection", IEEE Transactions on Pattern
+           Analysis and Machine Intelligence 8(6):679-698, 1986. doi:10.1109/TPAMI.1986.4767851
+    """
     pixels = edge_pixels(src)
     rings = simplify_rings(src.region, tolerance)
     step = 0.1 * float(src.spacing.min())

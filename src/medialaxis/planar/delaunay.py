@@ -123,6 +123,16 @@ def triangulate(points: np.ndarray, *, seed: int = 0) -> Triangulation:
     """Delaunay triangulation of ``points`` (jittered by 1e-9 of their extent).
 
     Triangles touching the four helper points far outside are dropped.
+
+    References
+    ----------
+    .. [1] A. Bowyer, "Computing Dirichlet tessellations", The Computer Journal 24(2):162-166,
+           1981. doi:10.1093/comjnl/24.2.162
+    .. [2] D. F. Watson, "Computing the n-dimensional Delaunay tessellation with application to
+           Voronoi polytopes", The Computer Journal 24(2):167-172, 1981.
+           doi:10.1093/comjnl/24.2.167
+    .. [3] N. Amenta, S. Choi, G. Rote, "Incremental constructions con BRIO", Proc. 19th
+           Symposium on Computational Geometry, 211-219, 2003. doi:10.1145/777792.777824
     """
     if len(points) < 3:
         raise ComputationError(f"need at least 3 boundary samples, got {len(points)}")

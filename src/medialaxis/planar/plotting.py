@@ -1,4 +1,8 @@
-"""The pipeline's stages in one figure, as in paper 000's figures 3, 5, 6 and 7."""
+"""The pipeline's stages in one figure.
+
+As in figures 3, 5, 6 and 7 of "A Qualitative Approach for Medial Computation"
+(docs/references.md).
+"""
 
 from __future__ import annotations
 

@@ -1,9 +1,10 @@
 """Topology-preserving lambda pruning of the inner Voronoi axis.
 
 A plain lambda cut (drop every Voronoi edge whose contact set is narrower than
-``lam``, paper 001 Algorithm 5) cuts the axis at necks narrower than ``lam``
-and opens cycles, and on raster silhouettes it keeps or drops noise branches
-depending on the rotation. Here an edge is *significant* when
+``lam``, Algorithm 5 of Boissonnat, Wormser and Yvinec, "Curved Voronoi diagrams",
+section 2.7) cuts the axis at necks narrower than ``lam`` and opens cycles, and on
+raster silhouettes it keeps or drops noise branches depending on the rotation. Here an
+edge is *significant* when
 
 * its contact diameter is at least ``lam`` (the lambda-medial axis), and
 * the boundary between its two contacts detours: the arc length between them
@@ -157,6 +158,15 @@ def prune_graph(
 
     A component whose edges all go keeps its node of largest radius (a disc
     or a regular polygon keeps its centre).
+
+    References
+    ----------
+    .. [1] J.-D. Boissonnat, C. Wormser, M. Yvinec, "Curved Voronoi diagrams", in J.-D.
+           Boissonnat, M. Teillaud (eds.), Effective Computational Geometry for Curves and
+           Surfaces, Springer, 67-116, 2006, section 2.7 (medial axis, Algorithm 5).
+           https://hal.archives-ouvertes.fr/hal-00488446
+    .. [2] F. Chazal, A. Lieutier, "The lambda-medial axis", Graphical Models, 2005.
+           doi:10.1016/j.gmod.2005.01.002
     """
     n = len(radii)
     edges = np.ascontiguousarray(edges, dtype=np.int64).reshape(-1, 2)

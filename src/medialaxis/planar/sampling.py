@@ -4,9 +4,11 @@ The region's rings are first simplified (Douglas-Peucker, topology
 preserving) to the accuracy ``tolerance``, so the work no longer depends on
 the input's vertex count. Each simplified edge is then split into equal
 pieces; :func:`refine_arcs` splits the pieces that are too long for the
-local medial radius (paper 000's adaptive, iterative
-sampling). The result is an epsilon-sample in the sense of Algorithm 5 of
-paper 001: every boundary point is within ``tolerance`` of the sampled polygon.
+local medial radius (the adaptive, iterative sampling of "A Qualitative
+Approach for Medial Computation"). The result is an epsilon-sample in the
+sense of Algorithm 5 of Boissonnat, Wormser and Yvinec ("Curved Voronoi
+diagrams", section 2.7): every boundary point is within ``tolerance`` of the
+sampled polygon.
 """
 
 from __future__ import annotations
@@ -182,6 +184,15 @@ def refine_arcs(
     another round. Compiled
     (:func:`medialaxis.planar._kernels.split_pieces`);
     :func:`refine_arcs_reference` is the NumPy version.
+
+    References
+    ----------
+    .. [1] "A Qualitative Approach for Medial Computation" (Voronoi/Delaunay medial axis of a 2D
+           image; authors, venue and year unconfirmed: docs/references.md).
+    .. [2] J.-D. Boissonnat, C. Wormser, M. Yvinec, "Curved Voronoi diagrams", in J.-D.
+           Boissonnat, M. Teillaud (eds.), Effective Computational Geometry for Curves and
+           Surfaces, Springer, 67-116, 2006, section 2.7 (medial axis, Algorithm 5).
+           https://hal.archives-ouvertes.fr/hal-00488446
     """
     out, offsets = split_pieces(smp.arc, _offsets(arcs), smp.points, smp.next, smp.ring_length,
                                 np.asarray(piece_radius, np.float64), np.asarray(conforming, bool),

@@ -1,8 +1,8 @@
 """3D volumes (CT scans): medial voxels and mid-surfaces of thin-plate parts.
 
-:func:`midsurface_medial_axis` (``method="midsurface"``) implements paper 002
-(Kumar, Michikawa and Suzuki, "Improving medial surfaces for reverse
-engineering"); :func:`medial_voxel_axis` (``method="voxels"``) returns the
+:func:`midsurface_medial_axis` (``method="midsurface"``) implements Kumar,
+Michikawa and Suzuki, "Improving medial surfaces for reverse engineering"
+(docs/references.md); :func:`medial_voxel_axis` (``method="voxels"``) returns the
 medial voxels. Both are reached through :func:`medialaxis.medial_axis`.
 """
 

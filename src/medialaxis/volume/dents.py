@@ -54,6 +54,13 @@ def remove_dents(points: np.ndarray, faces: np.ndarray, junction: np.ndarray,
         A copy of ``points`` with the junction vertices moved; vertices with
         no usable neighbouring face stay.
 
+    References
+    ----------
+    .. [1] V. Kumar, T. Michikawa, H. Suzuki, "Improving medial surfaces for reverse
+           engineering" (venue, year and DOI unconfirmed: docs/references.md).
+    .. [2] M. Garland, P. S. Heckbert, "Surface simplification using quadric error metrics",
+           Proc. SIGGRAPH 97, 209-216, 1997. doi:10.1145/258734.258849
+
     Examples
     --------
     >>> import numpy as np

@@ -337,6 +337,11 @@ def extend_mesh(points: np.ndarray, faces: np.ndarray, grey: np.ndarray, iso: fl
     faces : (f + m, 3) int64 ndarray
     source : (k,) int64 ndarray
         The boundary vertex each new vertex extends.
+
+    References
+    ----------
+    .. [1] V. Kumar, T. Michikawa, H. Suzuki, "Improving medial surfaces for reverse
+           engineering" (venue, year and DOI unconfirmed: docs/references.md).
     """
     edges, opposite = boundary_edges(faces)
     if len(edges) == 0:

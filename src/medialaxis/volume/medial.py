@@ -113,6 +113,16 @@ def medial_voxels(features: Features, lam: float | None, thickness: float | Plat
         If ``lam`` is not positive.
     EmptyShapeError
         If no voxel is medial for this ``lam``.
+
+    References
+    ----------
+    .. [1] S. Prohaska, H.-C. Hege, "Fast visualization of plane-like structures in voxel data",
+           Proc. IEEE Visualization 2002, 29-36, 2002. doi:10.1109/VISUAL.2002.1183753
+    .. [2] M. Foskey, M. C. Lin, D. Manocha, "Efficient computation of a simplified medial
+           axis", Proc. ACM Symposium on Solid Modeling and Applications, 96-107, 2003.
+           doi:10.1145/781606.781623
+    .. [3] F. Chazal, A. Lieutier, "The lambda-medial axis", Graphical Models, 2005.
+           doi:10.1016/j.gmod.2005.01.002
     """
     plates = thickness if isinstance(thickness, PlateThickness) else None
     if lam is None and not (plates is not None and plates.local):

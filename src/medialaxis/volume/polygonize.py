@@ -130,6 +130,14 @@ def polygonize(features: Features | Grid, medial: MedialVoxels, *, density: floa
     Returns
     -------
     Polygonization
+
+    References
+    ----------
+    .. [1] T. Michikawa, H. Suzuki, "Polygonization of volumetric skeletons with junctions",
+           Computer-Aided Design 45(4):822-828, 2013. doi:10.1016/j.cad.2011.06.003
+    .. [2] G. Malandain, G. Bertrand, N. Ayache, "Topological segmentation of discrete
+           surfaces", International Journal of Computer Vision 10(2):183-197, 1993.
+           doi:10.1007/BF01420736
     """
     voxels = np.ascontiguousarray(medial.voxels, np.int64)
     n = len(voxels)

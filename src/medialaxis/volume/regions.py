@@ -48,6 +48,12 @@ def classify_voxels(table: VoxelTable | np.ndarray, voxels: np.ndarray) -> np.nd
     (n,) int8 ndarray
         ``JUNCTION`` (three or more background components around the voxel),
         ``BOUNDARY`` (at most one) or ``SURFACE`` (two).
+
+    References
+    ----------
+    .. [1] G. Malandain, G. Bertrand, N. Ayache, "Topological segmentation of discrete
+           surfaces", International Journal of Computer Vision 10(2):183-197, 1993.
+           doi:10.1007/BF01420736
     """
     count = _kernels.topology_class(_neighbours(table, voxels), _kernels.N26_ADJ)
     kind = np.full(len(voxels), SURFACE, np.int8)

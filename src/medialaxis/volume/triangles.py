@@ -147,7 +147,13 @@ def _split_quad(labs: np.ndarray, points: np.ndarray, edges: np.ndarray, n: int)
 def region_triangles(table: VoxelTable, voxels: np.ndarray, label: np.ndarray, points: np.ndarray,
                      sheet: np.ndarray | None = None, neighbours: np.ndarray | None = None) -> np.ndarray:
     """Sorted unique triangles ``(f, 3)`` of the regions ``label`` (pick numbers) that meet at Voronoi vertices
-    (``neighbours``: the voxels' :func:`~medialaxis.volume.voxel_table.neighbour_rows`, looked up when not given)."""
+    (``neighbours``: the voxels' :func:`~medialaxis.volume.voxel_table.neighbour_rows`, looked up when not given).
+
+    References
+    ----------
+    .. [1] T. Michikawa, H. Suzuki, "Polygonization of volumetric skeletons with junctions",
+           Computer-Aided Design 45(4):822-828, 2013. doi:10.1016/j.cad.2011.06.003
+    """
     n = len(points)
     if neighbours is None:
         neighbours = neighbour_rows(table, voxels)
