@@ -278,9 +278,13 @@ def plane_normals(points: np.ndarray, normals: np.ndarray, k: int = PLANE_NEIGHB
 
     The normal at a scale of a few edge lengths: on a voxel staircase
     (marching cubes) the one-ring normals tilt by 10-40 degrees and more from the
-    surface's, the plane of 32 neighbours by a few (Hoppe, DeRose, Duchamp,
-    McDonald, Stuetzle, "Surface reconstruction from unorganized points",
-    SIGGRAPH 1992, doi:10.1145/133994.134011).
+    surface's, the plane of 32 neighbours by a few (the tangent planes of Hoppe et
+    al. [1]_).
+
+    References
+    ----------
+    .. [1] Hoppe, DeRose, Duchamp, McDonald, Stuetzle, "Surface reconstruction from unorganized
+           points", Proc. SIGGRAPH 92, 1992. doi:10.1145/133994.134011
     """
     _, near = cKDTree(points).query(points, k=min(k, len(points)), workers=-1)
     local = points[near] - points[near].mean(axis=1, keepdims=True)

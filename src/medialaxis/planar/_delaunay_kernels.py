@@ -15,9 +15,14 @@ boundary that is not one loop, a walk that does not end) the kernel gives
 up and returns ``None`` from Python's side, and the caller takes SciPy's Qhull.
 The reference is Qhull itself: the tests compare the triangles of both.
 
-Bowyer, "Computing Dirichlet tessellations", The Computer Journal 24(2), 1981;
-Watson, "Computing the n-dimensional Delaunay tessellation with application to
-Voronoi polytopes", The Computer Journal 24(2), 1981.
+References
+----------
+.. [1] A. Bowyer, "Computing Dirichlet tessellations", The Computer Journal 24(2):162-166, 1981.
+       doi:10.1093/comjnl/24.2.162
+.. [2] D. F. Watson, "Computing the n-dimensional Delaunay tessellation with application to
+       Voronoi polytopes", The Computer Journal 24(2):167-172, 1981. doi:10.1093/comjnl/24.2.167
+.. [3] N. Amenta, S. Choi, G. Rote, "Incremental constructions con BRIO", Proc. 19th Symposium
+       on Computational Geometry, 211-219, 2003. doi:10.1145/777792.777824
 """
 
 from __future__ import annotations

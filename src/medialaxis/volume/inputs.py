@@ -118,12 +118,11 @@ def iso50_histogram(hist: np.ndarray, lo: float, hi: float,
 
     References
     ----------
-    J.P. Kruth, M. Bartscher, S. Carmignato, R. Schmitt, L. De Chiffre and
-    A. Weckenmann. Computed tomography for dimensional metrology. CIRP Annals
-    - Manufacturing Technology 60(2):821-842, 2011.
-    doi:10.1016/j.cirp.2011.05.006 (surface determination by a global
-    threshold, the ISO-50 grey value half-way between the background and
-    material peaks of the histogram).
+    .. [1] J.-P. Kruth, M. Bartscher, S. Carmignato, R. Schmitt, L. De Chiffre, A. Weckenmann,
+           "Computed tomography for dimensional metrology", CIRP Annals - Manufacturing
+           Technology 60(2):821-842, 2011. doi:10.1016/j.cirp.2011.05.006 (surface determination
+           by a global threshold, the ISO-50 grey value half-way between the background and
+           material peaks of the histogram).
 
     Examples
     --------

@@ -61,10 +61,10 @@ def winding_numbers(points: np.ndarray, ring: np.ndarray) -> np.ndarray:
 
     References
     ----------
-    D. Sunday, "Inclusion of a point in a polygon", geomalgorithms.com, 2001;
-    the crossing rule with orientation of A. Hormann, A. Agathos, "The point
-    in polygon problem for arbitrary polygons", Computational Geometry 20(3),
-    2001, doi:10.1016/S0925-7721(01)00012-8.
+    .. [1] D. Sunday, "Inclusion of a point in a polygon", geomalgorithms.com, 2001.
+    .. [2] K. Hormann, A. Agathos, "The point in polygon problem for arbitrary polygons",
+           Computational Geometry 20(3):131-144, 2001. doi:10.1016/S0925-7721(01)00012-8 (the
+           crossing rule with orientation).
 
     Examples
     --------
