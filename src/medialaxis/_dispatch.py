@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.formats import format_of, suffix_of
 from medialaxis.core.io import is_result_file, load
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import is_geometry_text
@@ -54,21 +55,8 @@ REPRUNERS: dict[tuple[str, str], str] = {
     ("mesh", "voronoi"): "medialaxis.mesh.reprune:reprune",
 }
 
-#: File extensions per domain. ``.tif``/``.tiff``/``.npy`` are resolved by peeking.
-EXTENSIONS: dict[str, tuple[str, ...]] = {
-    "planar": (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".svg", ".dxf", ".geojson", ".json", ".wkt"),
-    "mesh": (".obj", ".ply", ".off", ".stl", ".glb", ".gltf"),
-    "volume": (".nrrd", ".nhdr", ".nii", ".nii.gz", ".raw", ".dcm"),
-}
-
-
 #: The default colour axis of a 3D array (scikit-image's ``channel_axis``).
 CHANNEL_AXIS = -1
-
-
-def _suffix(path: Path) -> str:
-    name = path.name.lower()
-    return ".nii.gz" if name.endswith(".nii.gz") else path.suffix.lower()
 
 
 def _classify_path(path: Path, method: str | None, channel_axis: Any = CHANNEL_AXIS) -> str:
@@ -80,31 +68,44 @@ def _classify_path(path: Path, method: str | None, channel_axis: Any = CHANNEL_A
         raise InputFileError(f"no such file or folder: {str(path)!r}")
     if path.is_dir():
         return "volume"  # TIFF slices or a DICOM series
-    ext = _suffix(path)
-    if ext == ".npz" or (ext == ".json" and is_result_file(path)):
+    fmt = format_of(path)
+    domains = fmt.domains if fmt is not None else ()
+    if not domains:  # unknown, or written but not read (.vtk, .swc, ...)
+        raise UnsupportedFormatError(f"unsupported file type {suffix_of(path) or '(none)'!r} for {str(path)!r}")
+    if RESULT in domains and (len(domains) == 1 or is_result_file(path)):
         return RESULT
-    for domain, exts in EXTENSIONS.items():
-        if ext in exts:
-            return domain
-    if ext in (".tif", ".tiff"):
-        if method in METHODS["volume"] or method in ("midsurface", "voxels"):
-            return "volume"
-        try:
-            from medialaxis.core.images import open_image
+    domains = tuple(d for d in domains if d != RESULT)
+    if len(domains) == 1:
+        return domains[0]
+    return _PEEK[fmt.name](path, method, channel_axis)  # type: ignore[union-attr]
 
-            with open_image(path, None) as im:  # the page count only: nothing is decoded
-                return "volume" if getattr(im, "n_frames", 1) > 1 else "planar"
-        except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
-            raise InputFileError(f"cannot read TIFF {str(path)!r}: {exc}") from exc
-    if ext == ".npy":
-        try:
-            arr = np.load(path, mmap_mode="r", allow_pickle=False)
-        except Exception as exc:  # noqa: BLE001
-            raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
-        if method in METHODS["volume"]:
-            return "volume"
-        return _classify_ndim(arr.ndim, arr.shape, arr.dtype, channel_axis)
-    raise UnsupportedFormatError(f"unsupported file type {ext or '(none)'!r} for {str(path)!r}")
+
+def _tiff_domain(path: Path, method: str | None, channel_axis: Any) -> str:
+    """A multi-page TIFF is a volume, a single page an image; a volume method makes it a volume."""
+    if method in METHODS["volume"]:
+        return "volume"
+    try:
+        from medialaxis.core.images import open_image
+
+        with open_image(path, None) as im:  # the page count only: nothing is decoded
+            return "volume" if getattr(im, "n_frames", 1) > 1 else "planar"
+    except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
+        raise InputFileError(f"cannot read TIFF {str(path)!r}: {exc}") from exc
+
+
+def _npy_domain(path: Path, method: str | None, channel_axis: Any) -> str:
+    """A ``.npy`` array by its dimensions (:func:`_classify_ndim`); a volume method makes it a volume."""
+    try:
+        arr = np.load(path, mmap_mode="r", allow_pickle=False)
+    except Exception as exc:  # noqa: BLE001
+        raise InputFileError(f"cannot read {str(path)!r}: {exc}") from exc
+    if method in METHODS["volume"]:
+        return "volume"
+    return _classify_ndim(arr.ndim, arr.shape, arr.dtype, channel_axis)
+
+
+#: How the formats that two domains read are told apart: by their content (:attr:`Format.domains`).
+_PEEK = {"TIFF": _tiff_domain, "NumPy array": _npy_domain}
 
 
 def _classify_ndim(ndim: int, shape: tuple[int, ...], dtype: np.dtype, channel_axis: Any = CHANNEL_AXIS) -> str:

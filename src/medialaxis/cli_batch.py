@@ -13,21 +13,17 @@ import glob
 from collections.abc import Sequence
 from pathlib import Path
 
-from medialaxis._dispatch import EXTENSIONS
+from medialaxis.core.formats import ROUTED, suffix_of, suffixes
 from medialaxis.errors import InputFileError
 
 __all__ = ["expand_inputs", "is_slice_folder", "output_names", "SHAPE_SUFFIXES"]
 
-#: Suffixes of the files a folder is searched for (``.tif``, ``.npy``: images
-#: or volumes by content; ``.json``, ``.npz``: polygons or saved results).
-SHAPE_SUFFIXES = tuple(sorted({s for suffixes in EXTENSIONS.values() for s in suffixes} | {".tif", ".tiff", ".npy", ".npz"}))
+#: Suffixes of the files a folder is searched for: every format an input domain reads
+#: (:data:`medialaxis.core.formats.FORMATS`; ``.tif``, ``.npy``: images or volumes by content;
+#: ``.json``: polygons or saved results).
+SHAPE_SUFFIXES = tuple(sorted(suffixes(*ROUTED)))
 #: Suffixes of slice files: a folder holding only these is one volume.
 SLICE_SUFFIXES = (".tif", ".tiff", ".dcm", "")
-
-
-def _suffix(path: Path) -> str:
-    name = path.name.lower()
-    return ".nii.gz" if name.endswith(".nii.gz") else path.suffix.lower()
 
 
 def _files(folder: Path) -> list[Path]:
@@ -37,7 +33,7 @@ def _files(folder: Path) -> list[Path]:
 def is_slice_folder(folder: Path) -> bool:
     """A folder holding only TIFF or DICOM slices (``.dcm`` or no suffix): one volume."""
     files = _files(folder)
-    return bool(files) and all(_suffix(p) in SLICE_SUFFIXES for p in files)
+    return bool(files) and all(suffix_of(p) in SLICE_SUFFIXES for p in files)
 
 
 def is_zarr_store(folder: Path) -> bool:
@@ -63,7 +59,7 @@ def expand_inputs(items: Sequence[Path]) -> list[Path]:
                 raise InputFileError(f"no file matches {text!r}")
             out += [p for p in matches if p.is_file() or is_slice_folder(p)]
         elif item.is_dir() and not is_slice_folder(item) and not is_zarr_store(item):
-            files = [p for p in _files(item) if _suffix(p) in SHAPE_SUFFIXES]
+            files = [p for p in _files(item) if suffix_of(p) in SHAPE_SUFFIXES]
             if not files:
                 raise InputFileError(f"no shape file in the folder {text!r} (looked for {' '.join(SHAPE_SUFFIXES)})")
             out += files
@@ -85,7 +81,7 @@ def output_names(inputs: Sequence[Path], out_dir: Path, formats: Sequence[str]) 
     """``out_dir / <stem><format>`` for each input and format; inputs whose
     stems coincide (``a.png``, ``a.tif``) keep their whole name (``a.png.json``),
     and the same name from two folders is numbered (``a_1.json``, ``a_2.json``)."""
-    stems = [p.name[: -len(_suffix(p))] if _suffix(p) else p.name for p in inputs]
+    stems = [p.name[: -len(suffix_of(p))] if suffix_of(p) else p.name for p in inputs]
     full = [p.name for p in inputs]
     names = []
     for k, (stem, name) in enumerate(zip(stems, full)):

@@ -11,6 +11,7 @@ from typing import Any
 from medialaxis._dispatch import DEFAULT_METHOD, METHODS
 from medialaxis._help import HelpFormatter, UsageError
 from medialaxis._help import print_error as _fail
+from medialaxis.core.formats import limits_text, needs_text
 from medialaxis.core.io import WRITERS
 from medialaxis.errors import MedialAxisError
 
@@ -31,6 +32,7 @@ def check_outputs(
     inputs: Sequence[Path], outputs: Sequence[Path], formats: Sequence[str] | None = None, option: str = "--output"
 ) -> None:
     """Refuse, before any work, outputs that are an input file, of an unknown format, or not writable."""
+    from medialaxis.core.formats import suffix_of, writer_missing
     from medialaxis.core.io import WRITERS, check_writable
 
     formats = tuple(WRITERS) if formats is None else tuple(formats)
@@ -38,10 +40,14 @@ def check_outputs(
     for out in outputs:
         if out.exists() and any(out.samefile(p) for p in existing):
             raise UsageError(f"refusing to overwrite the input file {str(out)!r}")
-        if out.suffix.lower() not in formats:
+        suffix = suffix_of(out)
+        if suffix not in formats:
             raise UsageError(
-                f"{option}: unsupported output format {out.suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(formats)}"
+                f"{option}: unsupported output format {suffix or '(none)'!r} for {str(out)!r}; use one of {', '.join(formats)}"
             )
+        missing = writer_missing(suffix)
+        if missing is not None:
+            raise UsageError(f"{option} {str(out)!r}: {missing}")
         check_writable(out)
 
 
@@ -101,10 +107,11 @@ def add_compute(sub: Any) -> None:
                         "(.json/.npz)")
     p.add_argument("-o", "--output", type=Path, action="append", default=[],
                    help=f"output file of a single input; the extension picks the format ({' '.join(WRITERS)}); "
-                        "one that cannot hold the method's kind of result (SVG: planar axes; SWC: curves; GeoJSON: "
-                        "no surfaces) is refused before any work; repeatable")
+                        f"one that cannot hold the method's kind of result ({limits_text()}) is refused before any "
+                        f"work; {needs_text()}; repeatable")
     p.add_argument("--out-dir", type=Path, default=None, help="folder for the outputs of each input (created if needed)")
-    p.add_argument("--format", default="json", help="output formats with --out-dir, comma-separated (e.g. json,svg)")
+    p.add_argument("--format", default="json", help="output formats with --out-dir, comma-separated (e.g. json,svg), among "
+                        + ",".join(w.lstrip(".") for w in WRITERS))
     p.add_argument("--method", default=None, metavar="METHOD",
                    help="method within the input's domain: " + "; ".join(
                        f"{domain} {', '.join(methods)} (default {DEFAULT_METHOD[domain]})" for domain, methods in METHODS.items()))

@@ -14,13 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis._dispatch import EXTENSIONS
 from medialaxis._help import HelpFormatter, UsageError
+from medialaxis.core.formats import suffix_of, suffixes
 
 __all__ = ["add_compare", "add_search", "PLANAR_SUFFIXES", "save_match_picture", "save_search_grid"]
 
-#: File types ``search`` ranks inside a folder.
-PLANAR_SUFFIXES = (*EXTENSIONS["planar"], ".tif", ".tiff", ".npz")
+#: File types ``search`` ranks inside a folder: planar shapes and saved results (not ``.npy``
+#: arrays, which may as well be volumes).
+PLANAR_SUFFIXES = tuple(s for s in suffixes("planar", "result") if s != ".npy")
 
 
 def _add_matching_options(p: argparse.ArgumentParser) -> None:
@@ -217,7 +218,7 @@ def _run_search(args: argparse.Namespace) -> int:
         raise UsageError(f"--columns must be >= 1, got {args.columns}")
     if not args.folder.is_dir():
         raise InputFileError(f"not a folder: {str(args.folder)!r}")
-    files = sorted(p for p in args.folder.iterdir() if p.is_file() and p.suffix.lower() in PLANAR_SUFFIXES)
+    files = sorted(p for p in args.folder.iterdir() if p.is_file() and suffix_of(p) in PLANAR_SUFFIXES)
     if not files:
         raise InputFileError(f"no shape files ({', '.join(PLANAR_SUFFIXES)}) in {str(args.folder)!r}")
     _check_picture(args.output, [args.query, *files])

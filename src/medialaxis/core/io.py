@@ -28,12 +28,13 @@ from typing import Any
 import numpy as np
 
 from medialaxis.core import mesh_files
+from medialaxis.core.formats import FORMATS, entry_point, format_of, suffix_of, writer_missing
 from medialaxis.core.frames import coordinates_note, plane_xy, y_down
-from medialaxis.core.lossless import LOSSLESS, is_result_file, load, write_json, write_npz
+from medialaxis.core.lossless import LOSSLESS, is_result_file, load
 from medialaxis.core.lossless import jsonable as _jsonable
-from medialaxis.core.outputs import KINDS, atomic_write, check_writable, output_batch, output_mode, result_kind
+from medialaxis.core.outputs import atomic_path, atomic_write, check_writable, output_batch, output_mode, result_kind
 from medialaxis.core.result import MedialAxis
-from medialaxis.errors import InvalidInputError, UnsupportedFormatError
+from medialaxis.errors import InvalidInputError, MissingDependencyError, UnsupportedFormatError
 
 __all__ = [
     "HOLDS",
@@ -53,7 +54,7 @@ __all__ = [
 
 
 # -------------------------------------------------------------- exports
-def _write_graphml(ma: MedialAxis, path: Path) -> None:
+def write_graphml(ma: MedialAxis, path: Path) -> None:
     """Nodes with x, y (as GeoJSON writes them: x = column, y = row for an image), z in 3D and radius."""
     from medialaxis._optional import require
 
@@ -72,7 +73,7 @@ def _write_graphml(ma: MedialAxis, path: Path) -> None:
         nx.write_graphml(g, fh)
 
 
-def _write_geojson(ma: MedialAxis, path: Path) -> None:
+def write_geojson(ma: MedialAxis, path: Path) -> None:
     """Branches as LineStrings, junctions and endpoints as Points. An image's
     axis is written with x = column and y = row (pixels times spacing, y
     downwards as in the image), as GIS tools place a raster's pixels; the
@@ -107,7 +108,7 @@ def _write_geojson(ma: MedialAxis, path: Path) -> None:
         json.dump(doc, fh)
 
 
-def _write_svg(ma: MedialAxis, path: Path) -> None:
+def write_svg(ma: MedialAxis, path: Path) -> None:
     """The axis over the shape, in the source's frame (:func:`medialaxis.core.frames.svg_frame`)."""
     from medialaxis.core.frames import svg_document
 
@@ -117,7 +118,7 @@ def _write_svg(ma: MedialAxis, path: Path) -> None:
         fh.write(svg_document(ma, coordinates_note(ma)))
 
 
-def _write_png(ma: MedialAxis, path: Path) -> None:
+def write_png(ma: MedialAxis, path: Path) -> None:
     import matplotlib
 
     from medialaxis.core.plot import plot_axis
@@ -144,10 +145,25 @@ def _through(write: Callable[[MedialAxis, Any], None], mode: str) -> Callable[[M
         with atomic_write(path, mode) as fh:
             write(ma, fh)
 
+    run.__name__ = write.__name__
     return run
 
 
-def _write_obj(ma: MedialAxis, path: Path) -> None:
+write_ply = _through(mesh_files.write_ply, "wb")
+write_swc = _through(mesh_files.write_swc, "w")
+
+
+def write_vtk(ma: MedialAxis, path: Path) -> None:
+    with atomic_path(path) as tmp:  # meshio opens the file itself
+        mesh_files.write_vtk(ma, tmp)
+
+
+def write_vtu(ma: MedialAxis, path: Path) -> None:
+    with atomic_path(path) as tmp:
+        mesh_files.write_vtu(ma, tmp)
+
+
+def write_obj(ma: MedialAxis, path: Path) -> None:
     pts = mesh_files.points_3d(ma)
     with atomic_write(path, "w") as fh:
         fh.write("# medialaxis result: vertices, curve edges (l) and faces (f); radii are in .ply .vtk .vtu .swc\n")
@@ -159,38 +175,26 @@ def _write_obj(ma: MedialAxis, path: Path) -> None:
             np.savetxt(fh, ma.faces + 1, fmt="f %d %d %d")
 
 
-def _write_html(ma: MedialAxis, path: Path) -> None:
-    from medialaxis.core.html import write_html  # plotly view
+def write_html(ma: MedialAxis, path: Path) -> None:
+    from medialaxis.core import html  # plotly view
 
-    write_html(ma, path)
+    html.write_html(ma, path)
 
 
-WRITERS: dict[str, Callable[[MedialAxis, Path], None]] = {
-    ".json": write_json,
-    ".npz": write_npz,
-    ".graphml": _write_graphml,
-    ".geojson": _write_geojson,
-    ".svg": _write_svg,
-    ".png": _write_png,
-    ".ply": _through(mesh_files.write_ply, "wb"),
-    ".obj": _write_obj,
-    ".vtk": _through(mesh_files.write_vtk, "w"),
-    ".vtu": _through(mesh_files.write_vtu, "w"),
-    ".swc": _through(mesh_files.write_swc, "w"),
-    ".html": _write_html,
-}
+def _lazy(entry: str) -> Callable[..., None]:
+    """The writer named by ``entry`` (``"module:function"``), imported when first called."""
 
+    def write(ma: MedialAxis, path: Path, **kwargs: Any) -> None:
+        entry_point(entry)(ma, path, **kwargs)
+
+    return write
+
+
+#: The writer of each output suffix (:data:`medialaxis.core.formats.FORMATS`), in registry order.
+WRITERS: dict[str, Callable[..., None]] = {s: _lazy(f.writer) for f in FORMATS if f.writer for s in f.suffixes}
 
 #: What each format holds, and the kinds of result (:data:`~medialaxis.core.outputs.KINDS`) that fit.
-HOLDS: dict[str, tuple[str, frozenset[str]]] = {
-    **{ext: ("any result", frozenset(KINDS))
-       for ext in (".json", ".npz", ".graphml", ".png", ".ply", ".obj", ".vtk", ".vtu", ".html")},
-    ".geojson": ("lines and points", frozenset({"planar curves", "space curves", "voxel sets"})),
-    ".svg": ("planar axes", frozenset({"planar curves"})),
-    ".swc": ("curve skeletons", frozenset({"planar curves", "space curves"})),
-}
-
-_NAMES = {".geojson": "GeoJSON", ".graphml": "GraphML", ".html": "HTML"}
+HOLDS: dict[str, tuple[str, frozenset[str]]] = {s: f.holds for f in FORMATS if f.holds for s in f.suffixes}
 
 
 def kind_refusal(path: str | os.PathLike[str], kind: str | None) -> str | None:
@@ -199,11 +203,12 @@ def kind_refusal(path: str | os.PathLike[str], kind: str | None) -> str | None:
     >>> kind_refusal("t.swc", "surfaces")
     'SWC holds curve skeletons, not surfaces: write .json, .npz, .graphml, .png, .ply, .obj, .vtk, .vtu or .html'
     """
-    ext = Path(path).suffix.lower()
-    if kind is None or ext not in HOLDS or kind in HOLDS[ext][1]:
+    ext = suffix_of(path)
+    fmt = format_of(path)
+    if kind is None or fmt is None or ext not in HOLDS or kind in HOLDS[ext][1]:
         return None
     fits = [e for e, (_, kinds) in HOLDS.items() if kind in kinds]
-    name = _NAMES.get(ext, ext[1:].upper())
+    name = fmt.name
     return f"{name} holds {HOLDS[ext][0]}, not {kind}: write {', '.join(fits[:-1])} or {fits[-1]}"
 
 
@@ -229,10 +234,13 @@ def save(ma: MedialAxis, path: str | os.PathLike[str], *, timings: bool = False)
     if not isinstance(ma, MedialAxis):
         raise InvalidInputError(f"expected a MedialAxis, got {type(ma).__name__}")
     path = Path(path)
-    ext = path.suffix.lower()
+    ext = suffix_of(path)
     if ext not in WRITERS:
         raise UnsupportedFormatError(f"unsupported output format {ext or '(none)'!r}; choose one of {', '.join(WRITERS)}")
     check_kind(ma, path)
+    missing = writer_missing(ext)
+    if missing is not None:
+        raise MissingDependencyError(missing)
     if timings and ext in LOSSLESS:
         WRITERS[ext](ma, path, timings=True)  # type: ignore[call-arg]
     else:

@@ -16,27 +16,29 @@ format    cells                                       read by (tested)
           (edges closing cycles as comment lines)     parsed back in the tests
 ========  ==========================================  =====================================
 
-2D results are written with ``z = 0``.
+2D results are written with ``z = 0``. VTK and VTU are written by meshio
+(the ``medialaxis[meshio]`` extra). PLY and SWC are written here, because no
+library writes what they must hold: meshio's PLY writer has no ``edge``
+element (the curve pieces of a complex of triangles and curves) and stamps
+the time into the file, so the same result would not give the same bytes;
+SWC has no writer in meshio, trimesh or pyvista.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy import sparse
 from scipy.sparse import csgraph
 
+from medialaxis._optional import require
 from medialaxis.errors import UnsupportedFormatError
 
 if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.core.result import MedialAxis
 
 __all__ = ["curve_edges", "point_fields", "points_3d", "write_ply", "write_swc", "write_vtk", "write_vtu"]
-
-#: VTK cell types.
-VTK_VERTEX, VTK_LINE, VTK_TRIANGLE = 1, 3, 5
-
 
 def points_3d(ma: MedialAxis) -> np.ndarray:
     """(n, 3) points of ``ma``; a 2D result gets ``z = 0``."""
@@ -66,15 +68,19 @@ def point_fields(ma: MedialAxis) -> dict[str, np.ndarray]:
     return fields
 
 
-def _cells(ma: MedialAxis) -> tuple[np.ndarray, np.ndarray]:
-    """Connectivity rows and VTK types: triangles, then curve lines; lone points when neither."""
+def _cell_blocks(ma: MedialAxis) -> list[tuple[str, np.ndarray]]:
+    """meshio cell blocks: triangles, then curve lines; lone points (``vertex``) when neither."""
     tri = np.asarray(ma.faces, np.int64).reshape(-1, 3)
     lines = curve_edges(ma)
     if len(tri) == 0 and len(lines) == 0:
-        lone = np.arange(len(ma.points), dtype=np.int64)[:, None]
-        return [lone], np.full(len(lone), VTK_VERTEX)  # type: ignore[return-value]
-    types = np.r_[np.full(len(tri), VTK_TRIANGLE), np.full(len(lines), VTK_LINE)]
-    return [tri, lines], types  # type: ignore[return-value]
+        return [("vertex", np.arange(len(ma.points), dtype=np.int64)[:, None])]
+    return [(kind, block) for kind, block in (("triangle", tri), ("line", lines)) if len(block)]
+
+
+def _meshio_mesh(ma: MedialAxis) -> Any:
+    """``ma`` as a ``meshio.Mesh``: 3D points, cell blocks and the point fields."""
+    meshio = require("meshio", "medialaxis[meshio]")
+    return meshio, meshio.Mesh(points_3d(ma), _cell_blocks(ma), point_data=point_fields(ma))
 
 
 def write_ply(ma: MedialAxis, fh: object) -> None:
@@ -112,46 +118,17 @@ def write_ply(ma: MedialAxis, fh: object) -> None:
         fh.write(np.ascontiguousarray(extra, "<i4").tobytes())  # type: ignore[attr-defined]
 
 
-def write_vtk(ma: MedialAxis, fh: object) -> None:
-    """Legacy ASCII VTK ``UNSTRUCTURED_GRID`` (read by meshio, pyvista, ParaView)."""
-    xyz = points_3d(ma)
-    blocks, types = _cells(ma)
-    size = sum(len(b) * (b.shape[1] + 1) for b in blocks)
-    fh.write(f"# vtk DataFile Version 3.0\nmedialaxis result\nASCII\nDATASET UNSTRUCTURED_GRID\n"  # type: ignore[attr-defined]
-             f"POINTS {len(xyz)} double\n")
-    np.savetxt(fh, xyz, fmt="%.10g")
-    fh.write(f"CELLS {len(types)} {size}\n")  # type: ignore[attr-defined]
-    for block in blocks:
-        if len(block):
-            np.savetxt(fh, np.c_[np.full(len(block), block.shape[1]), block], fmt="%d")
-    fh.write(f"CELL_TYPES {len(types)}\n")  # type: ignore[attr-defined]
-    np.savetxt(fh, types, fmt="%d")
-    fh.write(f"POINT_DATA {len(xyz)}\n")  # type: ignore[attr-defined]
-    for name, values in point_fields(ma).items():
-        fh.write(f"SCALARS {name} double 1\nLOOKUP_TABLE default\n")  # type: ignore[attr-defined]
-        np.savetxt(fh, values, fmt="%.10g")
+def write_vtk(ma: MedialAxis, path: str) -> None:
+    """Legacy binary VTK ``UNSTRUCTURED_GRID``, file version 4.2 (read by meshio, pyvista, ParaView; VTK
+    before 9 cannot read meshio's default 5.1), written by meshio."""
+    meshio, mesh = _meshio_mesh(ma)
+    meshio.vtk.write(path, mesh, fmt_version="4.2", binary=True)
 
 
-def write_vtu(ma: MedialAxis, fh: object) -> None:
-    """XML VTK ``UnstructuredGrid`` (ASCII data arrays)."""
-    xyz = points_3d(ma)
-    blocks, types = _cells(ma)
-    connectivity = np.concatenate([b.ravel() for b in blocks]) if blocks else np.empty(0, np.int64)
-    offsets = np.cumsum(np.concatenate([np.full(len(b), b.shape[1]) for b in blocks]))
-
-    def array(name: str, values: np.ndarray, kind: str, components: int = 1) -> str:
-        text = " ".join(np.char.mod("%.10g" if kind == "Float64" else "%d", np.asarray(values).ravel()))
-        return (f'<DataArray type="{kind}" Name="{name}" NumberOfComponents="{components}" format="ascii">'
-                f"{text}</DataArray>\n")
-
-    fh.write('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">\n'  # type: ignore[attr-defined]
-             f'<UnstructuredGrid>\n<Piece NumberOfPoints="{len(xyz)}" NumberOfCells="{len(types)}">\n<PointData>\n')
-    for name, values in point_fields(ma).items():
-        fh.write(array(name, values, "Float64"))  # type: ignore[attr-defined]
-    fh.write("</PointData>\n<Points>\n" + array("Points", xyz, "Float64", 3) + "</Points>\n<Cells>\n")  # type: ignore[attr-defined]
-    fh.write(array("connectivity", connectivity, "Int64") + array("offsets", offsets, "Int64")  # type: ignore[attr-defined]
-             + array("types", types, "UInt8"))
-    fh.write("</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")  # type: ignore[attr-defined]
+def write_vtu(ma: MedialAxis, path: str) -> None:
+    """XML VTK ``UnstructuredGrid`` (binary, zlib-compressed arrays), written by meshio."""
+    meshio, mesh = _meshio_mesh(ma)
+    meshio.vtu.write(path, mesh, binary=True, compression="zlib")
 
 
 def write_swc(ma: MedialAxis, fh: object) -> None:

@@ -15,7 +15,7 @@ from typing import IO, Any
 
 from medialaxis.errors import InputFileError
 
-__all__ = ["KINDS", "METHOD_KINDS", "atomic_write", "check_writable", "method_kind", "output_batch", "output_mode",
+__all__ = ["KINDS", "METHOD_KINDS", "atomic_path", "atomic_write", "check_writable", "method_kind", "output_batch", "output_mode",
            "result_kind"]
 
 #: The kinds of result: curves in the plane, curves in space, surfaces (triangles, possibly with curve
@@ -137,13 +137,15 @@ def check_writable(path: str | os.PathLike[str]) -> None:
 
 
 @contextlib.contextmanager
-def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO[Any]]:
-    """Open a temporary file next to ``path``; rename it over ``path`` on success.
+def atomic_path(path: str | os.PathLike[str]) -> Iterator[str]:
+    """A temporary file name next to ``path``, renamed over ``path`` when the block ends normally.
 
-    The temporary file is created private (``tempfile.mkstemp``) and given
-    the permissions of :func:`output_mode` before it is renamed, so the
-    result is readable as any file the user writes would be. Inside
-    :func:`output_batch` the rename waits for the end of the batch.
+    For writers that open the file themselves (meshio's VTU writer takes a
+    name, not an open file). The temporary file is created private
+    (``tempfile.mkstemp``) and given the permissions of :func:`output_mode`
+    before it is renamed, so the result is readable as any file the user
+    writes would be. Inside :func:`output_batch` the rename waits for the end
+    of the batch; on an error the temporary file is deleted.
     """
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
@@ -157,8 +159,8 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO[
     try:
         if hasattr(os, "fchmod"):
             os.fchmod(fd, permissions)
-        with os.fdopen(fd, mode) as fh:
-            yield fh
+        os.close(fd)
+        yield tmp
         batch = _BATCH.get()
         if batch is None:
             os.replace(tmp, path)
@@ -168,3 +170,10 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO[
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+@contextlib.contextmanager
+def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO[Any]]:
+    """Open a temporary file next to ``path``; rename it over ``path`` on success (:func:`atomic_path`)."""
+    with atomic_path(path) as tmp, open(tmp, mode) as fh:
+        yield fh

@@ -19,27 +19,28 @@ grid (sides not perpendicular) has no such frame and is refused.
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from medialaxis import _optional
 from medialaxis.api import medial_axis
+from medialaxis.core import formats
 from medialaxis.errors import InputFileError, InvalidInputError
 from medialaxis.gis.network import branch_stations, branch_table
 
 __all__ = ["RASTER_SUFFIXES", "is_raster", "read_mask", "pixel_frame", "raster_axis", "raster_network",
            "raster_stations"]
 
-#: Files read as raster masks (GeoTIFF and GDAL's virtual rasters).
-RASTER_SUFFIXES = (".tif", ".tiff", ".vrt")
+#: Files read as raster masks (GeoTIFF and GDAL's virtual rasters): the ``"raster"`` readers of
+#: :data:`medialaxis.core.formats.FORMATS`.
+RASTER_SUFFIXES = formats.suffixes("raster")
 
 
 def is_raster(source: Any) -> bool:
     """A path with a raster suffix, or an open rasterio dataset."""
     if isinstance(source, (str, os.PathLike)):
-        return Path(source).suffix.lower() in RASTER_SUFFIXES
+        return formats.suffix_of(source) in RASTER_SUFFIXES
     return type(source).__module__.startswith("rasterio") and hasattr(source, "transform")
 
 

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis._optional import require
+from medialaxis.core import formats
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.validate import check_coordinates
 from medialaxis.errors import (
@@ -27,9 +28,7 @@ from medialaxis.errors import (
 from medialaxis.mesh.contour import contoured
 from medialaxis.mesh.crossings import inside_out_shells
 
-__all__ = ["MeshInput", "load_mesh", "resolve_solid", "signed_volume", "MESH_EXTENSIONS"]
-
-MESH_EXTENSIONS = (".obj", ".ply", ".off", ".stl", ".glb", ".gltf")
+__all__ = ["MeshInput", "load_mesh", "resolve_solid", "signed_volume"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -77,9 +76,9 @@ def _read(path: Path) -> Any:
     trimesh = require("trimesh", "medialaxis[mesh]")
     if not path.is_file():
         raise InputFileError(f"no such file: {str(path)!r}")
-    ext = path.suffix.lower()
-    if ext not in MESH_EXTENSIONS:
-        raise UnsupportedFormatError(f"unsupported mesh file type {ext!r}; use one of {', '.join(MESH_EXTENSIONS)}")
+    ext, known = formats.suffix_of(path), formats.suffixes("mesh")  # the formats trimesh reads for us
+    if ext not in known:
+        raise UnsupportedFormatError(f"unsupported mesh file type {ext!r}; use one of {', '.join(known)}")
     if ext == ".stl":
         _check_stl(path)
     try:

@@ -9,6 +9,7 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
+from medialaxis.core.formats import reader_suffixes
 from medialaxis.core.images import open_image
 from medialaxis.core.validate import check_finite, memory_budget
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError, ResourceLimitError
@@ -26,7 +27,8 @@ BYTES_PER_PIXEL = 48
 BINARY_SMOOTHING = 1.0
 
 
-IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff")
+#: Image files, read by :func:`read_image` (:data:`medialaxis.core.formats.FORMATS`).
+IMAGE_EXTENSIONS = reader_suffixes("planar", f"{__name__}:read_image")
 
 
 #: Accepted values of ``foreground``: which side of the threshold is the shape.

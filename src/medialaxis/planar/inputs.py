@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 import shapely
 
+from medialaxis.core.formats import reader_suffixes, suffix_of
 from medialaxis.core.validate import check_spacing, is_geometry_text
 from medialaxis.errors import InputFileError, InvalidInputError, MedialAxisWarning, UnsupportedFormatError
 from medialaxis.planar.images import (
@@ -37,10 +38,10 @@ from medialaxis.planar.vectors import loop_polygon, parse_vector, read_vector, v
 
 __all__ = ["PlanarInput", "load_planar", "max_pixels", "shape_side", "contour_region", "FOREGROUNDS", "DRAWINGS"]
 
-#: Drawing formats: what they paint is read by the library made for the format.
-DRAWINGS = (".svg", ".dxf")
+#: Drawing formats: what they paint is read by the library made for the format (:func:`read_drawing`).
+DRAWINGS = reader_suffixes("planar", f"{__name__}:read_drawing")
 #: Other vector formats: their geometry is the shape.
-VECTORS = (".wkt", ".geojson", ".json")
+VECTORS = reader_suffixes("planar", "medialaxis.planar.vectors:read_vector")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -159,7 +160,7 @@ def load_planar(
     if is_geometry_text(shape):  # WKT or GeoJSON text rather than a file name
         return load_planar(parse_vector(shape, wkt=not shape.lstrip().startswith("{")), threshold=threshold,
                            spacing=spacing, foreground=foreground, strokes=strokes, layers=layers)
-    is_drawing = isinstance(shape, (str, os.PathLike)) and Path(shape).suffix.lower() in DRAWINGS
+    is_drawing = isinstance(shape, (str, os.PathLike)) and suffix_of(shape) in DRAWINGS
     if not is_drawing and (strokes is not None or layers is not None):
         name = "strokes" if strokes is not None else "layers"
         raise InvalidInputError(f"{name}= applies to drawings (SVG, DXF files), not to {_what(shape)}")
@@ -167,7 +168,7 @@ def load_planar(
         path = Path(shape)
         if not path.is_file():
             raise InputFileError(f"no such file: {str(path)!r}")
-        ext = path.suffix.lower()
+        ext = suffix_of(path)
         if ext in IMAGE_EXTENSIONS:
             # an image file is a picture unless labels=True says it holds labels (a 16-bit scan opens as int32)
             return _image_input(read_image(path), threshold, check_spacing(spacing, 2), foreground, bool(labels))

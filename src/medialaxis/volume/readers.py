@@ -15,14 +15,16 @@ from typing import Any
 import numpy as np
 
 from medialaxis._optional import require
+from medialaxis.core import formats
 from medialaxis.core.validate import memory_budget
 from medialaxis.errors import InputFileError, InvalidInputError, ResourceLimitError, UnsupportedFormatError
 from medialaxis.volume.source_files import check_raw_size, nrrd_spacing, raw_layout
 
-__all__ = ["read_volume", "VOLUME_SUFFIXES"]
+__all__ = ["read_volume", "VOLUME_SUFFIXES", "read_dicom", "read_nifti", "read_npy", "read_nrrd", "read_raw", "read_tiff"]
 
-#: Suffixes handled by :func:`read_volume` (a folder is a TIFF or DICOM series).
-VOLUME_SUFFIXES = (".nrrd", ".nhdr", ".nii", ".nii.gz", ".tif", ".tiff", ".dcm", ".npy", ".raw")
+#: Suffixes handled by :func:`read_volume` (a folder is a TIFF or DICOM series), each with its reader in
+#: :data:`medialaxis.core.formats.FORMATS`.
+VOLUME_SUFFIXES = formats.suffixes("volume")
 
 #: Bytes of working memory per voxel of the in-memory pipeline (distance and
 #: feature transforms, labels, masks), used to refuse a volume before reading it.
@@ -49,19 +51,14 @@ def check_voxels(shape: Any, what: str) -> None:
 
 
 
-def _suffix(path: Path) -> str:
-    name = path.name.lower()
-    return ".nii.gz" if name.endswith(".nii.gz") else path.suffix.lower()
-
-
-def _read_nrrd(path: Path) -> tuple[np.ndarray, Any]:
+def read_nrrd(path: Path) -> tuple[np.ndarray, Any]:
     nrrd = require("nrrd", "pynrrd")
     check_voxels(nrrd.read_header(str(path)).get("sizes", ()), f"NRRD {str(path)!r}")
     data, header = nrrd.read(str(path), index_order="C")
     return data, (nrrd_spacing(header) if data.ndim == 3 else None)
 
 
-def _read_nifti(path: Path) -> tuple[np.ndarray, Any]:
+def read_nifti(path: Path) -> tuple[np.ndarray, Any]:
     nib = require("nibabel", "nibabel")
     img = nib.load(str(path))
     check_voxels(img.shape, f"NIfTI {str(path)!r}")
@@ -70,7 +67,7 @@ def _read_nifti(path: Path) -> tuple[np.ndarray, Any]:
     return data, zooms if len(zooms) == 3 else None
 
 
-def _read_tiff(path: Path) -> tuple[np.ndarray, Any]:
+def read_tiff(path: Path) -> tuple[np.ndarray, Any]:
     tifffile = require("tifffile", "tifffile")
     if path.is_dir():
         files = sorted(p for p in path.iterdir() if p.suffix.lower() in (".tif", ".tiff"))
@@ -93,7 +90,7 @@ def _read_tiff(path: Path) -> tuple[np.ndarray, Any]:
     return data, None
 
 
-def _read_dicom(path: Path) -> tuple[np.ndarray, Any]:
+def read_dicom(path: Path) -> tuple[np.ndarray, Any]:
     pydicom = require("pydicom", "pydicom")
     files = sorted(p for p in path.iterdir() if p.is_file() and p.suffix.lower() in (".dcm", "")) if path.is_dir() else [path]
     slices = []
@@ -125,12 +122,12 @@ def _read_dicom(path: Path) -> tuple[np.ndarray, Any]:
     return data, (dz, pixel[0], pixel[1])
 
 
-def _read_npy(path: Path) -> tuple[np.ndarray, Any]:
+def read_npy(path: Path) -> tuple[np.ndarray, Any]:
     check_voxels(np.load(path, mmap_mode="r", allow_pickle=False).shape, f"{str(path)!r}")
     return np.load(path, allow_pickle=False), None
 
 
-def _read_raw(path: Path, shape: Any, dtype: Any) -> tuple[np.ndarray, Any]:
+def read_raw(path: Path, shape: Any, dtype: Any) -> tuple[np.ndarray, Any]:
     shape, dt = raw_layout(path, shape, dtype)
     check_voxels(shape, f"raw file {str(path)!r}")
     check_raw_size(path, shape, dt)
@@ -176,19 +173,17 @@ def read_volume(path: str | os.PathLike[str], *, shape: Any = None, dtype: Any =
         raise InputFileError(f"no such file or folder: {str(p)!r}")
     if p.is_dir():
         names = [q.suffix.lower() for q in p.iterdir() if q.is_file()]
-        reader = _read_tiff if any(n in (".tif", ".tiff") for n in names) else _read_dicom
-        args: tuple[Any, ...] = ()
+        reader = read_tiff if any(n in (".tif", ".tiff") for n in names) else read_dicom
     else:
-        ext = _suffix(p)
-        table = {".nrrd": _read_nrrd, ".nhdr": _read_nrrd, ".nii": _read_nifti, ".nii.gz": _read_nifti,
-                 ".tif": _read_tiff, ".tiff": _read_tiff, ".dcm": _read_dicom, ".npy": _read_npy}
-        if ext == ".raw":
-            return _check3d(_read_raw(p, shape, dtype), p)
-        if ext not in table:
-            raise UnsupportedFormatError(f"unsupported volume file type {ext or '(none)'!r} for {str(p)!r}")
-        reader, args = table[ext], ()
+        fmt = formats.format_of(p)
+        if fmt is None or "volume" not in fmt.readers:
+            ext = formats.suffix_of(p) or "(none)"
+            raise UnsupportedFormatError(f"unsupported volume file type {ext!r} for {str(p)!r}")
+        reader = formats.entry_point(fmt.readers["volume"])
+        if reader is read_raw:  # the one reader told the layout
+            return _check3d(read_raw(p, shape, dtype), p)
     try:
-        result = reader(p, *args)
+        result = reader(p)
     except (InputFileError, InvalidInputError, ImportError, ResourceLimitError):
         raise
     except MemoryError as exc:

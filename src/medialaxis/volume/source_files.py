@@ -301,9 +301,9 @@ class NiftiSource(Source):
         self.shape, self.dtype = check_volume(shape, dtype, self.name)
         self.spacing = zooms if len(zooms) == 3 else None
         expected = offset + int(np.prod(self.shape, dtype=np.int64)) * img.get_data_dtype().itemsize
-        if self.path.endswith(".gz") and spill:
+        if self.path.lower().endswith(".gz") and spill:
             self.path = self._decompress(expected)
-        if not self.path.endswith(".gz") and os.path.getsize(self.path) < expected:
+        if not self.path.lower().endswith(".gz") and os.path.getsize(self.path) < expected:
             raise InputFileError(f"{self.name} is shorter than its header says ({expected} bytes): truncated")
 
     def _decompress(self, expected: int) -> str:

@@ -17,6 +17,7 @@ is refused when it is opened, before any work.
 
 from __future__ import annotations
 
+import inspect
 import os
 from pathlib import Path
 from typing import Any
@@ -24,9 +25,10 @@ from typing import Any
 import numpy as np
 
 from medialaxis._optional import require
+from medialaxis.core import formats
 from medialaxis.errors import InputFileError, UnsupportedFormatError
 from medialaxis.volume.source_base import Region, Source, check_volume
-from medialaxis.volume.source_files import NiftiSource, TiffSource, npy_source, nrrd_source, raw_source
+from medialaxis.volume.source_files import TiffSource
 
 __all__ = ["Source", "Region", "ArraySource", "ZarrSource", "DaskSource", "open_source", "is_zarr_folder"]
 
@@ -80,6 +82,12 @@ def is_zarr_folder(path: Path) -> bool:
     return path.is_dir() and (path.suffix.lower() == ".zarr" or (path / ".zarray").exists() or (path / "zarr.json").exists())
 
 
+def _call(block_reader: Any, path: Path, **options: Any) -> Source:
+    """``block_reader(path, ...)`` given those of ``options`` it takes (the raw layout, ``spill``)."""
+    accepted = inspect.signature(block_reader).parameters
+    return block_reader(path, **{k: v for k, v in options.items() if k in accepted})  # type: ignore[no-any-return]
+
+
 def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None, header_only: bool = False) -> Source:
     """A :class:`Source` for an array, a Dask or Zarr array, or a volume file or folder.
 
@@ -100,7 +108,6 @@ def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None, he
         path = Path(volume)
         if not path.exists():
             raise InputFileError(f"no such file or folder: {str(path)!r}")
-        name = path.name.lower()
         if is_zarr_folder(path):
             from medialaxis.volume.ome_zarr import open_ome_zarr
 
@@ -109,17 +116,12 @@ def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None, he
             if any(p.suffix.lower() in (".tif", ".tiff") for p in path.iterdir()):
                 return TiffSource(path)
             raise UnsupportedFormatError(f"folder {str(path)!r} is not a TIFF stack or Zarr store (DICOM series are read whole)")
-        if name.endswith(".npy"):
-            return npy_source(path)
-        if name.endswith(".raw"):
-            return raw_source(path, raw_shape, raw_dtype)
-        if name.endswith((".nrrd", ".nhdr")):
-            return nrrd_source(path, spill=not header_only)
-        if name.endswith((".nii", ".nii.gz")):
-            return NiftiSource(path, spill=not header_only)
-        if name.endswith((".tif", ".tiff")):
-            return TiffSource(path)
-        raise UnsupportedFormatError(f"no block reader for {str(path)!r}: use .npy, .raw, .nrrd, .nii, TIFF or Zarr")
+        fmt = formats.format_of(path)
+        if fmt is None or fmt.block_reader is None:
+            known = ", ".join(f.name for f in formats.FORMATS if f.block_reader)
+            raise UnsupportedFormatError(f"no block reader for {str(path)!r}: use {known} or Zarr")
+        return _call(formats.entry_point(fmt.block_reader), path, shape=raw_shape, dtype=raw_dtype,
+                     spill=not header_only)
     module = type(volume).__module__ or ""
     if module.startswith("dask") and hasattr(volume, "chunks"):
         return DaskSource(volume)
