@@ -260,3 +260,12 @@ def test_stage_files_are_written_by_registered_writers():
     from medialaxis.volume.steps import STEP_SUFFIXES
 
     assert set(STEP_SUFFIXES) <= set(formats.writer_suffixes())
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.float64, np.float32])
+def test_a_two_level_image_is_cut_half_way_between_its_levels(dtype):
+    # a GIF's palette reads as a 0/1 float image: Otsu's threshold lands in the histogram bin next to 0 there
+    image = (DISK > 0).astype(dtype)
+    src = load_planar(image)
+    assert src.threshold == 0.5
+    assert src.region.area == pytest.approx(np.count_nonzero(DISK), rel=0.01)  # the pixels' area

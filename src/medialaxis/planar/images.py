@@ -130,9 +130,10 @@ def _threshold(image: np.ndarray, threshold: float | None) -> tuple[np.ndarray, 
         from skimage.filters import threshold_otsu
 
         threshold = float(threshold_otsu(image))
-        if not lo < threshold < hi:
-            # Otsu lands on a level for two-level images; an iso-line at a
-            # level runs through pixel centres and leaves one side empty.
+        if not lo < threshold < hi or ((image == lo) | (image == hi)).all():
+            # Otsu lands on a level, or a histogram bin next to one (a float
+            # 0/1 image: a GIF's palette), for two-level images; the
+            # iso-line belongs half-way between the two levels.
             threshold = 0.5 * (lo + hi)
     return image > threshold, threshold
 
