@@ -13,7 +13,7 @@ import glob
 from collections.abc import Sequence
 from pathlib import Path
 
-from medialaxis.core.formats import ROUTED, suffix_of, suffixes
+from medialaxis.core.formats import ROUTED, named, suffix_of, suffixes
 from medialaxis.errors import InputFileError
 
 __all__ = ["expand_inputs", "is_slice_folder", "output_names", "SHAPE_SUFFIXES"]
@@ -23,7 +23,7 @@ __all__ = ["expand_inputs", "is_slice_folder", "output_names", "SHAPE_SUFFIXES"]
 #: ``.json``: polygons or saved results).
 SHAPE_SUFFIXES = tuple(sorted(suffixes(*ROUTED)))
 #: Suffixes of slice files: a folder holding only these is one volume.
-SLICE_SUFFIXES = (".tif", ".tiff", ".dcm", "")
+SLICE_SUFFIXES = (*named("TIFF").suffixes, *named("DICOM").suffixes, "")  # DICOM files often have none
 
 
 def _files(folder: Path) -> list[Path]:

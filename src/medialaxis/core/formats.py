@@ -24,7 +24,7 @@ from typing import Any
 
 from medialaxis.core.outputs import KINDS
 
-__all__ = ["Format", "FORMATS", "ROUTED", "register_format", "format_of", "suffix_of", "suffixes", "reader_suffixes",
+__all__ = ["Format", "FORMATS", "ROUTED", "register_format", "named", "format_of", "suffix_of", "suffixes", "reader_suffixes",
            "writer_suffixes",
            "entry_point", "writer_missing", "limits_text", "needs_text"]
 
@@ -102,6 +102,18 @@ def suffix_of(path: str | os.PathLike[str]) -> str:
         if s.count(".") > 1 and name.endswith(s) and len(name) > len(s):
             return s
     return Path(name).suffix
+
+
+def named(name: str) -> Format:
+    """The registered format called ``name``.
+
+    >>> named("NIfTI").suffixes
+    ('.nii', '.nii.gz')
+    """
+    for fmt in FORMATS:
+        if fmt.name == name:
+            return fmt
+    raise KeyError(f"no format called {name!r}")
 
 
 def format_of(path: str | os.PathLike[str]) -> Format | None:

@@ -70,7 +70,7 @@ def read_nifti(path: Path) -> tuple[np.ndarray, Any]:
 def read_tiff(path: Path) -> tuple[np.ndarray, Any]:
     tifffile = require("tifffile", "tifffile")
     if path.is_dir():
-        files = sorted(p for p in path.iterdir() if p.suffix.lower() in (".tif", ".tiff"))
+        files = sorted(p for p in path.iterdir() if formats.suffix_of(p) in formats.named("TIFF").suffixes)
         if not files:
             raise InputFileError(f"folder {str(path)!r} holds no .tif/.tiff slices or .dcm files")
         with tifffile.TiffFile(str(files[0])) as tf:
@@ -92,7 +92,8 @@ def read_tiff(path: Path) -> tuple[np.ndarray, Any]:
 
 def read_dicom(path: Path) -> tuple[np.ndarray, Any]:
     pydicom = require("pydicom", "pydicom")
-    files = sorted(p for p in path.iterdir() if p.is_file() and p.suffix.lower() in (".dcm", "")) if path.is_dir() else [path]
+    names = (*formats.named("DICOM").suffixes, "")  # DICOM files often have no suffix
+    files = sorted(p for p in path.iterdir() if p.is_file() and formats.suffix_of(p) in names) if path.is_dir() else [path]
     slices = []
     for f in files:
         try:
@@ -172,8 +173,8 @@ def read_volume(path: str | os.PathLike[str], *, shape: Any = None, dtype: Any =
     if not p.exists():
         raise InputFileError(f"no such file or folder: {str(p)!r}")
     if p.is_dir():
-        names = [q.suffix.lower() for q in p.iterdir() if q.is_file()]
-        reader = read_tiff if any(n in (".tif", ".tiff") for n in names) else read_dicom
+        tiff = formats.named("TIFF").suffixes
+        reader = read_tiff if any(formats.suffix_of(q) in tiff for q in p.iterdir() if q.is_file()) else read_dicom
     else:
         fmt = formats.format_of(p)
         if fmt is None or "volume" not in fmt.readers:

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis._optional import require
+from medialaxis.core.formats import named, suffix_of
 from medialaxis.errors import InputFileError, InvalidInputError
 from medialaxis.volume.source_base import Region, Source, check_volume
 
@@ -209,7 +210,7 @@ class TiffSource(Source):
     def __init__(self, path: Path) -> None:
         tifffile = require("tifffile", "tifffile")
         self.name = f"TIFF {str(path)!r}"
-        self.files = [str(p) for p in sorted(path.iterdir()) if p.suffix.lower() in (".tif", ".tiff")] if path.is_dir() \
+        self.files = [str(p) for p in sorted(path.iterdir()) if suffix_of(p) in named("TIFF").suffixes] if path.is_dir() \
             else [str(path)]
         if not self.files:
             raise InputFileError(f"folder {str(path)!r} holds no .tif/.tiff slices")

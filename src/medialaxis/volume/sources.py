@@ -113,7 +113,7 @@ def open_source(volume: Any, *, raw_shape: Any = None, raw_dtype: Any = None, he
 
             return open_ome_zarr(path) or ZarrSource(path)  # an OME-Zarr image's level, or a plain array
         if path.is_dir():
-            if any(p.suffix.lower() in (".tif", ".tiff") for p in path.iterdir()):
+            if any(formats.suffix_of(p) in formats.named("TIFF").suffixes for p in path.iterdir()):
                 return TiffSource(path)
             raise UnsupportedFormatError(f"folder {str(path)!r} is not a TIFF stack or Zarr store (DICOM series are read whole)")
         fmt = formats.format_of(path)
