@@ -269,3 +269,10 @@ def test_a_two_level_image_is_cut_half_way_between_its_levels(dtype):
     src = load_planar(image)
     assert src.threshold == 0.5
     assert src.region.area == pytest.approx(np.count_nonzero(DISK), rel=0.01)  # the pixels' area
+
+
+@pytest.mark.parametrize("fmt", formats.FORMATS, ids=lambda f: f.name)
+def test_every_named_reader_and_writer_exists(fmt):
+    entries = [*fmt.readers.values(), fmt.block_reader, fmt.writer]
+    assert all(callable(formats.entry_point(e)) for e in entries if e is not None)
+    assert (fmt.writer is None) == (fmt.holds is None)
