@@ -36,6 +36,11 @@ __all__ = [
     "reconstruction_error",
     "MedialAxis",
     "Branch",
+    "PlanarOptions",
+    "MeshVoronoiOptions",
+    "FlowOptions",
+    "MidsurfaceOptions",
+    "VoxelOptions",
     "MedialAxisError",
     "InvalidInputError",
     "EmptyShapeError",
@@ -56,7 +61,10 @@ if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.core.result import Branch, MedialAxis
     from medialaxis.gis import centerlines
     from medialaxis.mesh.deform import deform
+    from medialaxis.mesh.options import FlowOptions, MeshVoronoiOptions
     from medialaxis.metrics import reconstruction_error
+    from medialaxis.planar.options import PlanarOptions
+    from medialaxis.volume.options import MidsurfaceOptions, VoxelOptions
 
 # Everything but the errors loads on first use, so ``import medialaxis`` is
 # light (no NumPy, no numba, no trimesh) and the command line can report a
@@ -71,6 +79,11 @@ _LAZY = {
     "distance_matrix": "medialaxis.compare",
     "deform": "medialaxis.mesh.deform",
     "centerlines": "medialaxis.gis",
+    "PlanarOptions": "medialaxis.planar.options",
+    "MeshVoronoiOptions": "medialaxis.mesh.options",
+    "FlowOptions": "medialaxis.mesh.options",
+    "MidsurfaceOptions": "medialaxis.volume.options",
+    "VoxelOptions": "medialaxis.volume.options",
 }
 
 

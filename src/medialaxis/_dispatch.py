@@ -22,7 +22,7 @@ from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import is_geometry_text
 from medialaxis.errors import InputFileError, InvalidInputError, UnsupportedFormatError
 
-__all__ = ["METHODS", "DEFAULT_METHOD", "RESULT", "classify", "resolve", "repruner", "load_result"]
+__all__ = ["METHODS", "DEFAULT_METHOD", "OPTIONS", "RESULT", "classify", "resolve", "option_types", "repruner", "load_result"]
 
 #: Entry points per domain and method name.
 METHODS: dict[str, dict[str, str]] = {
@@ -37,6 +37,15 @@ METHODS: dict[str, dict[str, str]] = {
         "midsurface": "medialaxis.volume.pipeline:midsurface_medial_axis",
         "voxels": "medialaxis.volume.voxel_axis:medial_voxel_axis",
     },
+}
+
+#: The options dataclass of each method (:mod:`medialaxis.core.options`), keyed by (domain, method).
+OPTIONS: dict[tuple[str, str], str] = {
+    ("planar", "voronoi"): "medialaxis.planar.options:PlanarOptions",
+    ("mesh", "flow"): "medialaxis.mesh.options:FlowOptions",
+    ("mesh", "voronoi"): "medialaxis.mesh.options:MeshVoronoiOptions",
+    ("volume", "midsurface"): "medialaxis.volume.options:MidsurfaceOptions",
+    ("volume", "voxels"): "medialaxis.volume.options:VoxelOptions",
 }
 
 #: Default method per domain.
@@ -155,6 +164,11 @@ def classify(shape: Any, method: str | None = None, options: Mapping[str, Any] |
 def _load(entry: str) -> Callable[..., Any]:
     module, _, name = entry.partition(":")
     return getattr(importlib.import_module(module), name)
+
+
+def option_types() -> dict[tuple[str, str], type]:
+    """The options dataclass of every method, keyed by (domain, method)."""
+    return {key: _load(entry) for key, entry in OPTIONS.items()}
 
 
 def resolve(domain: str, method: str | None) -> tuple[str, Callable[..., Any]]:

@@ -50,8 +50,12 @@ def medial_axis(
         or 4 entries. Integer arrays of 32 or 64 bits are label images (one
         axis per label; option ``labels``).
     **options
-        Method-specific options, documented by the method (for the planar
-        method see :func:`medialaxis.planar.voronoi_medial_axis`).
+        The method's options, as keywords or as one frozen dataclass
+        ``options=`` (:class:`~medialaxis.PlanarOptions`,
+        :class:`~medialaxis.MeshVoronoiOptions`, :class:`~medialaxis.FlowOptions`,
+        :class:`~medialaxis.MidsurfaceOptions`, :class:`~medialaxis.VoxelOptions`),
+        documented by the method and listed in ``docs/options.md``; and the
+        progress ``callback`` (:class:`~medialaxis._progress.Progress`).
 
     Returns
     -------

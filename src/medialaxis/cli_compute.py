@@ -13,6 +13,7 @@ from medialaxis._help import HelpFormatter, UsageError
 from medialaxis._help import print_error as _fail
 from medialaxis.core.formats import limits_text, needs_text
 from medialaxis.core.io import WRITERS
+from medialaxis.core.options import Flag, argument_kwargs, flag_value, flags
 from medialaxis.errors import MedialAxisError
 
 __all__ = ["add_compute", "compute_options", "check_kinds", "check_outputs"]
@@ -115,41 +116,11 @@ def add_compute(sub: Any) -> None:
     p.add_argument("--method", default=None, metavar="METHOD",
                    help="method within the input's domain: " + "; ".join(
                        f"{domain} {', '.join(methods)} (default {DEFAULT_METHOD[domain]})" for domain, methods in METHODS.items()))
-    p.add_argument("--lam", type=float, default=None, help="lambda: smallest contact-set diameter kept (output units)")
-    p.add_argument("--threshold", type=float, default=None,
-                   help="grey level of the foreground (default: images, Otsu's threshold; volumes, ISO-50: "
-                        "half-way between the mean grey levels of Otsu's two classes; 0.5 for bool input)")
-    p.add_argument("--spacing", type=float, nargs="+", default=None, help="pixel/voxel size per array axis")
-    p.add_argument("--tolerance", type=float, default=None, help="planar accuracy parameter (output units)")
-    p.add_argument("--detour", type=float, default=None, help="planar pruning detour ratio")
-    p.add_argument("--boundary", choices=["contour", "canny"], default=None, help="planar boundary extraction")
-    p.add_argument("--simplify", type=int, default=None, metavar="N",
-                   help="meshes (voronoi): simplify the medial mesh to N spheres (Q-MAT)")
-    p.add_argument("--simplify-mode", choices=("medial", "packing"), default=None,
-                   help="meshes (voronoi): spheres of the medial axis (medial, default) or anywhere inside (packing)")
-    p.add_argument("--simplify-error", type=float, default=None, metavar="E",
-                   help="meshes (voronoi): simplify to the fewest spheres whose two-sided error is at most "
-                        "E times the bounding-box diagonal")
-    p.add_argument("--thickness", type=float, nargs="+", default=None, metavar="T",
-                   help="volumes: plate thickness; one value (nominal), or MIN MAX (plates in that range); "
-                        "default: every plate, each with its own thickness")
-    p.add_argument("--repair", action="store_true", help="meshes: repair small defects (reported in the metadata)")
-    p.add_argument("--raw-shape", type=int, nargs=3, default=None, metavar=("Z", "Y", "X"),
-                   help="volumes: array shape of a .raw file")
-    p.add_argument("--raw-dtype", default=None, help="volumes: data type of a .raw file (e.g. uint16)")
-    p.add_argument("--chunks", type=int, nargs="+", default=None, metavar="N",
-                   help="volumes: process in blocks of N (or Z Y X) voxels, reading one block at a time; 0 keeps "
-                        "the volume in memory (default: blocks of 256 above 512^3 voxels)")
-    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                   help="volumes: run the blocks on a Dask cluster (tcp://host:8786); its workers must see the input")
-    p.add_argument("--jobs", type=int, default=None, metavar="N", help="volumes: local worker threads for the blocks "
-                                                                        "(default: all CPUs)")
-    p.add_argument("--layers", nargs="+", default=None, metavar="LAYER", help="DXF drawings: the layers to read "
-                   "(default: every layer that is on and not frozen)")
-    p.add_argument("--fills-only", action="store_true", help="SVG drawings: read fills only, not strokes")
-    p.add_argument("--foreground", choices=["auto", "bright", "dark"], default=None,
-                   help="images: which side of the threshold is the shape; auto (the default) takes the side "
-                        "that does not own most of the image border, so a dark shape on light paper works")
+    methods = p.add_argument_group("method options", "generated from each method's options (docs/options.md); "
+                                   "in brackets, the methods that take them")
+    for name, flag, labels, hint in method_flags():
+        methods.add_argument(flag.name or "--" + name.replace("_", "-"), help=f"{flag.help} [{', '.join(labels)}]",
+                             **argument_kwargs(name, flag, hint))
     p.add_argument("--steps", type=Path, default=None,
                    help="save the pipeline stages: planar, one figure (PNG/SVG/PDF); volume, one mesh file per stage "
                         "named STEM_<k>_<stage>.<ext> (.ply .vtk .obj .json .npz)")
@@ -162,36 +133,63 @@ def add_compute(sub: Any) -> None:
     p.set_defaults(run=_run_compute)
 
 
+def method_flags() -> list[tuple[str, Flag, list[str], Any]]:
+    """Each method option's flag once (:func:`medialaxis.core.options.flags`), with the methods that take it."""
+    from medialaxis._dispatch import option_types
+
+    found = flags({f"{domain} {method}": cls for (domain, method), cls in option_types().items()})
+    return [(name, flag, _domains(takers), hint) for name, flag, takers, hint in found]
+
+
+def _domains(takers: list[str]) -> list[str]:
+    """``["volume"]`` for ``["volume midsurface", "volume voxels"]``: a domain whose methods all take an option."""
+    named = []
+    for domain, methods in METHODS.items():
+        mine = [f"{domain} {m}" for m in methods if f"{domain} {m}" in takers]
+        named += [domain] if len(mine) == len(methods) else mine
+    return named
+
+
+def options_markdown() -> str:
+    """``docs/options.md``: every method's options, from their dataclasses (``python -m medialaxis.cli_compute`` prints it)."""
+    import dataclasses
+    import re
+
+    from medialaxis._dispatch import option_types, resolve
+    from medialaxis.core.options import type_text
+
+    lines = ["# Method options", "", "Generated from the options dataclasses (`src/medialaxis/*/options.py`) by",
+             "`python -m medialaxis.cli_compute > docs/options.md`; `tests/test_options.py` checks it is current.",
+             "Each option is a keyword of the method and of `medialaxis.medial_axis`, a field of the method's",
+             "dataclass, and (where a flag is shown) a flag of `medialaxis compute`; any other option is",
+             "`--option KEY=VALUE`.", ""]
+    for (domain, method), cls in option_types().items():
+        fn = resolve(domain, method)[1]
+        lines += [f"## {domain}, method `{method}`", "",
+                  f"`{fn.__module__}.{fn.__name__}`, options `{cls.__module__}.{cls.__name__}`", "",
+                  "| option | type | default | flag | meaning |", "|---|---|---|---|---|"]
+        for field in dataclasses.fields(cls):
+            flag = field.metadata.get("flag")
+            shown = "" if flag is None else f"`{flag.name or '--' + field.name.replace('_', '-')}`"
+            text = re.sub(r":\w+:`~?([^`]+)`", r"`\1`", " ".join(field.metadata["doc"].split())).replace("|", "\\|")
+            lines.append(f"| `{field.name}` | {type_text(cls, field)} | `{field.default!r}` | {shown} | {text} |")
+        lines.append("")
+    return "\n".join(lines)
+
+
 def compute_options(args: argparse.Namespace) -> tuple[dict[str, Any], Any]:
     """Method options and spacing from the command line."""
     options: dict[str, Any] = dict(_parse_option(o) for o in args.option)
-    for name in ("tolerance", "detour", "boundary", "foreground", "simplify", "simplify_error", "simplify_mode",
-                 "raw_shape", "raw_dtype"):
+    for name, flag, _, _ in method_flags():
         value = getattr(args, name)
         if value is not None:
-            options[name] = value
-    if args.thickness is not None:
-        if len(args.thickness) > 2:
-            raise UsageError(f"--thickness takes one value or MIN MAX, got {len(args.thickness)} values")
-        options["thickness"] = args.thickness[0] if len(args.thickness) == 1 else tuple(args.thickness)
-    if args.repair:
-        options["repair"] = True
-    if args.layers is not None:
-        options["layers"] = list(args.layers)
-    if args.fills_only:
-        options["strokes"] = False
-    if args.chunks is not None:
-        if len(args.chunks) not in (1, 3):
-            raise UsageError(f"--chunks takes one size or Z Y X, got {len(args.chunks)} values")
-        options["chunks"] = args.chunks[0] if len(args.chunks) == 1 else tuple(args.chunks)
-    if args.scheduler is not None:
-        options["scheduler"] = args.scheduler
-    if args.jobs is not None:
-        if args.jobs < 1:
-            raise UsageError(f"--jobs must be at least 1, got {args.jobs}")
-        options["n_jobs"] = args.jobs
-    spacing = args.spacing[0] if args.spacing and len(args.spacing) == 1 else args.spacing
-    return options, spacing
+            try:
+                options[name] = flag_value(name, flag, value)
+            except ValueError as exc:
+                raise UsageError(str(exc)) from None
+    if options.get("n_jobs") is not None and options["n_jobs"] < 1:
+        raise UsageError(f"--jobs must be at least 1, got {options['n_jobs']}")
+    return options, options.pop("spacing", None)
 
 
 def _run_batch(args: argparse.Namespace, inputs: list[Path]) -> int:
@@ -228,8 +226,7 @@ def _run_batch(args: argparse.Namespace, inputs: list[Path]) -> int:
     failed = 0
     for path in progress(inputs, desc="inputs"):
         try:
-            ma = mx.medial_axis(str(path), method=args.method, lam=args.lam, threshold=args.threshold,
-                                spacing=spacing, **options)
+            ma = mx.medial_axis(str(path), method=args.method, spacing=spacing, **options)
             with output_batch():  # this input's outputs all appear, or none
                 for out in plan[path]:
                     ma.save(out, timings=getattr(args, "timings", False))
@@ -287,15 +284,14 @@ def _run_compute(args: argparse.Namespace) -> int:
         if args.steps is not None and domain == "volume":
             from medialaxis.volume.steps import save_steps, stages_for_method
 
-            stages = stages_for_method(str(args.input), args.method, lam=args.lam, threshold=args.threshold,
-                                       spacing=spacing, **options)
+            stages = stages_for_method(str(args.input), args.method, spacing=spacing, **options)
             ma = stages.result
             outputs = list(args.output) + save_steps(stages, args.steps)
         elif args.steps is not None:
             from medialaxis.planar.pipeline import planar_stages
             from medialaxis.planar.plotting import save_stages_figure
 
-            stages = planar_stages(str(args.input), lam=args.lam, threshold=args.threshold, spacing=spacing, **options)
+            stages = planar_stages(str(args.input), spacing=spacing, **options)
             ma = stages.result
             save_stages_figure(stages, args.steps)
         else:
@@ -304,8 +300,7 @@ def _run_compute(args: argparse.Namespace) -> int:
                 from medialaxis.mesh.flow_frames import FrameWriter
 
                 writer = options["callback"] = FrameWriter(args.frames)
-            ma = mx.medial_axis(str(args.input), method=args.method, lam=args.lam, threshold=args.threshold,
-                                spacing=spacing, **options)
+            ma = mx.medial_axis(str(args.input), method=args.method, spacing=spacing, **options)
             if writer is not None:
                 outputs += writer.finish()
         for out in args.output:
@@ -314,3 +309,7 @@ def _run_compute(args: argparse.Namespace) -> int:
     for out in outputs:
         print(f"wrote {out}")
     return 0
+
+
+if __name__ == "__main__":
+    print(options_markdown(), end="")

@@ -52,6 +52,7 @@ from scipy.sparse import linalg as splinalg
 from medialaxis._progress import Progress, check_cancel, progress
 from medialaxis.core import graph as _graph
 from medialaxis.core.arrays import unique_ints
+from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
@@ -66,6 +67,7 @@ from medialaxis.mesh.flow_mesh import (
     smoothed_gaussian_curvature,
 )
 from medialaxis.mesh.flow_refine import centre_nodes
+from medialaxis.mesh.options import FlowOptions
 from medialaxis.mesh.refine import refine_coarse
 
 __all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices", "smoothed_gaussian_curvature"]
@@ -78,21 +80,10 @@ def _check_box(region: Any) -> np.ndarray:
     return box
 
 
+@takes_options(FlowOptions)
 def flow_skeleton(
-    mesh: Any,
-    *,
-    dt: float | None = None,
-    fixed_points: Any = None,
-    region: Any = None,
-    curvature_threshold: float | None = None,
-    callback: Callable[[Progress], Any] | None = None,
-    max_steps: int | None = None,
-    attraction: float = 4.0,
-    collapse: float = 0.01,
-    settle_tolerance: float = 1e-3,
-    final_collapse: float = 0.01,
-    node_spacing: float | None = None,
-    repair: bool = False,
+    mesh: Any, options: FlowOptions | None = None, *, callback: Callable[[Progress], Any] | None = None,
+    **kwargs: Any,
 ) -> MedialAxis:
     """Curve skeleton of a closed mesh by the diffusion flow of paper 003.
 
@@ -102,56 +93,11 @@ def flow_skeleton(
         A closed, manifold triangle mesh (several closed components are
         allowed: each gets its own skeleton component; the shells that bound
         cavities are left out, with a warning: a curve has no room for a void).
-    dt : float, optional
-        Implicit time step in units of ``s**2``, ``s`` the median inner-ball
-        radius of the mesh (so results do not depend on scale). Default 1.0.
-        Smaller steps follow the flow more closely and take more steps.
-    fixed_points : sequence of int, optional
-        Input vertex indices that become skeletal points where they are: they
-        never move, each is a skeleton node and the skeleton reaches it.
-    region : (2, 3) array_like, optional
-        Axis-aligned box ``[[xmin, ymin, zmin], [xmax, ymax, zmax]]``: only
-        the part of the mesh in the box, plus a margin of three thicknesses
-        ``s``, flows (the rest stays on the surface, held still); the skeleton
-        is clipped to the box and ``correspondence`` is ``-1`` for vertices
-        outside it.
-    curvature_threshold : float, optional
-        Gaussian curvature (angle defect per area, eq. (7), in 1/length**2,
-        averaged over a disc of radius ``s / 2`` because the per-vertex value
-        of a sampled surface is noisy). In every connected patch of the input surface where the curvature is at
-        least this, the vertex deepest inside the patch (its apex) becomes a
-        skeletal point at its place, so the skeleton reaches into sharp convex tips (a capsule's
-        caps have ``1/r**2``). Lower thresholds make more tips reach the
-        surface; ``None`` (default) keeps none, and the skeleton ends inside
-        the tips, at the centres of their inner balls. Patches of total
-        curvature below ``MIN_TIP_CURVATURE`` (pi/16) are noise and ignored.
     callback : callable, optional
         ``callback(Progress)`` after every step, its ``state`` the
         :class:`~medialaxis.mesh.flow_mesh.FlowState` (the contracting mesh);
         returning ``False`` cancels (:class:`~medialaxis.errors.Cancelled`).
-    max_steps : int, optional
-        Upper bound on the steps (default 60). Vertices still moving then are
-        frozen where they are and ``metadata["converged"]`` is ``False``.
-    attraction : float
-        Weight ``w`` (in 1/s**2) of the pull towards the inner-ball centres.
-    collapse : float
-        A vertex freezes when its one-ring area falls below this fraction of
-        its initial area.
-    settle_tolerance : float
-        A vertex that moves less than this (times ``s``) in a step has
-        stopped: it freezes as a skeletal point.
-    final_collapse : float
-        Duration (in units of ``s**2``) of one last implicit mean-curvature
-        step on the contracted surface, which gathers each collapsed ring onto
-        its centre before the graph is built (0 skips it).
-    node_spacing : float, optional
-        Spacing of the skeleton nodes (length); default ``s / 2``.
-    repair : bool
-        Cap the holes of an open mesh even where its winding number leaves
-        the solid undecided (without it, holes are capped where the rest of
-        the surface decides inside and outside, and the mesh is refused
-        otherwise: :func:`medialaxis.mesh.inputs.load_mesh`).
-
+    {options}
     Returns
     -------
     MedialAxis
@@ -184,6 +130,10 @@ def flow_skeleton(
     (2, 0)
     """
     t_start = time.perf_counter()
+    opts = make_options(FlowOptions, options, kwargs, "flow_skeleton")
+    dt, fixed_points, region, curvature_threshold, max_steps = (
+        opts.dt, opts.fixed_points, opts.region, opts.curvature_threshold, opts.max_steps)
+    attraction, collapse, final_collapse, node_spacing = opts.attraction, opts.collapse, opts.final_collapse, opts.node_spacing
     dt_rel = 1.0 if dt is None else check_number(dt, "dt", positive=True)
     threshold = None if curvature_threshold is None else float(curvature_threshold)
     if threshold is not None and not np.isfinite(threshold):
@@ -204,7 +154,7 @@ def flow_skeleton(
     if callback is not None and not callable(callback):
         raise InvalidInputError(f"callback must be callable, got {type(callback).__name__}")
 
-    clean, vertex_map, repairs = prepare_flow_mesh(mesh, repair=repair)
+    clean, vertex_map, repairs = prepare_flow_mesh(mesh, repair=opts.repair)
     p0, faces = refine_coarse(np.array(clean.vertices, dtype=np.float64), np.array(clean.faces, dtype=np.int64))
     refined = len(p0) - len(clean.vertices)
     n = len(p0)
@@ -268,7 +218,7 @@ def flow_skeleton(
     except RuntimeError as exc:  # "Factor is exactly singular": degenerate faces or a mesh of slivers
         raise ComputationError(f"the diffusion operator of this mesh is singular ({exc}); is the mesh degenerate?") from exc
     attract = (tau * w * mass)[:, None] * poles
-    settle = settle_tolerance * s
+    settle = opts.settle_tolerance * s
     for step in progress(range(1, max_steps + 1), desc="diffusion flow", total=max_steps):
         rhs = (mass[:, None] * p + attract)[free] - coupling
         x = np.column_stack([solve(rhs[:, d]) for d in range(3)])

@@ -24,11 +24,12 @@ import dataclasses
 import time
 import warnings
 from collections.abc import Callable
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 
 from medialaxis._progress import Progress, check_cancel
+from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import (
@@ -41,6 +42,7 @@ from medialaxis.mesh._voronoi_kernels import tet_centroids
 from medialaxis.mesh.crossings import crossing_pairs, shell_labels, solid_betti
 from medialaxis.mesh.inner_set import inner_tets
 from medialaxis.mesh.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
+from medialaxis.mesh.options import MeshVoronoiOptions
 from medialaxis.mesh.sample_delaunay import tetrahedralised_sample
 from medialaxis.mesh.sampling import (
     adaptive_spacing,
@@ -51,7 +53,7 @@ from medialaxis.mesh.sampling import (
 )
 from medialaxis.mesh.signed_distance import SignedDistance
 from medialaxis.mesh.stray_cycles import complement_voids, without_stray_cycles
-from medialaxis.mesh.voronoi_complex import TOPOLOGY_MODES, euler_characteristic, medial_complex
+from medialaxis.mesh.voronoi_complex import euler_characteristic, medial_complex
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
 
@@ -76,19 +78,10 @@ def _solid_of(src: MeshInput, pairs: np.ndarray, force: bool = False) -> MeshInp
     return src if solid is src.mesh else MeshInput(solid, tuple(repairs), signed_volume(solid.triangles), found)
 
 
+@takes_options(MeshVoronoiOptions)
 def voronoi_medial_axis(
-    mesh: Any,
-    *,
-    lam: float | None = None,
-    samples: int | None = None,
-    simplify: int | float | None = None,
-    simplify_error: float | None = None,
-    simplify_mode: Literal["medial", "packing"] = "medial",
-    topology: Literal["preserve", "lambda"] = "preserve",
-    repair: bool = False,
-    rng: Any = 0,
-    compact: bool = True,
-    callback: Callable[[Progress], Any] | None = None,
+    mesh: Any, options: MeshVoronoiOptions | None = None, *, callback: Callable[[Progress], Any] | None = None,
+    **kwargs: Any,
 ) -> MedialAxis:
     """Lambda-medial surface of a closed mesh from the Voronoi diagram of a surface sample.
 
@@ -103,67 +96,11 @@ def voronoi_medial_axis(
         least 1/2 (:mod:`medialaxis.mesh.arrangement`), with a warning. These
         repairs are listed in ``metadata["repairs"]``, what was found in
         ``metadata["defects"]``.
-    lam : float, optional
-        Lambda of the lambda-medial axis: the smallest contact-set diameter
-        kept, in the mesh's units. A Voronoi facet is kept when its Delaunay
-        edge is at least ``lam`` long. Default ``0.65 * sqrt(epsilon * D)``,
-        with ``epsilon`` the measured sampling density
-        (``metadata["epsilon"]``) and ``D`` the bounding-box diagonal: facets
-        of sampling noise have contact sets up to about ``sqrt(epsilon * r)``
-        at depth ``r``, so a lambda linear in epsilon keeps noise sheets.
-    samples : int, optional
-        Target number of surface samples. Default ``max(20000,
-        n_vertices)``, more for a mostly thin part (up to 250,000, so that
-        a plate's two sides are three spacings apart:
-        :func:`~medialaxis.mesh.thin_parts.thin_part_count`); the mesh
-        vertices are always included.
-    simplify : int or float, optional
-        Reduce the medial mesh by quadric error minimisation on spheres
-        (:func:`medialaxis.mesh.qmat.simplify_medial_mesh`): an ``int`` is the
-        most spheres kept (a quarter of them, or all those the
-        compact complex lacks, placed last where the surface is farthest
-        from the others: tips of limbs), a ``float`` in (0, 1) an error
-        bound as a fraction of the bounding-box diagonal. It starts from
-        the compact complex (``compact=False``: the full one), which is
-        ``ma.raw`` (the full complex is then ``ma.raw.raw``).
-    simplify_error : float, optional
-        The same as a ``float`` ``simplify``, by name: the fewest spheres whose
-        two-sided error (``metadata["hausdorff"]``, exact envelope of the
-        interpolated spheres against the input surface) is at most this
-        fraction of the bounding-box diagonal. Not with ``simplify``.
-    simplify_mode : {"medial", "packing"}
-        ``"medial"`` (default): every sphere kept is a sphere of the medial
-        complex whose contacts span a wide angle (it touches two sides);
-        ``"packing"``: spheres anywhere inside, for the smallest two-sided
-        error (a sphere packing rather than a medial mesh).
-    topology : {"preserve", "lambda"}
-        ``"preserve"`` (default): keep every facet of at least ``lam`` plus
-        the narrower facets and curve pieces needed for the complex to have
-        the solid's homotopy type (connected, same number of tunnels),
-        found by collapsing the dual complex of the inner Delaunay
-        tetrahedra (:mod:`medialaxis.mesh.voronoi_complex`). ``"lambda"``:
-        Algorithm 5 literally, only the facets of at least ``lam``.
-    repair : bool
-        Cap the holes of an open mesh even where its winding number leaves
-        the solid undecided (without it, holes are capped where the rest of
-        the surface decides inside and outside, and the mesh is refused
-        otherwise: :func:`medialaxis.mesh.inputs.load_mesh`).
-    rng : int or numpy.random.Generator
-        Seed of the random check points used to measure epsilon.
-    compact : bool
-        ``True`` (default): the compact complex
-        (:func:`medialaxis.mesh.compact.compact_medial_axis`): edges are
-        contracted while the spheres left stay within the sampling error
-        (``COMPACT_TOLERANCE * epsilon``) of the contacts and features they
-        replace, keeping the homotopy type, so sheets thinner than the
-        sampling error become curves (a capsule's axis is a polyline, a
-        box's its few planar sheets) and flat sheets take few triangles;
-        ``ma.raw`` is the full complex. ``False``: the full complex, every
-        Voronoi facet kept. ``simplify`` starts from the complex chosen here.
     callback : callable, optional
         ``callback(Progress)`` before each stage (``"sampling"`` with the tetrahedralisation, ``"inside"``,
         ``"facets"``, ``"compact"``, ``"simplify"``); returning ``False`` cancels.
 
+    {options}
     Returns
     -------
     MedialAxis
@@ -227,14 +164,16 @@ def voronoi_medial_axis(
     True
     """
     t_start = time.perf_counter()
+    opts = make_options(MeshVoronoiOptions, options, kwargs, "voronoi_medial_axis")
+    lam, samples, simplify, simplify_error, simplify_mode = (
+        opts.lam, opts.samples, opts.simplify, opts.simplify_error, opts.simplify_mode)
+    topology, repair, compact = opts.topology, opts.repair, opts.compact
     timings: dict[str, float] = {}
     src = load_mesh(mesh, watertight=True, repair=repair, crossing=False)  # checked beside the Delaunay
     work = src.mesh
-    rng = np.random.default_rng(rng)
+    rng = np.random.default_rng(opts.rng)
     count = sample_count(samples, len(work.vertices))
     lam_given = None if lam is None else check_number(lam, "lam", positive=True)
-    if topology not in TOPOLOGY_MODES:
-        raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
     if not isinstance(compact, (bool, np.bool_)):
         raise InvalidInputError(f"compact must be True or False, got {compact!r}")
     if simplify_error is not None:

@@ -20,6 +20,7 @@ from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar.axis import axis_positions
 from medialaxis.planar.corners import RingArrays, ring_arrays
 from medialaxis.planar.delaunay import Triangulation
+from medialaxis.planar.options import PlanarOptions
 from medialaxis.planar.pipeline import _load, sampled, voronoi_medial_axis
 from medialaxis.planar.pruning import REGROW_DETOUR
 from medialaxis.planar.sampling import BoundarySample
@@ -71,8 +72,7 @@ def polygon_axis_arrays(shape: Any, *, lam: float | None = None, tolerance: floa
     >>> len(axis.edges) == len(axis.points) - 1  # a tree: the rectangle's axis with its four corner arms
     True
     """
-    src = _load(shape, threshold=None, spacing=None, tolerance=tolerance, boundary="contour", foreground="auto",
-                strokes=None, layers=None, labels=None, channel_axis=-1)
+    src = _load(shape, PlanarOptions(tolerance=tolerance))
     if src.is_raster or src.labels is not None or src.drawing is not None:
         return _whole_way(shape, lam, tolerance, detour)
     given = lam, tolerance, detour

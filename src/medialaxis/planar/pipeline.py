@@ -10,12 +10,15 @@ pruning (:mod:`medialaxis.planar.pruning`).
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
-from typing import Any, Literal
+import itertools
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import shapely
 
+from medialaxis._progress import Progress, check_cancel
+from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError
@@ -27,10 +30,14 @@ from medialaxis.planar.corners import ring_arrays
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.inputs import PlanarInput, load_planar
 from medialaxis.planar.labels import merged_label_axes
+from medialaxis.planar.options import PlanarOptions
 from medialaxis.planar.pruning import prune_graph
 from medialaxis.planar.sampling import BoundarySample, Rings, simplify_rings
 
-__all__ = ["voronoi_medial_axis", "planar_stages", "reprune", "Stages", "DEFAULT_DETOUR"]
+__all__ = ["voronoi_medial_axis", "planar_stages", "reprune", "Stages", "DEFAULT_DETOUR", "STAGES"]
+
+#: The stages the callback hears of, in order.
+STAGES = ("load", "sample", "axis", "prune")
 
 #: Default detour ratio of the pruning (see :mod:`medialaxis.planar.pruning`)
 #: for raster inputs, whose contours carry pixel noise ...
@@ -116,56 +123,32 @@ def _pruned(raw: MedialAxis, lam: float, detour: float) -> MedialAxis:
     )
 
 
-def _load(
-    shape: Any,
-    *,
-    threshold: float | None,
-    spacing: Any,
-    tolerance: float | None,
-    boundary: str,
-    foreground: str,
-    strokes: bool | None,
-    layers: Sequence[str] | None,
-    labels: bool | None,
-    channel_axis: int | None,
-) -> PlanarInput:
-    if boundary not in ("contour", "canny"):
-        raise InvalidInputError(f"boundary must be 'contour' or 'canny', got {boundary!r}")
-    if tolerance is not None:
-        tolerance = check_number(tolerance, "tolerance")
-    if isinstance(layers, str):
-        layers = [layers]
+def _load(shape: Any, opts: PlanarOptions) -> PlanarInput:
+    tolerance = None if opts.tolerance is None else check_number(opts.tolerance, "tolerance")
+    layers = [opts.layers] if isinstance(opts.layers, str) else opts.layers
     return load_planar(
-        shape, threshold=threshold, spacing=spacing, foreground=foreground, tolerance=tolerance, strokes=strokes,
-        layers=layers, labels=labels, channel_axis=channel_axis,
+        shape, threshold=opts.threshold, spacing=opts.spacing, foreground=opts.foreground, tolerance=tolerance,
+        strokes=opts.strokes, layers=layers, labels=opts.labels, channel_axis=opts.channel_axis,
     )
 
 
-def planar_stages(
-    shape: Any,
-    *,
-    lam: float | None = None,
-    threshold: float | None = None,
-    spacing: Any = None,
-    tolerance: float | None = None,
-    detour: float | None = None,
-    boundary: Literal["contour", "canny"] = "contour",
-    foreground: Literal["auto", "bright", "dark"] = "auto",
-    strokes: bool | None = None,
-    layers: Sequence[str] | None = None,
-    labels: bool | None = None,
-    channel_axis: int | None = -1,
-) -> Stages:
-    """Run the planar pipeline and keep every stage (see :func:`voronoi_medial_axis`)."""
-    src = _load(
-        shape, threshold=threshold, spacing=spacing, tolerance=tolerance, boundary=boundary, foreground=foreground,
-        strokes=strokes, layers=layers, labels=labels, channel_axis=channel_axis,
-    )
+@takes_options(PlanarOptions)
+def planar_stages(shape: Any, options: PlanarOptions | None = None, **kwargs: Any) -> Stages:
+    """Run the planar pipeline and keep every stage (see :func:`voronoi_medial_axis`).
+
+    Parameters
+    ----------
+    shape : array_like, path or shapely geometry
+        As :func:`voronoi_medial_axis` takes it.
+    {options}
+    """
+    opts = make_options(PlanarOptions, options, kwargs, "planar_stages")
+    src = _load(shape, opts)
     if src.labels is not None:
         raise InvalidInputError(
             "the stages of a label image are not kept; draw one object's stages from its mask (image == label)"
         )
-    return _stages(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary)
+    return _stages(src, lam=opts.lam, tolerance=opts.tolerance, detour=opts.detour, boundary=opts.boundary)
 
 
 def parameters(size: float, lam: float | None, tolerance: float | None, detour: float | None,
@@ -214,11 +197,13 @@ def sampled(
 
 def _stages(
     src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str,
-    prune: bool = True,
+    prune: bool = True, callback: Callable[[Progress], Any] | None = None,
 ) -> Stages:
     """Every stage of the pipeline on a loaded input (``prune=False``: the result is the raw axis)."""
+    check_cancel(callback, Progress("voronoi", STAGES[1], 1, len(STAGES)))
     tolerance, lam, detour, rings, smp, tri, inside = sampled(src, lam=lam, tolerance=tolerance, detour=detour,
                                                              boundary=boundary)
+    check_cancel(callback, Progress("voronoi", STAGES[2], 2, len(STAGES)))
     ax: RawAxis = raw_axis(tri, inside, smp, rings.region, rings.locator, ring_arrays(rings))
     region = src.region
     # Co-circular samples give clusters of coincident Voronoi vertices (the
@@ -264,23 +249,15 @@ def _stages(
         metadata=dict(metadata, pruned=False),
         shape=region,
     )
+    if prune:
+        check_cancel(callback, Progress("voronoi", STAGES[3], 3, len(STAGES)))
     return Stages(src, rings, smp, tri, inside, raw, _pruned(raw, lam, detour) if prune else raw)
 
 
+@takes_options(PlanarOptions)
 def voronoi_medial_axis(
-    shape: Any,
-    *,
-    lam: float | None = None,
-    threshold: float | None = None,
-    spacing: Any = None,
-    tolerance: float | None = None,
-    detour: float | None = None,
-    boundary: Literal["contour", "canny"] = "contour",
-    foreground: Literal["auto", "bright", "dark"] = "auto",
-    strokes: bool | None = None,
-    layers: Sequence[str] | None = None,
-    labels: bool | None = None,
-    channel_axis: int | None = -1,
+    shape: Any, options: PlanarOptions | None = None, *, callback: Callable[[Progress], Any] | None = None,
+    **kwargs: Any,
 ) -> MedialAxis:
     """Medial axis of a planar shape from the Voronoi diagram of boundary samples.
 
@@ -290,63 +267,11 @@ def voronoi_medial_axis(
         2D bool mask, 2D grey image, ``(n, 2)`` boundary loop, shapely
         ``Polygon``/``MultiPolygon`` (holes allowed), or a PNG / JPEG / TIFF /
         BMP / SVG / GeoJSON / WKT file.
-    lam : float, optional
-        Lambda of the lambda-medial axis: the smallest contact-set diameter
-        kept, in output units. Default ``8 * tolerance`` (2 pixels for
-        images): contact sets of sampling noise are below it, and noise
-        branches with larger contacts are removed by the ``detour`` test.
-    threshold : float, optional
-        Grey level of the foreground (default Otsu) for grey images.
-    spacing : float or (2,) floats, optional
-        Pixel size along (rows, cols) for raster inputs.
-    tolerance : float, optional
-        The one accuracy parameter: the boundary is simplified to within
-        ``tolerance`` and sampled so that each Voronoi vertex lies within
-        about ``tolerance`` of the axis of the simplified shape. Default: a
-        quarter pixel for images, ``1e-4`` of the shape's size (twice the
-        largest centroid-to-vertex distance) for polygons. Larger is faster
-        and coarser. Polygons of more than 10,000 vertices and all image
-        contours are first simplified to within ``tolerance``.
-    detour : float, optional
-        An edge is significant only if the boundary arc between its contacts
-        exceeds their distance by ``detour`` times that distance and by
-        ``2 * lam`` (scale-invariant noise test, see
-        :mod:`medialaxis.planar.pruning`). Default 0.25 for images (pixel
-        noise), 0.028 for polygons (drops only the branches of vertices
-        flatter than about 153 degrees).
-    boundary : {"contour", "canny"}
-        ``"contour"``: sub-pixel iso-contour (default). ``"canny"``: the
-        paper's route, Canny edge pixels as the point set with inside and
-        outside taken from the filled region.
-    foreground : {"auto", "bright", "dark"}
-        For images: which side of the threshold is the shape. ``"bright"``
-        takes the pixels above the threshold (True of a bool mask),
-        ``"dark"`` those below it (a black shape on white paper).
-        ``"auto"`` (default) takes the side that does not own most of the
-        image border (the outermost rows and columns); a tie goes to the
-        side with fewer pixels, then to the bright side. The side taken is
-        ``metadata["foreground"]``. Vector inputs accept only ``"auto"``.
-    strokes : bool, optional
-        SVG: read strokes as the regions the pen paints (default True);
-        False reads fills only.
-    layers : sequence of str, optional
-        DXF: the layers to read (default every layer that is on and not
-        frozen).
-    labels : bool, optional
-        Whether an integer image is a label image (0 background, every
-        other value one object, objects may touch), never thresholded: each
-        label gets its own axis, and the result's points carry their label
-        (``ma.point_label``; ``metadata["labels"]`` lists them). Default:
-        integer arrays of 32 or 64 bits are labels (as
-        :func:`skimage.measure.label` gives), 8 and 16-bit ones grey images;
-        image files are labels only with ``labels=True``.
-    channel_axis : int or None
-        The colour axis of a 3D array (3 channels RGB or 4 RGBA; default the
-        last), as scikit-image names it. RGB becomes grey as
-        :func:`skimage.color.rgb2gray` does; an alpha channel that is not
-        constant is the shape (what is opaque is painted).
-        ``metadata["channels"]`` says which. ``None``: the array has no
-        colour axis (a volume, for :func:`medialaxis.medial_axis`).
+    callback : callable, optional
+        ``callback(Progress)`` before each stage (``"load"``, ``"sample"``,
+        ``"axis"``, ``"prune"``; a label image's ``"label axes"`` once per
+        label); returning ``False`` cancels.
+    {options}
 
     Returns
     -------
@@ -387,24 +312,27 @@ def voronoi_medial_axis(
     >>> ma.metadata["foreground"], ma.n_components, ma.n_cycles
     ('dark', 1, 1)
     """
-    src = _load(
-        shape, threshold=threshold, spacing=spacing, tolerance=tolerance, boundary=boundary, foreground=foreground,
-        strokes=strokes, layers=layers, labels=labels, channel_axis=channel_axis,
-    )
+    opts = make_options(PlanarOptions, options, kwargs, "voronoi_medial_axis")
+    check_cancel(callback, Progress("voronoi", "load", 0, len(STAGES)))
+    src = _load(shape, opts)
     if src.labels is not None:
-        return _label_axes(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary)
-    return _stages(src, lam=lam, tolerance=tolerance, detour=detour, boundary=boundary).result
+        return _label_axes(src, opts, callback)
+    return _stages(src, lam=opts.lam, tolerance=opts.tolerance, detour=opts.detour, boundary=opts.boundary,
+                   callback=callback).result
 
 
-def _label_axes(
-    src: PlanarInput, *, lam: float | None, tolerance: float | None, detour: float | None, boundary: str
-) -> MedialAxis:
+def _label_axes(src: PlanarInput, opts: PlanarOptions, callback: Callable[[Progress], Any] | None) -> MedialAxis:
     """One axis per label of a label image, in one result whose points carry their label."""
-    if boundary != "contour":
-        raise InvalidInputError(f"boundary={boundary!r} does not apply to label images (each label is a mask)")
-    # each label's raw axis; all are pruned at once below
-    raw = merged_label_axes(src, lambda one: _stages(one, lam=lam, tolerance=tolerance, detour=detour,
-                                                     boundary=boundary, prune=False).raw)
+    if opts.boundary != "contour":
+        raise InvalidInputError(f"boundary={opts.boundary!r} does not apply to label images (each label is a mask)")
+    done = itertools.count()
+
+    def axis_of(one: PlanarInput) -> MedialAxis:  # each label's raw axis; all are pruned at once below
+        check_cancel(callback, Progress("voronoi", "label axes", next(done), len(src.labels or ())))
+        return _stages(one, lam=opts.lam, tolerance=opts.tolerance, detour=opts.detour, boundary=opts.boundary,
+                       prune=False).raw
+
+    raw = merged_label_axes(src, axis_of)
     return _pruned(raw, float(raw.metadata["lam"]), float(raw.metadata["detour"]))
 
 

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from medialaxis._progress import Progress, check_cancel, progress
+from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
@@ -34,6 +35,7 @@ from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
 from medialaxis.volume.ome_zarr import is_ome_zarr_out, write_in_memory
+from medialaxis.volume.options import MidsurfaceOptions
 from medialaxis.volume.plates import PlateThickness, plate_thickness
 from medialaxis.volume.polygonize import Polygonization
 from medialaxis.volume.shell import isosurface_shell
@@ -116,36 +118,39 @@ def thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[Pla
     return PlateThickness(thickness_value, lam_value, np.inf), lam_value
 
 
+@takes_options(MidsurfaceOptions)
 def volume_stages(
-    volume: Any,
-    *,
-    iso: float | None = None,
-    threshold: float | None = None,
-    thickness: float | None = None,
-    lam: float | None = None,
-    spacing: Any = None,
-    extend: bool = True,
-    remove_dents: bool = True,
-    density: float = 1.0,
-    rng: Any = 0,
-    raw_shape: Any = None,
-    raw_dtype: Any = None,
-    callback: Callable[[str], Any] | None = None,
-    show_progress: bool | None = None,
+    volume: Any, options: MidsurfaceOptions | None = None, *, callback: Callable[[Progress], Any] | None = None,
+    **kwargs: Any,
 ) -> VolumeStages:
-    """Run the mid-surface pipeline and keep every stage.
+    """Run the mid-surface pipeline on the whole volume in memory and keep every stage.
 
-    Parameters are those of :func:`midsurface_medial_axis`.
+    The options of the chunked route (``chunks``, ``scheduler``, ``n_jobs``,
+    ``spill``) and ``out`` do not apply.
+
+    Parameters
+    ----------
+    volume : (Z, Y, X) array_like, str or path
+        As :func:`midsurface_medial_axis` takes it.
+    callback : callable, optional
+        As :func:`midsurface_medial_axis` calls it.
+    {options}
 
     Returns
     -------
     VolumeStages
     """
+    opts = make_options(MidsurfaceOptions, options, kwargs, "volume_stages")
+    chunked = [k for k in ("chunks", "scheduler", "n_jobs", "out", "spill") if getattr(opts, k) is not None]
+    if chunked:
+        raise InvalidInputError(f"the stages are kept whole in memory: {', '.join(chunked)} do not apply")
+    iso, threshold, thickness, lam, spacing = opts.iso, opts.threshold, opts.thickness, opts.lam, opts.spacing
+    extend, remove_dents, rng, raw_shape, raw_dtype = opts.extend, opts.remove_dents, opts.rng, opts.raw_shape, opts.raw_dtype
     timings: dict[str, float] = {}
-    density = check_number(density, "density", positive=True)
+    density = check_number(opts.density, "density", positive=True)
     stages = ["binarize", "distance", "medial voxels", "polygonize", "dents", "extension"]
     state: dict[str, Any] = {}
-    for step, stage in enumerate(progress(stages, desc="mid-surface", show=show_progress)):
+    for step, stage in enumerate(progress(stages, desc="mid-surface", show=opts.show_progress)):
         check_cancel(callback, Progress("midsurface", stage, step, len(stages)))
         t0 = time.perf_counter()
         if stage == "binarize":
@@ -179,27 +184,10 @@ def volume_stages(
                         timings, steps)
 
 
+@takes_options(MidsurfaceOptions)
 def midsurface_medial_axis(
-    volume: Any,
-    *,
-    iso: float | None = None,
-    threshold: float | None = None,
-    thickness: float | None = None,
-    lam: float | None = None,
-    spacing: Any = None,
-    extend: bool = True,
-    remove_dents: bool = True,
-    density: float = 1.0,
-    rng: Any = 0,
-    raw_shape: Any = None,
-    raw_dtype: Any = None,
-    chunks: Any = None,
-    scheduler: Any = None,
-    n_jobs: int | None = None,
-    callback: Callable[[str], Any] | None = None,
-    show_progress: bool | None = None,
-    out: Any = None,
-    spill: Any = None,
+    volume: Any, options: MidsurfaceOptions | None = None, *, callback: Callable[[Progress], Any] | None = None,
+    **kwargs: Any,
 ) -> MedialAxis:
     """Mid-surface of a thin-plate volume as a triangle mesh with thickness.
 
@@ -215,89 +203,12 @@ def midsurface_medial_axis(
         Bool mask or grey values, or a volume file / folder (NRRD, NIfTI,
         TIFF stack, DICOM series, ``.npy``, ``.raw`` with ``raw_shape``/``raw_dtype``).
         Never modified.
-    iso, threshold : float, optional
-        Foreground is ``grey > iso`` (``threshold`` is the dispatcher's name
-        for it). Default 0.5 for bool input, else ISO-50: half-way between
-        the background and material peaks of the grey-value histogram, or
-        Otsu's class means where it has not two (:func:`~medialaxis.volume.inputs.iso50`).
-    thickness : float or (min, max), optional
-        Plate thickness (the paper's epsilon), physical units. Omitted: every
-        plate at least 2 voxels (of the finest spacing) thick is kept, each
-        judged by its own thickness, measured where adjacent voxels see the
-        plate's two faces (a rib thinner than its wall keeps its
-        mid-surface). A ``(min, max)`` range: the same, for plates of
-        thickness in the range (``max`` may be ``inf``). A number: one
-        nominal thickness for the whole part, as in the paper. Plates left
-        out by a number or a range are reported in ``metadata["dropped"]``
-        and by a :class:`~medialaxis.MedialAxisWarning`.
-    lam : float, optional
-        Lambda of the grid lambda-medial axis: adjacent voxels whose nearest
-        boundary points are more than ``lam`` apart are medial. Default
-        ``0.75`` times the thickness (of each plate, or the nominal one),
-        which keeps plates and drops the branches into convex edges.
-    spacing : float or 3 floats, optional
-        Voxel size per array axis (default: the file's, else 1).
-    extend : bool
-        Extend the free edges to the isosurface.
-    remove_dents : bool
-        Move junction vertices by eq. (1).
-    density : float
-        Vertex spacing in units of the local half thickness.
-    rng : seed or numpy Generator
-        Order of the sub-sampling within a class (reproducible per seed).
-    raw_shape, raw_dtype : optional
-        Array shape ``(Z, Y, X)`` and dtype of a ``.raw`` file.
-    chunks : int or 3 ints, optional
-        Block size of the chunked route (:mod:`~medialaxis.volume.chunked`),
-        for volumes larger than memory: the volume is read and processed a
-        block at a time, each with a halo (see below); the medial voxels of
-        each block wait in a folder (``spill``). Default: blocks of 256 for a Dask or Zarr array,
-        with a cluster ``scheduler``, or above 2^27 voxels (512^3); ``0``
-        keeps the whole volume in memory. The medial voxels are identical to
-        the in-memory route's, and so is the mesh: each block meshes a window
-        of the sheet around it and keeps what it owns, vertices named by
-        their voxel, so the pieces join without seams.
-
-        The halo is chosen from the part: without a thickness, a first pass
-        measures the deepest voxel ``D`` (half the thickest plate); the halo
-        is ``D`` plus two voxels (the medial test of a core voxel uses its
-        neighbours' nearest boundary points, which must be inside the read
-        box), or ``3 D`` plus four voxels when plates of several nominal
-        thicknesses are labelled; with a number ``thickness``, half of it
-        plus three voxels. Every block checks that each voxel its answer
-        depends on is nearer to a boundary point it read than to the sides
-        of its box, and reads itself again with a doubled halo where not.
-        The mesh stages read a window of the neighbouring blocks' medial
-        voxels, wider where the picks near the core are not provably the
-        whole sheet's (``metadata["mesh_halo"]``).
-        Accepted sources: arrays, ``dask.array.Array``, Zarr arrays and
-        stores, OME-Zarr images (level 0, or the level a path names),
-        ``.npy`` and raw files (memory-mapped), NRRD (raw memory-mapped;
-        gzip/bzip2 decompressed once to a temporary file), NIfTI, TIFF
-        stacks and folders (page by page).
-    scheduler : None, "threads", "synchronous", dask Client or str
-        Where the blocks run: local threads (default), one thread, or a Dask
-        cluster (a ``Client`` or an address such as ``"tcp://host:8786"``;
-        its workers must see the input file). Implies the chunked route.
-    n_jobs : int, optional
-        Local worker threads of the chunked route (default: all CPUs).
     callback : callable, optional
-        Called with each stage name; returning ``False`` cancels.
-    show_progress : bool, optional
-        Progress bar on stderr (default: when stderr is a terminal).
-    out : str or path, optional
-        A ``.ply`` file or a ``.zarr`` group (arrays ``vertices``, ``faces``,
-        ``radii``, ``vertex_kind``) for the mesh. The chunked route streams it
-        there block by block (the mesh is never whole in one process) and
-        returns a result without the mesh: ``metadata["written"]``,
-        ``["vertices"]`` and ``["faces"]``; in memory the result is written
-        and returned. A ``.ome.zarr`` path gets an OME-Zarr image of the wall thickness on the
-        mid-surface's voxels, the mesh in its group ``mesh`` (:mod:`~medialaxis.volume.ome_zarr`).
-    spill : str or path, optional
-        Folder for the blocks' medial voxels and mesh pieces of the chunked
-        route (default: the temporary folder; on a cluster of several
-        machines, a folder every worker sees).
-
+        ``callback(Progress)`` before each stage (``"binarize"``,
+        ``"distance"``, ``"medial voxels"``, ``"polygonize"``, ``"dents"``,
+        ``"extension"``; the chunked route's passes and blocks); returning
+        ``False`` cancels.
+    {options}
     Returns
     -------
     MedialAxis
@@ -335,19 +246,16 @@ def midsurface_medial_axis(
     >>> bool(np.allclose(ma.points[:, 0], 9.5))
     True
     """
-    sizes = use_chunks(volume, chunks, scheduler, raw_shape, raw_dtype)
+    opts = make_options(MidsurfaceOptions, options, kwargs, "midsurface_medial_axis")
+    sizes = use_chunks(volume, opts.chunks, opts.scheduler, opts.raw_shape, opts.raw_dtype)
     if sizes is not None:
-        return chunked_midsurface(
-            volume, chunks=sizes, iso=iso_of(iso, threshold), thickness=thickness, lam=lam, spacing=spacing, extend=extend,
-            remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype,
-            scheduler=scheduler, n_jobs=n_jobs, callback=callback, show_progress=show_progress, out=out, spill=spill,
-        )
-    check_out(out)
-    stages = volume_stages(
-        volume, iso=iso, threshold=threshold, thickness=thickness, lam=lam, spacing=spacing, extend=extend,
-        remove_dents=remove_dents, density=density, rng=rng, raw_shape=raw_shape, raw_dtype=raw_dtype, callback=callback,
-        show_progress=show_progress,
-    )
+        given = {k: v for k, v in vars(opts).items() if k not in ("iso", "threshold", "chunks")}
+        return chunked_midsurface(volume, chunks=sizes, iso=iso_of(opts.iso, opts.threshold), callback=callback,
+                                  **given)
+    check_out(opts.out)
+    stages = volume_stages(volume, dataclasses.replace(opts, out=None, spill=None, chunks=None, scheduler=None,
+                                                       n_jobs=None), callback=callback)
+    out = opts.out
     result = stages.result
     if out is not None:
         if is_ome_zarr_out(out):

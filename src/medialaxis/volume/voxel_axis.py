@@ -9,11 +9,13 @@ from collections.abc import Callable
 from typing import Any
 
 from medialaxis._progress import Progress, check_cancel
+from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.volume.chunked import chunked_voxels, use_chunks
 from medialaxis.volume.distance import feature_transform
 from medialaxis.volume.inputs import load_volume
 from medialaxis.volume.medial import medial_voxels
+from medialaxis.volume.options import VoxelOptions
 from medialaxis.volume.pipeline import iso_of, thickness_and_lam
 from medialaxis.volume.regions import VOXEL_KINDS, classify_voxels
 from medialaxis.volume.shell import isosurface_shell
@@ -26,29 +28,24 @@ __all__ = ["medial_voxel_axis", "STAGES"]
 STAGES = ("binarize", "distance", "medial voxels", "classify")
 
 
+@takes_options(VoxelOptions)
 def medial_voxel_axis(
-    volume: Any,
-    *,
-    iso: float | None = None,
-    threshold: float | None = None,
-    thickness: float | None = None,
-    lam: float | None = None,
-    spacing: Any = None,
-    raw_shape: Any = None,
-    raw_dtype: Any = None,
-    chunks: Any = None,
-    scheduler: Any = None,
-    n_jobs: int | None = None,
-    callback: Callable[[Progress], Any] | None = None,
-    show_progress: bool | None = None,
+    volume: Any, options: VoxelOptions | None = None, *, callback: Callable[[Progress], Any] | None = None,
+    **kwargs: Any,
 ) -> MedialAxis:
     """The medial voxels themselves (``method="voxels"``): points and radii, no faces.
 
-    Parameters are as :func:`~medialaxis.volume.pipeline.midsurface_medial_axis`;
-    the chunked route (``chunks``, ``scheduler``) gives the same voxels.
-    ``callback(Progress)`` runs before each stage (``"binarize"``,
-    ``"distance"``, ``"medial voxels"``, ``"classify"``; the chunked route's
-    passes and blocks); returning ``False`` cancels.
+    The chunked route (``chunks``, ``scheduler``) gives the same voxels.
+
+    Parameters
+    ----------
+    volume : (Z, Y, X) array_like, str or path
+        As :func:`~medialaxis.volume.pipeline.midsurface_medial_axis` takes it.
+    callback : callable, optional
+        ``callback(Progress)`` before each stage (``"binarize"``,
+        ``"distance"``, ``"medial voxels"``, ``"classify"``; the chunked
+        route's passes and blocks); returning ``False`` cancels.
+    {options}
 
     Returns
     -------
@@ -67,21 +64,22 @@ def medial_voxel_axis(
     >>> len(ma.faces), sorted(set(ma.points[:, 0].tolist()))
     (0, [9.0])
     """
-    sizes = use_chunks(volume, chunks, scheduler, raw_shape, raw_dtype)
+    opts = make_options(VoxelOptions, options, kwargs, "medial_voxel_axis")
+    sizes = use_chunks(volume, opts.chunks, opts.scheduler, opts.raw_shape, opts.raw_dtype)
     if sizes is not None:
-        return chunked_voxels(volume, chunks=sizes, iso=iso_of(iso, threshold), thickness=thickness, lam=lam,
-                              spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype, scheduler=scheduler,
-                              n_jobs=n_jobs, callback=callback, show_progress=show_progress)
+        given = {k: v for k, v in vars(opts).items() if k not in ("iso", "threshold", "chunks")}
+        return chunked_voxels(volume, chunks=sizes, iso=iso_of(opts.iso, opts.threshold), callback=callback, **given)
     started = time.perf_counter()
 
     def stage(step: int, name: str) -> None:
         check_cancel(callback, Progress("voxels", name, step, len(STAGES)))
 
     stage(0, STAGES[0])
-    src = load_volume(volume, iso=iso_of(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
+    src = load_volume(volume, iso=iso_of(opts.iso, opts.threshold), spacing=opts.spacing, raw_shape=opts.raw_shape,
+                      raw_dtype=opts.raw_dtype)
     stage(1, STAGES[1])
     features = feature_transform(src)
-    plates, lam_value = thickness_and_lam(features, thickness, lam)
+    plates, lam_value = thickness_and_lam(features, opts.thickness, opts.lam)
     stage(2, STAGES[2])
     medial = medial_voxels(features, lam_value, plates)
     dropped = dropped_report(medial, plates, lam_value)
