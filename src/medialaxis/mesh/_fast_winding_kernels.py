@@ -11,9 +11,9 @@ order of Barill et al.'s expansion: enough to tell inside (1) from outside
 
 References
 ----------
-Barill, Dickson, Schmidt, Levin, Jacobson. Fast winding numbers for soups and
-clouds. ACM Transactions on Graphics 37(4) (Proc. SIGGRAPH), 43:1-43:12, 2018.
-doi:10.1145/3197517.3201337
+.. [1] Barill, Dickson, Schmidt, Levin, Jacobson, "Fast winding numbers for soups and
+       clouds", ACM Transactions on Graphics 37(4):43:1-43:12 (Proc. SIGGRAPH), 2018.
+       doi:10.1145/3197517.3201337
 """
 
 from __future__ import annotations

@@ -9,12 +9,11 @@ Oosterom and Strackee's formula.
 
 References
 ----------
-Van Oosterom, Strackee. The solid angle of a plane triangle. IEEE Transactions
-on Biomedical Engineering 30(2), 125-126, 1983. doi:10.1109/TBME.1983.325207
-
-Jacobson, Kavan, Sorkine-Hornung. Robust inside-outside segmentation using
-generalized winding numbers. ACM Transactions on Graphics 32(4) (Proc.
-SIGGRAPH), 33:1-33:12, 2013. doi:10.1145/2461912.2461916
+.. [1] Van Oosterom, Strackee, "The solid angle of a plane triangle", IEEE Transactions on
+       Biomedical Engineering 30(2):125-126, 1983. doi:10.1109/TBME.1983.325207
+.. [2] Jacobson, Kavan, Sorkine-Hornung, "Robust inside-outside segmentation using
+       generalized winding numbers", ACM Transactions on Graphics 32(4):33:1-33:12 (Proc.
+       SIGGRAPH), 2013. doi:10.1145/2461912.2461916
 """
 
 from __future__ import annotations

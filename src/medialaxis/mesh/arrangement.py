@@ -17,13 +17,12 @@ vertices; pieces that round to zero area are flipped or collapsed away
 
 References
 ----------
-Jacobson, Kavan, Sorkine-Hornung. Robust inside-outside segmentation using
-generalized winding numbers. ACM Transactions on Graphics 32(4) (Proc.
-SIGGRAPH), 33:1-33:12, 2013. doi:10.1145/2461912.2461916
-
-Zhou, Grinspun, Zorin, Jacobson. Mesh arrangements for solid geometry. ACM
-Transactions on Graphics 35(4) (Proc. SIGGRAPH), 39:1-39:15, 2016.
-doi:10.1145/2897824.2925901
+.. [1] Jacobson, Kavan, Sorkine-Hornung, "Robust inside-outside segmentation using
+       generalized winding numbers", ACM Transactions on Graphics 32(4):33:1-33:12 (Proc.
+       SIGGRAPH), 2013. doi:10.1145/2461912.2461916
+.. [2] Zhou, Grinspun, Zorin, Jacobson, "Mesh arrangements for solid geometry", ACM
+       Transactions on Graphics 35(4):39:1-39:15 (Proc. SIGGRAPH), 2016.
+       doi:10.1145/2897824.2925901
 """
 
 from __future__ import annotations

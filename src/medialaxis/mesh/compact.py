@@ -50,9 +50,13 @@ within ``tolerance`` of what it replaces, keeping its topology:
 
 References
 ----------
-Li et al., "Q-MAT: Computing medial axis transform by quadratic error
-minimization", ACM TOG 34(4), 2015 (spherical quadrics); Garland and
-Heckbert, "Surface simplification using quadric error metrics", 1997.
+.. [1] P. Li, B. Wang, F. Sun, X. Guo, C. Zhang, W. Wang, "Q-MAT: Computing medial axis
+       transform by quadratic error minimization", ACM Transactions on Graphics
+       35(1):8:1-8:16, 2015. doi:10.1145/2753755 (spherical quadrics)
+.. [2] M. Garland, P. S. Heckbert, "Surface simplification using quadric error metrics",
+       Proc. SIGGRAPH 97, 209-216, 1997. doi:10.1145/258734.258849
+.. [3] Dey, Edelsbrunner, Guha, Nekhayev, "Topology preserving edge contraction", 1999 (the
+       link condition; venue and DOI unconfirmed: docs/references.md).
 """
 
 from __future__ import annotations

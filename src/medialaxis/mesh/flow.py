@@ -1,7 +1,7 @@
-"""Curve skeletons of closed meshes by a diffusion flow (paper 003), with user control.
+"""Curve skeletons of closed meshes by a diffusion flow (Du and Qin, SM '04), with user control.
 
-The surface ``S`` evolves by a diffusion equation in the spirit of paper 003,
-eq. (4), ``dS/dt = D laplacian(S) + (grassfire term)``, discretised with the
+The surface ``S`` evolves by a diffusion equation in the spirit of Du and
+Qin [1]_, eq. (4), ``dS/dt = D laplacian(S) + (grassfire term)``, discretised with the
 cotangent Laplacian ``L`` and lumped mass ``M`` of the *input* surface and
 solved implicitly (backward Euler, unconditionally stable)::
 
@@ -28,15 +28,16 @@ not collapsed one by one: the final grouping of
 together, which is the equivalent of collapsing them, and turns the
 contracted mesh into the curve skeleton graph.
 
-User control, as in paper 003 section 4.2: ``fixed_points`` freezes chosen
+User control, as in Du and Qin, section 4.2: ``fixed_points`` freezes chosen
 vertices from the start (the skeleton reaches them), ``region`` restricts the
 flow to a box, ``curvature_threshold`` turns convex tips of high Gaussian
 curvature (eq. 7) into skeletal points, ``callback`` watches every step.
 
 References
 ----------
-Paper 003: "Medial Axis Extraction and Shape Manipulation of Solid Objects
-Using Parabolic PDEs", sections 3-4.
+.. [1] H. Du, H. Qin, "Medial axis extraction and shape manipulation of solid objects using
+       parabolic PDEs", Proc. 9th ACM Symposium on Solid Modeling and Applications (SM '04),
+       2004 (DOI unconfirmed: docs/references.md), sections 3-4.
 """
 
 from __future__ import annotations
@@ -85,7 +86,7 @@ def flow_skeleton(
     mesh: Any, options: FlowOptions | None = None, *, callback: Callable[[Progress], Any] | None = None,
     **kwargs: Any,
 ) -> MedialAxis:
-    """Curve skeleton of a closed mesh by the diffusion flow of paper 003.
+    """Curve skeleton of a closed mesh by the diffusion flow of Du and Qin (SM '04).
 
     Parameters
     ----------
@@ -119,6 +120,12 @@ def flow_skeleton(
         The flow diverged (non-finite or exploding positions).
     Cancelled
         The callback returned ``False``.
+
+    References
+    ----------
+    .. [1] H. Du, H. Qin, "Medial axis extraction and shape manipulation of solid objects using
+           parabolic PDEs", Proc. 9th ACM Symposium on Solid Modeling and Applications (SM '04),
+           2004 (DOI unconfirmed: docs/references.md), sections 3-4.
 
     Examples
     --------

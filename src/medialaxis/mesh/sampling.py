@@ -1,6 +1,7 @@
 """Epsilon-samples of a triangle mesh surface, adaptive to local feature size.
 
-Step 1 of Algorithm 5 (paper 001): a point set ``P`` on the surface ``S`` with
+Step 1 of Algorithm 5 of Boissonnat, Wormser and Yvinec ("Curved Voronoi
+diagrams", section 2.7; docs/references.md): a point set ``P`` on the surface ``S`` with
 ``d_H(S, P) <= epsilon``. The sample is built from the mesh itself, not only
 its vertices: every vertex, points along every edge and a barycentric grid
 inside every face, with a target spacing per face. The spacing follows an

@@ -146,8 +146,8 @@ def complement_voids(simplices: np.ndarray, neighbors: np.ndarray, facet_ij: np.
 
     References
     ----------
-    A. Hatcher, *Algebraic Topology*, Cambridge University Press, 2002,
-    Theorem 3.44 (Alexander duality). ISBN 978-0-521-79540-1.
+    .. [1] A. Hatcher, *Algebraic Topology*, Cambridge University Press, 2002, Theorem 3.44
+           (Alexander duality). ISBN 978-0-521-79540-1.
 
     Examples
     --------

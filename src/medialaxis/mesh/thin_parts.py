@@ -100,9 +100,8 @@ def thin_part_count(mesh: Any, spacing: np.ndarray, count: int, normals: PseudoN
 
     References
     ----------
-    N. Amenta, M. Bern, "Surface reconstruction by Voronoi filtering",
-    *Discrete & Computational Geometry* 22 (4), 481-504, 1999.
-    doi:10.1007/PL00009475
+    .. [1] N. Amenta, M. Bern, "Surface reconstruction by Voronoi filtering", Discrete &
+           Computational Geometry 22(4):481-504, 1999. doi:10.1007/PL00009475
     """
     area = np.asarray(mesh.area_faces, np.float64)
     h = face_spacing_for_count(area, np.ones(len(area)), max(count // 8, 2000))

@@ -1,4 +1,4 @@
-"""Voronoi lambda-medial surfaces of closed triangle meshes (Algorithm 5 of paper 001).
+"""Voronoi lambda-medial surfaces of closed triangle meshes (Algorithm 5 of "Curved Voronoi diagrams").
 
 1. Sample the surface (:mod:`medialaxis.mesh.sampling`): an epsilon-sample
    built from the mesh (vertices, edge points, face grids), with a spacing
@@ -59,7 +59,7 @@ __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM
 
 #: Default lambda: ``LAM_FACTOR * sqrt(epsilon * diagonal)``. Lambda must
 #: grow like the square root of epsilon for the lambda-medial axis of the
-#: sample to converge (Chazal and Lieutier; paper 001); 0.65 keeps the
+#: sample to converge (Chazal and Lieutier; "Curved Voronoi diagrams", 2.7); 0.65 keeps the
 #: capsule's axis within 3 % and 95 % of a box's volume covered.
 LAM_FACTOR = 0.65
 #: Largest relative gap between the inner Delaunay tetrahedra's volume and the mesh's.
@@ -151,10 +151,16 @@ def voronoi_medial_axis(
 
     References
     ----------
-    Paper 001, Algorithm 5 (sample, Voronoi diagram, remove the faces whose
-    contact set is narrower than lambda) and the lambda-medial axis of
-    Chazal and Lieutier; paper 000 for the Voronoi/Delaunay view of the
-    medial axis of a point sample.
+    .. [1] J.-D. Boissonnat, C. Wormser, M. Yvinec, "Curved Voronoi diagrams", in J.-D.
+           Boissonnat, M. Teillaud (eds.), Effective Computational Geometry for Curves and
+           Surfaces, Springer, 67-116, 2006, section 2.7, Algorithm 5 (sample, Voronoi
+           diagram, remove the faces whose contact set is narrower than lambda).
+           https://hal.archives-ouvertes.fr/hal-00488446
+    .. [2] F. Chazal, A. Lieutier, "The lambda-medial axis", Graphical Models, 2005.
+           doi:10.1016/j.gmod.2005.01.002
+    .. [3] "A Qualitative Approach for Medial Computation" (Voronoi/Delaunay medial axis of a
+           2D image; authors, venue and year unconfirmed: docs/references.md): the
+           Voronoi/Delaunay view of the medial axis of a point sample.
 
     Examples
     --------

@@ -1,9 +1,9 @@
 """The medial complex: Voronoi facets inside the solid, lambda-filtered, topology kept.
 
-Step 3 of Algorithm 5 (paper 001) removes the Voronoi facets whose contact
-set is narrower than lambda. Done literally (``topology="lambda"``) the
-result carries the sampling noise as small holes and islands where the
-contact width crosses lambda. ``topology="preserve"`` (the default) starts
+Step 3 of Algorithm 5 of Boissonnat, Wormser, Yvinec ("Curved Voronoi diagrams", section 2.7;
+docs/references.md) removes the Voronoi facets whose contact set is narrower than lambda.
+Done literally (``topology="lambda"``) the result carries the sampling noise as small holes
+and islands where the contact width crosses lambda. ``topology="preserve"`` (the default) starts
 instead from the dual complex ``D`` of the inner Delaunay tetrahedra
 (vertices: tetrahedra whose circumcentre is inside; edges: triangles shared
 by two of them; facets: Delaunay edges all of whose tetrahedra are inside).

@@ -1,6 +1,7 @@
 """The 3D Delaunay tetrahedralisation of a surface sample and its Voronoi facets.
 
-Step 2 of Algorithm 5 (paper 001). The Voronoi vertices are the circumcentres
+Step 2 of Algorithm 5 of Boissonnat, Wormser and Yvinec ("Curved Voronoi
+diagrams", section 2.7; docs/references.md). The Voronoi vertices are the circumcentres
 of the Delaunay tetrahedra; the Voronoi facet dual to a Delaunay edge ``(i, j)``
 is the polygon of the circumcentres of the tetrahedra around that edge, in
 cyclic order around it (found by walking across shared faces). Every point of that facet is equidistant from

@@ -1,10 +1,12 @@
 """The planar pipeline: input -> boundary sample -> Delaunay -> Voronoi axis -> pruning.
 
-This follows paper 000 (image, boundary points, Delaunay triangulation,
-axis from circumcentres, pruning of the outside parts, radius per point,
-edge structure, validation by rebuilding the shape) with the
-lambda-medial axis of paper 001 (Algorithm 5) and a topology-preserving
-pruning (:mod:`medialaxis.planar.pruning`).
+This follows "A Qualitative Approach for Medial Computation" (image, boundary
+points, Delaunay triangulation, axis from circumcentres, pruning of the
+outside parts, radius per point, edge structure, validation by rebuilding the
+shape) with the lambda-medial axis of Boissonnat, Wormser and Yvinec, "Curved
+Voronoi diagrams", section 2.7 (Algorithm 5), and a topology-preserving
+pruning (:mod:`medialaxis.planar.pruning`); the works are in
+docs/references.md.
 """
 
 from __future__ import annotations
@@ -291,8 +293,12 @@ def voronoi_medial_axis(
 
     References
     ----------
-    Paper 000 (Voronoi/Delaunay medial computation from boundary points) and
-    paper 001 (lambda-medial axis, Lemma 10, Algorithm 5).
+    .. [1] "A Qualitative Approach for Medial Computation" (Voronoi/Delaunay medial axis of a
+           2D image; authors, venue and year unconfirmed: docs/references.md).
+    .. [2] J.-D. Boissonnat, C. Wormser, M. Yvinec, "Curved Voronoi diagrams", in J.-D.
+           Boissonnat, M. Teillaud (eds.), Effective Computational Geometry for Curves and
+           Surfaces, Springer, 67-116, 2006, section 2.7 (the lambda-medial axis, Lemma 10,
+           Algorithm 5). https://hal.archives-ouvertes.fr/hal-00488446
 
     Examples
     --------

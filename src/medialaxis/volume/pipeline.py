@@ -1,4 +1,4 @@
-"""Mid-surfaces of thin-plate CT volumes (paper 002: Kumar, Michikawa, Suzuki).
+"""Mid-surfaces of thin-plate CT volumes (Kumar, Michikawa and Suzuki; docs/references.md).
 
 Stages (each kept by :func:`volume_stages`):
 
@@ -192,7 +192,7 @@ def midsurface_medial_axis(
     """Mid-surface of a thin-plate volume as a triangle mesh with thickness.
 
     Implements Kumar, Michikawa and Suzuki, "Improving medial surfaces for
-    reverse engineering" (paper 002): medial voxels (Prohaska and Hege),
+    reverse engineering" [1]_: medial voxels (Prohaska and Hege [2]_),
     sub-sampling polygonization (Michikawa and Suzuki), extension of the
     shrunk free edges to the isosurface and dent removal at junctions by
     their eq. (1).
@@ -235,6 +235,15 @@ def midsurface_medial_axis(
         Unreadable or truncated file.
     Cancelled
         Interrupted, or the callback returned ``False``.
+
+    References
+    ----------
+    .. [1] V. Kumar, T. Michikawa, H. Suzuki, "Improving medial surfaces for reverse
+           engineering" (venue, year and DOI unconfirmed: docs/references.md).
+    .. [2] S. Prohaska, H.-C. Hege, "Fast visualization of plane-like structures in voxel
+           data", Proc. IEEE Visualization 2002, 29-36, 2002. doi:10.1109/VISUAL.2002.1183753
+    .. [3] T. Michikawa, H. Suzuki, "Polygonization of volumetric skeletons with junctions",
+           Computer-Aided Design 45(4):822-828, 2013. doi:10.1016/j.cad.2011.06.003
 
     Examples
     --------
