@@ -1,4 +1,4 @@
-"""Skeleton-driven deformation (issue 5, paper 003 section 4.3)."""
+"""Skeleton-driven deformation (issue 5, Du and Qin, SM '04, section 4.3)."""
 
 from __future__ import annotations
 

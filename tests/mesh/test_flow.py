@@ -1,4 +1,4 @@
-"""Diffusion-flow curve skeletons of meshes (issue 5, paper 003)."""
+"""Diffusion-flow curve skeletons of meshes (issue 5; Du and Qin, SM '04)."""
 
 from __future__ import annotations
 
