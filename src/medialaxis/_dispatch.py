@@ -166,7 +166,7 @@ def _load(entry: str) -> Callable[..., Any]:
     return getattr(importlib.import_module(module), name)
 
 
-def option_types() -> dict[tuple[str, str], type]:
+def option_types() -> dict[tuple[str, str], Any]:
     """The options dataclass of every method, keyed by (domain, method)."""
     return {key: _load(entry) for key, entry in OPTIONS.items()}
 

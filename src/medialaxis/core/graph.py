@@ -125,9 +125,9 @@ def branches_reference(n: int, edges: np.ndarray) -> list[np.ndarray]:
     for e in np.flatnonzero(~used):
         if used[e]:
             continue
-        start = int(edges[e, 0])
-        k = next(j for j in range(indptr[start], indptr[start + 1]) if eids[j] == e)
-        chains.append(walk(start, k))
+        first = int(edges[e, 0])
+        k = next(j for j in range(indptr[first], indptr[first + 1]) if eids[j] == e)
+        chains.append(walk(first, k))
     return chains
 
 

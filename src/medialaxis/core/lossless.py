@@ -174,8 +174,9 @@ def _npz_arrays(ma: MedialAxis, prefix: str, timings: bool, parent: Any = None) 
 
 def write_npz(ma: MedialAxis, path: Path, timings: bool = False) -> None:
     with atomic_write(path, "wb") as fh:
-        np.savez_compressed(fh, format=np.asarray("medialaxis"), version=np.asarray(FORMAT_VERSION),
-                            **_npz_arrays(ma, "", timings))
+        arrays = {"format": np.asarray("medialaxis"), "version": np.asarray(FORMAT_VERSION),
+                  **_npz_arrays(ma, "", timings)}
+        np.savez_compressed(fh, **arrays)  # type: ignore[arg-type]  # numpy's stub reads ** as allow_pickle
 
 
 def _from_npz(z: Any, prefix: str, parent: Any = None) -> MedialAxis:

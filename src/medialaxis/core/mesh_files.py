@@ -26,7 +26,7 @@ SWC has no writer in meshio, trimesh or pyvista.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TextIO
 
 import numpy as np
 from scipy import sparse
@@ -131,7 +131,7 @@ def write_vtu(ma: MedialAxis, path: str) -> None:
     meshio.vtu.write(path, mesh, binary=True, compression="zlib")
 
 
-def write_swc(ma: MedialAxis, fh: object) -> None:
+def write_swc(ma: MedialAxis, fh: TextIO) -> None:
     """SWC (id, type, x, y, z, radius, parent) of a curve result: each component
     is a tree rooted at its widest point, parents found breadth first; edges
     that close a cycle are listed as ``# cycle a b`` comment lines."""
@@ -156,12 +156,12 @@ def write_swc(ma: MedialAxis, fh: object) -> None:
     sequence = np.concatenate(order) if order else np.empty(0, np.int64)
     new_id = np.empty(n, np.int64)
     new_id[sequence] = np.arange(1, n + 1)
-    tree = {(int(min(a, b)), int(max(a, b))) for a, b in zip(range(n), parent) if b >= 0}
-    fh.write(f"# medialaxis curve skeleton: {n} points, {len(edges)} edges\n"  # type: ignore[attr-defined]
+    tree = {(min(a, b), max(a, b)) for a, b in zip(range(n), parent.tolist()) if b >= 0}
+    fh.write(f"# medialaxis curve skeleton: {n} points, {len(edges)} edges\n"
              "# id type x y z radius parent\n")
     for a, b in edges.tolist():
         if (a, b) not in tree:
-            fh.write(f"# cycle {new_id[a]} {new_id[b]}\n")  # type: ignore[attr-defined]
+            fh.write(f"# cycle {new_id[a]} {new_id[b]}\n")
     rows = np.c_[new_id[sequence], np.zeros(n, np.int64)[: len(sequence)], xyz[sequence], radii[sequence],
                  np.where(parent[sequence] >= 0, new_id[np.maximum(parent[sequence], 0)], -1)]
     np.savetxt(fh, rows, fmt=["%d", "%d", "%.10g", "%.10g", "%.10g", "%.10g", "%d"])

@@ -40,7 +40,7 @@ def draw_axis(ax: Any, ma: Any, *, color_by_radius: bool = True, lw: float = 1.5
     from matplotlib.collections import LineCollection
 
     xy = _xy(ma, ma.points)
-    segs = xy[ma.edges] if len(ma.edges) else np.empty((0, 2, 2))
+    segs = list(xy[ma.edges]) if len(ma.edges) else []
     lc = LineCollection(segs, linewidths=lw, cmap="viridis" if color_by_radius else None)
     if color_by_radius and len(ma.edges):
         lc.set_array(ma.radii[ma.edges].mean(axis=1))

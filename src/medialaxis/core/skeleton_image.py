@@ -51,9 +51,9 @@ def _draw_segments(index: np.ndarray, radii: np.ndarray, edges: np.ndarray,
         count = pixels.shape[1]
         t = np.arange(count) / max(count - 1, 1)
         values = radii[a] + t * (radii[b] - radii[a])
-        pixels = tuple(np.clip(pixels, 0, upper[:, None]))
-        np.maximum.at(distance, pixels, values)
-        drawn[pixels] = True
+        at = tuple(np.clip(pixels, 0, upper[:, None]))
+        np.maximum.at(distance, at, values)
+        drawn[at] = True
 
 
 def _draw_triangles(coords: np.ndarray, radii: np.ndarray, faces: np.ndarray,

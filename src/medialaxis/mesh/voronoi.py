@@ -282,14 +282,14 @@ def voronoi_medial_axis(
     used = cx.tets
     todo = used[~np.isfinite(signed[used])]
     signed[todo], closest[todo] = sd.query(dt.centres[todo], smp.face[dt.simplices[todo]])
-    solid = solid_betti(src.mesh)
+    solid_numbers = solid_betti(src.mesh)
     faces, edges, n_curve, n_cut = cx.faces, cx.edges, cx.n_curve_edges, 0
     chi = euler_characteristic(len(used), faces, edges)
     if topology == "preserve":  # cycles the solid lacks, run out through flat tetrahedra on the surface
         medial_point = (signed[used] < 0) & (dt.radii[used] + signed[used] <= EMPTY_BALL_SLACK * eps)
         one_sided = dt.longest[used] < -signed[used]  # its four contacts within 60 degrees, seen from its centre
         used, faces, edges, n_curve, n_cut = without_stray_cycles(
-            used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid,
+            used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid_numbers,
             lambda: complement_voids(dt.simplices, dt.neighbors, cx.facet_ij), chi)
         chi += n_cut
     stray = used[(signed[used] >= 0) | (dt.radii[used] >= diag)]  # kept for topology, its circumcentre out or far
@@ -317,7 +317,7 @@ def voronoi_medial_axis(
         "mesh_volume": src.volume,
         "mesh_euler_characteristic": int(src.mesh.euler_number),
         "euler_characteristic": chi,
-        "solid_betti": list(solid),
+        "solid_betti": list(solid_numbers),
         "repairs": list(src.repairs),
         "defects": dict(src.found),
         "topology": topology,

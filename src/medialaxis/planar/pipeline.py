@@ -230,7 +230,7 @@ def _stages(
         "n_polygons": int(len(getattr(region, "geoms", [region]))),
         "n_holes": int(sum(len(p.interiors) for p in getattr(region, "geoms", [region]))),
     }
-    if src.is_raster:
+    if src.is_raster and src.image is not None:
         metadata["image_shape"] = tuple(int(s) for s in src.image.shape)
         metadata["threshold"] = src.threshold
         metadata["foreground"] = src.side
