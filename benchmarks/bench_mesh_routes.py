@@ -12,7 +12,10 @@ records:
   timeout or a killed process is an error);
 * the warnings the call gave (crossing faces resolved by winding number,
   holes closed, zero-area faces, ...);
-* ``ma.betti`` against the solid's ``(outer shells, genus, cavities)``: from the surface
+* ``ma.betti`` against the Betti numbers of the solid's open interior (which the
+  medial axis has the homotopy type of: where the solid touches itself at a
+  point, a cavity touching another or a slit narrowing to a point, they
+  differ from the closed solid's): from the surface
   the loader makes of the file (crossings resolved by winding number, holes
   capped: :func:`solid_topology`, after the timed call), else from the
   input mesh alone (its Euler characteristic, holes counted as capped);
@@ -134,17 +137,22 @@ def _peak_mb() -> int | None:
 
 
 def solid_topology(path: str) -> dict | None:
-    """Shells and genus of the solid the loader makes of the file, with what it repaired; ``None`` if refused.
+    """Betti numbers of the open interior of the solid the loader makes of the file, with what it repaired.
 
-    Where faces cross, the solid where the winding number is at least 1/2
-    can differ from the surface's own topology (a dragon's tail crossing
-    its body makes a handle); its surface is closed, so its Euler
-    characteristic gives it.
+    ``None`` if refused. Where faces cross, the solid where the winding
+    number is at least 1/2 can differ from the surface's own topology (a
+    dragon's tail crossing its body makes a handle); where that solid
+    touches itself at a point (a pinch), its interior (which the medial
+    axis follows, Lieutier 2004) and the closed solid differ again:
+    :func:`solid_interior.interior_betti` counts the interior,
+    ``"closed"`` keeps the closed solid's count (shells by face adjacency,
+    a pinch split, as the cut surface stores it).
     """
     import warnings
 
     import numpy as np
     import trimesh
+    from solid_interior import interior_betti
 
     import medialaxis as mx
     from medialaxis.mesh.inputs import load_mesh
@@ -163,8 +171,9 @@ def solid_topology(path: str) -> dict | None:
     tri = np.asarray(mesh.vertices, np.float64)[np.asarray(mesh.faces)]
     volume = np.bincount(labels, np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])) / 6.0, shells)
     voids = int((volume < 0).sum())
-    return {"components": shells - voids, "genus": (2 * shells - int(euler)) / 2, "voids": voids,
-            "repairs": list(loaded.repairs)}
+    components, genus, cavities = interior_betti(mesh.vertices, mesh.faces)
+    return {"components": components, "genus": genus, "voids": cavities, "repairs": list(loaded.repairs),
+            "closed": [shells - voids, (2 * shells - int(euler)) // 2, voids]}
 
 
 def worker(path: str, method: str, check_points: int) -> dict:

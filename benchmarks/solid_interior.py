@@ -23,9 +23,8 @@ input surface with each touch resolved as the shrinking resolves it.
   through a copy of R (a sphere with m holes): a solid pinch (regions of
   one circle each) splits the fans, an empty one (the complement touching
   itself: an annulus of solid) joins two by a tube. Whether a point of the
-  sphere lies on a circle's solid side is decided exactly by the circle's
-  solid angle of the cone
-  over the circle seen from near the vertex, which jumps by 4 pi across it.
+  sphere lies on a circle's solid side is decided by the sign of the solid
+  angle that the cone over the circle subtends from near the vertex.
 
 The resolved surface is a disjoint union of closed oriented surfaces; each
 bounds its solid on the inside (positive signed volume: an outer boundary)
@@ -91,23 +90,30 @@ def _pair_around_edges(v: np.ndarray, f: np.ndarray) -> list[tuple[int, int, int
     return pairs
 
 
-def _cone_angle(x: np.ndarray, ua: np.ndarray, ub: np.ndarray, eps: float = 1e-3) -> float:
-    """Solid angle of the unit cone over the arcs ``ua[i] -> ub[i]`` seen from ``eps * x`` (apex at the origin).
+def _on_solid_side(x: np.ndarray, ua: np.ndarray, ub: np.ndarray, eps: float = 1e-6) -> bool:
+    """Whether direction ``x`` lies on the solid side of the link circle of arcs ``ua[i] -> ub[i]`` (unit vectors).
 
-    The cone closed by a lid far from the apex is a closed surface, and the
-    lid looks the same from any point near the apex: the angle jumps by
-    4 pi across the cone and stays within O(eps) of one value on each side.
+    The unit cone over the circle (apex at the origin, faces oriented away
+    from the solid side R), closed by the part of the unit sphere over R,
+    bounds the cone over R outward; seen from ``eps * x`` the lid subtends
+    the area A(R) up to O(eps), so the cone subtends 4 pi - A(R) > 0 from
+    the solid side and -A(R) < 0 from the other.
     """
     a, b, c = ua - eps * x, ub - eps * x, np.broadcast_to(-eps * x, ua.shape)
     la, lb, lc = (np.linalg.norm(w, axis=1) for w in (a, b, c))
     num = np.einsum("ij,ij->i", a, np.cross(b, c))
     den = la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", b, c) * la
     den += np.einsum("ij,ij->i", c, a) * lb
-    return float(2.0 * np.arctan2(num, den).sum())
+    return bool(np.arctan2(num, den).sum() > 0)
 
 
-def _solid_regions(p: np.ndarray, fans: list[np.ndarray], v: np.ndarray, f: np.ndarray) -> list[list[int]]:
-    """The fans at vertex ``p`` grouped by the solid region of the small sphere around ``p`` they bound."""
+def _solid_regions(p: int, fans: list[np.ndarray], v: np.ndarray, f: np.ndarray) -> list[list[int]]:
+    """The fans at vertex ``p`` grouped by the solid region of the small sphere around ``p`` they bound.
+
+    Disjoint circles on a sphere cut it into regions told apart by the side
+    of each circle they lie on; a point just off each circle on its solid
+    side (off its widest arc) stands for the solid region that circle bounds.
+    """
     arcs, probes = [], []
     for faces in fans:
         tri = f[faces]
@@ -122,13 +128,11 @@ def _solid_regions(p: np.ndarray, fans: list[np.ndarray], v: np.ndarray, f: np.n
         i = int(np.argmax(angle))
         n = np.cross(ua[i], ub[i])
         mid = (ua[i] + ub[i]) / np.linalg.norm(ua[i] + ub[i])
-        y = mid - min(1e-2, 0.1 * angle[i]) * n / np.linalg.norm(n)  # just off the widest arc, on the solid side
+        y = mid - 1e-3 * angle[i] * n / np.linalg.norm(n)  # the faces point away from the solid
         probes.append(y / np.linalg.norm(y))
-    side = np.zeros((len(fans), len(fans)), bool)
-    for j, (ua, ub) in enumerate(arcs):
-        ref = _cone_angle(probes[j], ua, ub)
-        for i in range(len(fans)):
-            side[i, j] = abs(_cone_angle(probes[i], ua, ub) - ref) < 2 * np.pi
+    side = np.array([[_on_solid_side(y, *arc) for arc in arcs] for y in probes])
+    if not side.diagonal().all():
+        raise ValueError(f"vertex {p}: a probe off a fan's arc is not on its solid side")
     groups: dict[bytes, list[int]] = {}
     for i in range(len(fans)):
         groups.setdefault(side[i].tobytes(), []).append(i)
