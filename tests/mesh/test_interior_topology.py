@@ -128,3 +128,46 @@ def test_interior_is_invariant_under_a_rigid_motion() -> None:
     q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
     q *= np.sign(np.linalg.det(q))
     assert interior_betti(vertices @ q.T + [3.0, -1.0, 2.0], faces) == _interior(cells)
+
+
+def _cone(apex, axis, length: float, half_angle: float, sides: int = 12) -> tuple[np.ndarray, np.ndarray]:
+    """A closed cone (apex, ring, base centre), faces outward."""
+    axis = np.asarray(axis, float) / np.linalg.norm(axis)
+    u = np.cross(axis, [0.3, 0.5, 0.8])
+    u /= np.linalg.norm(u)
+    w = np.cross(axis, u)
+    t = np.linspace(0, 2 * np.pi, sides, endpoint=False)
+    r = length * np.tan(half_angle)
+    ring = apex + length * axis + r * (np.cos(t)[:, None] * u + np.sin(t)[:, None] * w)
+    vertices = np.vstack([apex, ring, apex + length * axis])
+    k = np.arange(sides)
+    faces = np.vstack(
+        [
+            np.c_[np.zeros(sides, int), 1 + (k + 1) % sides, 1 + k],
+            np.c_[np.full(sides, sides + 1), 1 + k, 1 + (k + 1) % sides],
+        ]
+    )
+    return vertices, faces
+
+
+def _join(*parts) -> tuple[np.ndarray, np.ndarray]:
+    vertices, faces, n = [], [], 0
+    for v, f in parts:
+        vertices.append(v)
+        faces.append(f + n)
+        n += len(v)
+    return np.vstack(vertices), np.vstack(faces)
+
+
+@pytest.mark.parametrize("half_angle", [0.5, 0.05])
+def test_needle_cones_tip_to_tip(half_angle: float) -> None:
+    """Two cones meeting at their apex, as a cut seahorse's slits of air do (needles of 3 to 30 degrees here)."""
+    apex = np.array([0.3, -0.2, 0.1])
+    axis = np.array([0.2, 1.0, -0.4])
+    cones = [_cone(apex, axis, 2.0, half_angle), _cone(apex, -axis, 1.5, half_angle)]
+    # two solid needles: the interior is two pieces, the closed solid one
+    assert interior_betti(*_join(*cones)) == (2, 0, 0)
+    # two needles of air in a block (faces turned inward): the interior holds one cavity (their closures meet), the closed solid two
+    box_v, box_f = _cube_surface([(x, y, z) for x in range(-4, 4) for y in range(-4, 4) for z in range(-4, 4)])
+    holes = [(v, f[:, ::-1]) for v, f in cones]
+    assert interior_betti(*_join((box_v, box_f), *holes)) == (1, 0, 1)
