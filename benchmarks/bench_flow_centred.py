@@ -55,7 +55,7 @@ def bent_tube(step: float = 0.1, bend: float = 3.0, radius: float = 1.0) -> obje
 
 def bent_tube_distance(points: np.ndarray, bend: float = 3.0, radius: float = 1.0) -> np.ndarray:
     """Distance to the half circle of radius ``bend`` (y >= 0), continued straight into the caps."""
-    from medialaxis.mesh.flow_samples import segment_distance
+    from medialaxis.datasets import segment_distance
 
     angle = np.clip(np.arctan2(points[:, 1], points[:, 0]), 0.0, np.pi)
     angle = np.where(points[:, 1] < 0, np.where(points[:, 0] > 0, 0.0, np.pi), angle)
@@ -79,7 +79,7 @@ def helix_tube(tube: float = 0.5, sections: int = 24, samples: int = 160) -> obj
 
 
 def polyline_distance(points: np.ndarray, line: np.ndarray) -> np.ndarray:
-    from medialaxis.mesh.flow_samples import segment_distance
+    from medialaxis.datasets import segment_distance
 
     return segment_distance(points, np.stack([line[:-1], line[1:]], axis=1))
 
@@ -157,7 +157,7 @@ def main() -> None:
               f"{pct(torus_distance(sk.points[inside], 3.0), 3.0)} of R; ends {len(sk.endpoints)}; {sec:.2f} s")
     from scipy.spatial.transform import Rotation
 
-    from medialaxis.mesh.flow_samples import segment_distance
+    from medialaxis.datasets import segment_distance
 
     for length, radius, pitch, turn in ((6.0, 0.5, 0.1, None), (6.0, 0.5, 0.05, None), (6.0, 0.5, 0.1, 11), (6.0, 0.5, 0.05, 12)):
         mesh = marching_cubes_rod(length, radius, pitch)

@@ -21,7 +21,7 @@ import numpy as np
 
 
 def accuracy(points: np.ndarray, segments: np.ndarray) -> str:
-    from medialaxis.mesh.flow_samples import segment_distance
+    from medialaxis.datasets import segment_distance
 
     d = segment_distance(points, segments)
     return f"{len(points)} nodes, distance to axes p99 {np.percentile(d, 99):.3f} mean {d.mean():.3f}"
@@ -37,7 +37,7 @@ def main() -> None:
     import trimesh
 
     import medialaxis as mx
-    from medialaxis.mesh.flow_samples import tripod_mesh, tripod_segments
+    from medialaxis.datasets import tripod_mesh, tripod_segments
 
     if args.cache and os.path.exists(args.cache):
         mesh = trimesh.load(args.cache, process=False)

@@ -23,7 +23,6 @@ with 4-connected foreground), never read from our own metadata.
 from __future__ import annotations
 
 import argparse
-import sys
 import time
 import tracemalloc
 from pathlib import Path
@@ -37,21 +36,22 @@ from skimage.morphology import medial_axis as sk_medial_axis
 from skimage.morphology import skeletonize
 from skimage.transform import resize, rotate
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # for tests.planar.shapes
-
-import medialaxis as mx  # noqa: E402
-from tests.planar.holed import holed_shapes, rasterize, truth_counts  # noqa: E402
-from tests.planar.shapes import (  # noqa: E402
+import medialaxis as mx
+from medialaxis.datasets import (
     annulus,
-    distance_to_segments,
     ellipse,
     ellipse_axis,
+    holed_shapes,
     in_image,
+    rasterize,
     rectangle_axis,
     render,
     rotation,
 )
+from medialaxis.datasets import raster_counts as truth_counts
+from medialaxis.datasets import segment_distance as distance_to_segments
+
+ROOT = Path(__file__).resolve().parents[1]
 
 KIMIA = ROOT / "tests" / "data" / "kimia99"
 

@@ -42,7 +42,7 @@ def child(tool: str, path: str) -> dict:
     out: dict = {}
     if tool == "ours":
         import medialaxis as mx
-        from medialaxis.volume.phantoms import t_phantom
+        from medialaxis.datasets import t_phantom
         from medialaxis.volume.pipeline import volume_stages
 
         mx.medial_axis(t_phantom((40, 60, 60), margin=6).volume, method="midsurface", iso=0.5)  # warm caches
@@ -158,7 +158,7 @@ def score(path: str, phantom) -> dict:
 def other_phantoms() -> list[tuple[str, int, int, dict]]:
     """The member (tube with a flange: Euler 0) and the X junction (Euler 1), over seeds."""
     import medialaxis as mx
-    from medialaxis.volume.phantoms import member_phantom, x_phantom
+    from medialaxis.datasets import member_phantom, x_phantom
     from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
 
     rows = []
@@ -181,7 +181,7 @@ def different_plates() -> list[tuple[str, float, list[tuple[float, float, float]
     per plate, the true mid-plane covered within 1.5 voxels and the median
     thickness of the vertices on it."""
     import medialaxis as mx
-    from medialaxis.volume.phantoms import Rect, t_phantom
+    from medialaxis.datasets import Rect, t_phantom
     from medialaxis.volume.validation import coverage, distance_to_rects
 
     ph = t_phantom((100, 160, 160), thickness=8, stem_thickness=4, margin=16)
@@ -210,7 +210,7 @@ def different_plates() -> list[tuple[str, float, list[tuple[float, float, float]
 def robustness(shape: tuple[int, int, int]) -> list[tuple[int, int, float, dict]]:
     """Our pipeline over noise seeds x sampling seeds (in this process)."""
     import medialaxis as mx
-    from medialaxis.volume.phantoms import t_phantom
+    from medialaxis.datasets import t_phantom
 
     rows = []
     for noise_seed in (0, 1, 2):
@@ -231,7 +231,7 @@ def main() -> None:
     if args.child:
         print(json.dumps(child(*args.child)))
         return
-    from medialaxis.volume.phantoms import t_phantom
+    from medialaxis.datasets import t_phantom
 
     ph = t_phantom(tuple(args.shape))
     with tempfile.TemporaryDirectory() as tmp:

@@ -1,6 +1,6 @@
 """Mid-surfaces of CT scans larger than memory: seconds, peak memory, accuracy (issue 12).
 
-Writes the ribbed panel (:func:`medialaxis.volume.phantoms.ribbed_panel`: a
+Writes the ribbed panel (:func:`medialaxis.datasets.ribbed_panel`: a
 base plate, three webs and a cross rib, 8-voxel plates, blurred and noisy,
 16-bit grey values 1000/3000) to ``panel_<N>.npy`` slab by slab (never whole
 in memory), then runs, each in a fresh child process:
@@ -58,7 +58,7 @@ NOISE = 0.05
 
 def write_panel(path: Path, n: int, slab: int = 32) -> float:
     """Write the n^3 uint16 panel to ``path`` slab by slab; returns seconds."""
-    from medialaxis.volume.phantoms import ribbed_panel_slab
+    from medialaxis.datasets import ribbed_panel_slab
 
     t0 = time.perf_counter()
     shape = (n, n, n)
@@ -97,7 +97,7 @@ def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
     out: dict = {"tool": tool, "size": n}
     if tool in ("chunked", "memory", "cluster"):
         import medialaxis as mx
-        from medialaxis.volume.phantoms import ribbed_panel_truth
+        from medialaxis.datasets import ribbed_panel_truth
         from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
 
         cluster = client = None
@@ -217,7 +217,7 @@ def main() -> None:
     args = parser.parse_args()
     args.dir.mkdir(parents=True, exist_ok=True)
     # warm the numba caches once, outside the measurements
-    subprocess.run([sys.executable, "-c", "import medialaxis as mx; from medialaxis.volume.phantoms import ribbed_panel;"
+    subprocess.run([sys.executable, "-c", "import medialaxis as mx; from medialaxis.datasets import ribbed_panel;"
                     "mx.medial_axis(ribbed_panel((64, 96, 96)).volume, method='midsurface')"],
                    env=dict(os.environ, PYTHONPATH=str(SRC)), check=True)
     rows = []

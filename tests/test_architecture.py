@@ -1,8 +1,9 @@
 """The layering of the package (docs/architecture.md), checked on the source of every module.
 
-Layers, lowest first: utilities -> core -> domains (planar, mesh, volume) ->
-routing (``_dispatch``, ``api``) -> uses of axes (compare, metrics, gis)
--> entry points (cli, demo, the package namespace). A module may import its
+Layers, lowest first: utilities -> core and the sample shapes (datasets) ->
+domains (planar, mesh, volume) -> routing (``_dispatch``, ``api``) -> uses of
+axes (compare, metrics, gis) -> entry points (the ``cli`` package, one module
+per command, and the package namespace). A module may import its
 own layer and the layers below; the three domains never import one
 another; module-level imports form no cycle. The few imports made inside a
 function that reach a higher layer are listed in ``UPWARD`` with their reason:
@@ -21,15 +22,15 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 #: Layer of each top-level part of the package.
 LAYERS = {
     "errors": 0, "_version": 0, "_typing": 0, "_jit": 0, "_optional": 0, "_progress": 0, "_help": 0,
-    "core": 1,
+    "core": 1, "datasets": 1,
     "planar": 2, "mesh": 2, "volume": 2,
     "_dispatch": 3, "api": 3,
     "compare": 4, "metrics": 4, "gis": 4,
-    "demo": 5, "warmup": 5, "cli": 5, "cli_compute": 5, "cli_batch": 5, "_entry": 5, "__main__": 5, "": 5,
+    "cli": 5, "_entry": 5, "__main__": 5, "": 5,
 }
 DOMAINS = {"planar", "mesh", "volume"}
-#: Modules that sit above their folder's layer (the command line of a part).
-OWN_LAYER = {"medialaxis.compare.cli": 5, "medialaxis.compare.demo": 5}
+#: Modules that sit above their folder's layer: none (each command is a module of ``cli``).
+OWN_LAYER: dict[str, int] = {}
 
 #: Function-level imports into a higher layer, with the reason they are there.
 UPWARD = {

@@ -85,7 +85,7 @@ def test_a_folder_of_tiff_slices_is_one_volume(tmp_path, capsys):
 
 
 def test_first_class_options_reach_the_methods(tmp_path, capsys):
-    from medialaxis.volume.phantoms import t_phantom
+    from medialaxis.datasets import t_phantom
 
     ph = t_phantom((40, 60, 60), thickness=6, margin=6)
     raw = tmp_path / "part.raw"
@@ -110,7 +110,7 @@ def test_first_class_options_reach_the_methods(tmp_path, capsys):
     assert main(["compute", str(box), "--simplify", "5", "--simplify-error", "0.05", "-o", str(simple)]) == 1
     assert "not both" in capsys.readouterr().err
     from medialaxis.cli import build_parser
-    from medialaxis.cli_compute import compute_options as _options
+    from medialaxis.cli.compute import compute_options as _options
 
     args = build_parser().parse_args(["compute", str(box), "--repair", "--thickness", "6"])
     assert _options(args)[0] == {"repair": True, "thickness": 6.0}

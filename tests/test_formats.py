@@ -21,7 +21,7 @@ from PIL import Image
 import medialaxis as mx
 from medialaxis import cli
 from medialaxis._dispatch import classify
-from medialaxis.cli_batch import SHAPE_SUFFIXES, expand_inputs
+from medialaxis.cli.batch import SHAPE_SUFFIXES, expand_inputs
 from medialaxis.core import formats
 from medialaxis.core.io import WRITERS
 from medialaxis.mesh.inputs import load_mesh

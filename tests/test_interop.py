@@ -7,7 +7,7 @@ import pytest
 import trimesh
 
 import medialaxis as mx
-from medialaxis.volume.phantoms import t_phantom
+from medialaxis.datasets import t_phantom
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,7 @@ from scipy import ndimage
 from skimage.draw import disk
 
 import medialaxis as mx
-from medialaxis.volume.phantoms import t_phantom
+from medialaxis.datasets import t_phantom
 
 
 def _rectangle():

@@ -12,7 +12,7 @@ import trimesh
 from scipy.spatial import cKDTree
 
 import medialaxis as mx
-from medialaxis.volume.phantoms import t_phantom
+from medialaxis.datasets import t_phantom
 
 
 def _undirected(edges):

@@ -13,7 +13,7 @@ from shapely.geometry import Polygon, box
 import medialaxis as mx
 from medialaxis import _dispatch
 from medialaxis.cli import build_parser
-from medialaxis.cli_compute import compute_options, options_markdown
+from medialaxis.cli.compute import compute_options, options_markdown
 from medialaxis.errors import InvalidInputError
 from medialaxis.planar.options import PlanarOptions
 from medialaxis.planar.pipeline import voronoi_medial_axis as planar_axis
@@ -24,7 +24,7 @@ KEYS = sorted(_dispatch.OPTIONS)
 
 
 def test_docs_options_md_is_generated_from_the_dataclasses():
-    assert DOCS.read_text() == options_markdown(), "regenerate: python -m medialaxis.cli_compute > docs/options.md"
+    assert DOCS.read_text() == options_markdown(), "regenerate: python -m medialaxis.cli.compute > docs/options.md"
 
 
 @pytest.mark.parametrize("key", KEYS, ids=" ".join)

@@ -147,7 +147,7 @@ def test_simplified_result_draws_its_spheres_and_says_so(tmp_path):
 
 
 def test_volume_results_keep_their_isosurface_as_shell():
-    from medialaxis.volume.phantoms import t_phantom
+    from medialaxis.datasets import t_phantom
 
     phantom = t_phantom((60, 90, 90), thickness=6, margin=10)
     spacing = (0.5, 0.25, 0.25)

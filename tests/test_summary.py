@@ -7,7 +7,7 @@ import pytest
 import trimesh
 
 import medialaxis as mx
-from medialaxis.mesh.flow_samples import tripod_mesh
+from medialaxis.datasets import tripod_mesh
 
 
 def _axis_length(ma):

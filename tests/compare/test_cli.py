@@ -66,11 +66,11 @@ def test_usage_and_input_errors(kimia_dir, tmp_path, capsys):
 
 
 def test_demo_case_writes_match_picture(tmp_path):
-    from medialaxis.compare.demo import DEMO_CASES
+    from medialaxis.cli.demo import DEMO_CASES, compare_case
 
-    (title, run), = DEMO_CASES
-    line = run(tmp_path)
-    assert title == "compare" and line.startswith("compare:")
+    assert ("compare", compare_case) in DEMO_CASES
+    line = compare_case(tmp_path)
+    assert line.startswith("compare:")
     assert (tmp_path / "compare_match.png").stat().st_size > 1000
 
 

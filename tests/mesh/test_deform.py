@@ -7,8 +7,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import medialaxis as mx
+from medialaxis.datasets import capsules_mesh, segment_distance, tripod_mesh, tripod_segments
 from medialaxis.mesh.deform import _minimal_rotation, node_rotations
-from medialaxis.mesh.flow_samples import capsules_mesh, segment_distance, tripod_mesh, tripod_segments
 
 
 @pytest.fixture(scope="module")

@@ -11,9 +11,9 @@ from scipy.spatial.transform import Rotation
 
 import medialaxis as mx
 from medialaxis._progress import Progress
+from medialaxis.datasets import capsules_mesh, segment_distance, tripod_mesh, tripod_segments
 from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.flow import FlowState, nonmanifold_vertices
-from medialaxis.mesh.flow_samples import capsules_mesh, segment_distance, tripod_mesh, tripod_segments
 
 RADIUS = 0.5
 CAPSULE_AXIS = np.array([[[0.0, 0.0, 0.0], [3.0, 0.0, 0.0]]])

@@ -7,8 +7,8 @@ import pytest
 import trimesh
 
 import medialaxis as mx
+from medialaxis.datasets import capsules_mesh, segment_distance
 from medialaxis.errors import MedialAxisWarning
-from medialaxis.mesh.flow_samples import capsules_mesh, segment_distance
 
 AXIS = np.array([[[0.0, 0.0, 0.0], [3.0, 0.0, 0.0]]])
 

@@ -10,8 +10,8 @@ import trimesh
 
 from medialaxis import _dispatch
 from medialaxis.cli import main
-from medialaxis.mesh.demo_flow import tripod_flow_case
-from medialaxis.mesh.flow_samples import capsules_mesh
+from medialaxis.cli.demo import tripod_flow_case
+from medialaxis.datasets import capsules_mesh
 
 
 @pytest.fixture(scope="module")

@@ -8,10 +8,9 @@ import shapely
 from shapely import affinity
 
 import medialaxis as mx
-from tests.planar.shapes import (
+from medialaxis.datasets import (
     annulus,
     capsule,
-    distance_to_segments,
     ellipse,
     ellipse_axis,
     in_image,
@@ -19,6 +18,7 @@ from tests.planar.shapes import (
     render,
     rotation,
 )
+from medialaxis.datasets import segment_distance as distance_to_segments
 
 ANGLES = [0, 10, 30, 45]
 

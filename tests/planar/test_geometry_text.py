@@ -9,7 +9,7 @@ import pytest
 import shapely
 
 import medialaxis as mx
-from medialaxis.demo import data_path
+from medialaxis.datasets import data_path
 
 
 def test_wkt_text_gives_the_axis_of_its_file_and_of_its_geometry():

@@ -15,8 +15,9 @@ from hypothesis import strategies as st
 from PIL import Image
 
 import medialaxis as mx
-from tests.planar.holed import faces_around, hole_points, holed_shapes, rasterize, truth_counts
-from tests.planar.shapes import render
+from medialaxis.datasets import holed_shapes, rasterize, render
+from medialaxis.datasets import raster_counts as truth_counts
+from tests.planar.holed import faces_around, hole_points
 
 SHAPES = holed_shapes()
 SIZE = 320

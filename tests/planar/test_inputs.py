@@ -82,7 +82,7 @@ def test_vertices_a_rounding_error_apart_do_not_make_wrong_discs():
     # the bundled CAD plate: its LWPOLYLINE closes 1.8e-15 off its start; before the near-duplicate
     # vertex was merged, a Delaunay circle through it reached 0.25 past the plate's edge
     pytest.importorskip("ezdxf")
-    from medialaxis.demo import data_path
+    from medialaxis.datasets import data_path
 
     ma = mx.medial_axis(data_path("plate_slot.dxf"), layers=["CUT"])
     true = shapely.distance(shapely.points(ma.points), ma.shape.boundary)

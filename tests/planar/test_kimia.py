@@ -10,7 +10,7 @@ from scipy.spatial import cKDTree
 from skimage.transform import rotate
 
 import medialaxis as mx
-from tests.planar.holed import truth_counts
+from medialaxis.datasets import raster_counts as truth_counts
 
 
 def _load(path) -> np.ndarray:

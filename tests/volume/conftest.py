@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
-from medialaxis.volume.phantoms import member_phantom, t_phantom, x_phantom
+from medialaxis.datasets import member_phantom, t_phantom, x_phantom
 
 
 @pytest.fixture(scope="session")

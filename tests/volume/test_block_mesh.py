@@ -13,8 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import medialaxis as mx
+from medialaxis.datasets import ribbed_panel_slab, ribbed_panel_truth
 from medialaxis.volume import _kernels as K
-from medialaxis.volume.phantoms import ribbed_panel_slab, ribbed_panel_truth
 from medialaxis.volume.validation import distance_to_rects, mesh_topology
 from medialaxis.volume.voxel_table import voxel_table
 

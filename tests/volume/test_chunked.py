@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
+from medialaxis.datasets import ribbed_panel, ribbed_panel_slab, ribbed_panel_truth, t_phantom
 from medialaxis.errors import Cancelled
 from medialaxis.volume import chunked
-from medialaxis.volume.phantoms import ribbed_panel, ribbed_panel_slab, ribbed_panel_truth, t_phantom
 from medialaxis.volume.validation import distance_to_rects, mesh_topology
 
 #: Panel whose chunk borders (16, 34, 48) pass through its junctions and free edges: the

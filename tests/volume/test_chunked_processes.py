@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
-from medialaxis.volume.phantoms import ribbed_panel_slab
+from medialaxis.datasets import ribbed_panel_slab
 
 
 def test_the_blocks_run_on_a_cluster_of_worker_processes(tmp_path, small16, small_reference, same_voxels):

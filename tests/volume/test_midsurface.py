@@ -6,7 +6,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import medialaxis as mx
-from medialaxis.volume.phantoms import t_phantom
+from medialaxis.datasets import t_phantom
 from medialaxis.volume.pipeline import volume_stages
 from medialaxis.volume.polygonize import BOUNDARY, EXTENSION, JUNCTION, SURFACE
 from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology

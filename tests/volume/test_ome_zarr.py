@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
+from medialaxis.datasets import t_phantom
 from medialaxis.errors import InvalidInputError
 from medialaxis.volume.ome_zarr import image_levels
-from medialaxis.volume.phantoms import t_phantom
 from medialaxis.volume.sources import open_source
 
 zarr = pytest.importorskip("zarr")

@@ -13,7 +13,7 @@ import pytest
 
 import medialaxis as mx
 from medialaxis.cli import main
-from medialaxis.volume.phantoms import Rect, t_phantom
+from medialaxis.datasets import Rect, t_phantom
 from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
 
 SHAPE = (100, 160, 160)

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
+from medialaxis.datasets import member_phantom, t_phantom
 from medialaxis.volume import _kernels
-from medialaxis.volume.phantoms import member_phantom, t_phantom
 from medialaxis.volume.regions import JUNCTION, sheet_ids
 from medialaxis.volume.repair import _close_boundary_triangles, _close_junction_notches, _drop_double_quads
 from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology

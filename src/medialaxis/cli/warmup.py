@@ -11,20 +11,23 @@ signatures (float64 and int64 arrays) that real inputs use.
 
 from __future__ import annotations
 
+import argparse
 import time
 import warnings
 from collections.abc import Callable, Iterator
+from typing import Any
 
 import numpy as np
 
+from medialaxis._help import HelpFormatter, UsageError
 from medialaxis.errors import MedialAxisWarning
 
-__all__ = ["DOMAINS", "warm_up"]
+__all__ = ["DOMAINS", "warm_up", "add_warmup"]
 
 
 def _planar() -> None:
     import medialaxis as mx
-    from medialaxis.demo import data_path
+    from medialaxis.datasets import data_path
 
     mx.medial_axis(data_path("kimia_class1_01.png")).betti  # noqa: B018 (compiles the homology kernel)
     mx.medial_axis(data_path("bracket_two_holes.wkt").read_text())
@@ -49,7 +52,7 @@ def _mesh() -> None:
 
 def _volume() -> None:
     import medialaxis as mx
-    from medialaxis.volume.phantoms import t_phantom
+    from medialaxis.datasets import t_phantom
 
     phantom = t_phantom((40, 64, 64), thickness=6, margin=8)
     mx.medial_axis(phantom.volume, method="midsurface")
@@ -66,3 +69,25 @@ def warm_up(domains: tuple[str, ...] = tuple(DOMAINS)) -> Iterator[tuple[str, fl
         start = time.perf_counter()
         DOMAINS[name]()
         yield name, time.perf_counter() - start
+
+
+def add_warmup(sub: Any) -> None:
+    p = sub.add_parser(
+        "warmup",
+        help="compile the kernels once (the first call after an install is then fast)",
+        description="Run every method on a small shape so that its compiled kernels are cached on disk; "
+                    "scripts/setup.sh runs it after installing.",
+        formatter_class=HelpFormatter,
+    )
+    p.add_argument("--domains", default="planar,mesh,volume", help="comma-separated: planar, mesh, volume")
+    p.set_defaults(run=_run_warmup)
+
+
+def _run_warmup(args: argparse.Namespace) -> int:
+    domains = tuple(d.strip() for d in args.domains.split(",") if d.strip())
+    unknown = [d for d in domains if d not in DOMAINS]
+    if unknown or not domains:
+        raise UsageError(f"--domains takes {', '.join(DOMAINS)}; got {args.domains!r}")
+    for name, seconds in warm_up(domains):
+        print(f"{name}: compiled in {seconds:.1f} s")
+    return 0

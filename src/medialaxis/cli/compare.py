@@ -1,6 +1,6 @@
-"""``medialaxis compare A B`` and ``medialaxis search QUERY FOLDER`` subcommands.
+"""``medialaxis compare A B`` and ``medialaxis search QUERY FOLDER``: shape distances through medial axes.
 
-Registered in :data:`medialaxis.cli.SUBCOMMANDS`; errors are raised as
+Registered in :func:`medialaxis.cli.build_parser`; errors are raised as
 :class:`~medialaxis.errors.MedialAxisError` or ``UsageError`` and turned into
 exit codes by :func:`medialaxis.cli.main`.
 """

@@ -1,4 +1,4 @@
-"""``medialaxis compute``: one input to its outputs, or many inputs to a folder (:mod:`medialaxis.cli_batch`)."""
+"""``medialaxis compute``: one input to its outputs, or many inputs to a folder (:mod:`medialaxis.cli.batch`)."""
 
 from __future__ import annotations
 
@@ -151,7 +151,7 @@ def _domains(takers: list[str]) -> list[str]:
 
 
 def options_markdown() -> str:
-    """``docs/options.md``: every method's options, from their dataclasses (``python -m medialaxis.cli_compute`` prints it)."""
+    """``docs/options.md``: every method's options, from their dataclasses (``python -m medialaxis.cli.compute`` prints it)."""
     import dataclasses
     import re
 
@@ -159,7 +159,7 @@ def options_markdown() -> str:
     from medialaxis.core.options import type_text
 
     lines = ["# Method options", "", "Generated from the options dataclasses (`src/medialaxis/*/options.py`) by",
-             "`python -m medialaxis.cli_compute > docs/options.md`; `tests/test_options.py` checks it is current.",
+             "`python -m medialaxis.cli.compute > docs/options.md`; `tests/test_options.py` checks it is current.",
              "Each option is a keyword of the method and of `medialaxis.medial_axis`, a field of the method's",
              "dataclass, and (where a flag is shown) a flag of `medialaxis compute`; any other option is",
              "`--option KEY=VALUE`.", ""]
@@ -196,7 +196,7 @@ def _run_batch(args: argparse.Namespace, inputs: list[Path]) -> int:
     """Each input computed and written on its own; failures reported per input."""
     import medialaxis as mx
     from medialaxis._progress import progress
-    from medialaxis.cli_batch import output_names
+    from medialaxis.cli.batch import output_names
     from medialaxis.core.io import WRITERS, output_batch
 
     if args.output:
@@ -245,7 +245,7 @@ def _run_batch(args: argparse.Namespace, inputs: list[Path]) -> int:
 
 def _run_compute(args: argparse.Namespace) -> int:
     import medialaxis as mx
-    from medialaxis.cli_batch import expand_inputs
+    from medialaxis.cli.batch import expand_inputs
 
     inputs = expand_inputs(args.input)
     if len(inputs) > 1 or args.out_dir is not None:
