@@ -155,7 +155,8 @@ def test_branch_chains_walk_as_the_graph_branches_do():
 
 
 def test_widths_and_lines_of_a_chunk_are_those_of_each_axis(layer):
-    from medialaxis.gis.features import axis_widths, axis_widths_reference, branch_lines, chunk_lines
+    from medialaxis.gis.features import axis_widths, branch_lines, chunk_lines
+    from tests.gis_reference import axis_widths_reference
 
     shapes = [*layer.geometry, shapely.Point(0, 0).buffer(5.0), shapely.box(0, 0, 100, 10)]
     axes = [mx.medial_axis(shape, detour=1.0) for shape in shapes]
@@ -173,7 +174,8 @@ def test_widths_sum_as_numpy_sums():
     from types import SimpleNamespace
 
     from medialaxis.gis._kernels import pairwise_sum
-    from medialaxis.gis.features import axis_widths, axis_widths_reference
+    from medialaxis.gis.features import axis_widths
+    from tests.gis_reference import axis_widths_reference
 
     rng = np.random.default_rng(34)
     for n in [*range(0, 300, 7), 1000, 8191, 8192, 9001, 40000]:

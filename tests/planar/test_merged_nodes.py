@@ -12,7 +12,7 @@ from medialaxis.planar.axis_arrays import polygon_axis_arrays
 from medialaxis.planar.axis_layer import polygon_axes
 from medialaxis.planar.inputs import load_planar
 from medialaxis.planar.pipeline import sampled, voronoi_medial_axis
-from medialaxis.planar.pruning import merge_close_nodes
+from tests.planar.merging import merge_close_nodes
 
 #: Tolerances from a fifth of the narrower strip's width to above it: clusters of short edges along the bend.
 TOLERANCES = (0.01, 0.013, 0.018, 0.024, 0.033, 0.044, 0.06)

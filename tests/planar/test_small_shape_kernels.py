@@ -85,12 +85,8 @@ def _raw_axes() -> list[tuple[np.ndarray, np.ndarray, float]]:
 
 
 def test_merge_and_regrow_kernels_match_their_references() -> None:
-    from medialaxis.planar.pruning import (
-        merge_close_nodes,
-        merge_close_nodes_reference,
-        regrow_tips,
-        regrow_tips_reference,
-    )
+    from medialaxis.planar.pruning import regrow_tips, regrow_tips_reference
+    from tests.planar.merging import merge_close_nodes, merge_close_nodes_reference
 
     rng = np.random.default_rng(2)
     for points, edges, tolerance in _raw_axes():

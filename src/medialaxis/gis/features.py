@@ -19,7 +19,7 @@ from medialaxis.gis.network import STATION_COLUMNS, branch_stations
 from medialaxis.planar.axis_arrays import polygon_axis_arrays
 from medialaxis.planar.axis_layer import polygon_axes
 
-__all__ = ["DETOUR", "WIDTH_COLUMNS", "KINDS", "axis_widths", "axis_widths_reference", "branch_lines",
+__all__ = ["DETOUR", "WIDTH_COLUMNS", "KINDS", "axis_widths", "branch_lines",
            "chunk_lines", "feature_axis", "chunk_axes", "run_chunk"]
 
 #: Columns added to the layer: twice the smallest, mean (over the axis
@@ -47,23 +47,12 @@ def axis_widths(ma: Any) -> tuple[float, float, float]:
     """Twice the smallest, the length-weighted mean and the largest radius of an axis.
 
     Compiled (:func:`medialaxis.gis._kernels.axis_widths_kernel`, NumPy's
-    sums in NumPy's order): :func:`axis_widths_reference` to the last bit.
+    sums in NumPy's order): the NumPy version in ``tests/gis_reference.py`` to the last bit.
     """
     points = np.ascontiguousarray(ma.points, np.float64).reshape(-1, 2)
     edges = np.ascontiguousarray(ma.edges, np.int64).reshape(-1, 2)
     low, mean, high = axis_widths_kernel(points, np.ascontiguousarray(ma.radii, np.float64), edges)
     return float(low), float(mean), float(high)
-
-
-def axis_widths_reference(ma: Any) -> tuple[float, float, float]:
-    """NumPy version of :func:`axis_widths` (for the tests)."""
-    edges = np.asarray(ma.edges).reshape(-1, 2)
-    r = np.asarray(ma.radii, np.float64)
-    if len(edges) == 0:
-        return (float(2 * r.min()), float(2 * r.mean()), float(2 * r.max())) if len(r) else (np.nan,) * 3
-    length = np.linalg.norm(ma.points[edges[:, 0]] - ma.points[edges[:, 1]], axis=1)
-    mean = float(np.sum(length * (r[edges[:, 0]] + r[edges[:, 1]])) / max(float(length.sum()), 1e-300))
-    return float(2 * r.min()), mean, float(2 * r.max())
 
 
 def branch_lines(ma: Any) -> Any:
