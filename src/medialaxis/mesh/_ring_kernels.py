@@ -25,7 +25,6 @@ __all__ = [
     "flagged_sides",
     "take",
     "odd_sides",
-    "n_distinct_pairs",
 ]
 
 
@@ -207,21 +206,6 @@ def odd_sides(side_id, n_ids):  # type: ignore[no-untyped-def]
             out[n] = i
             n += 1
     return out
-
-
-@njit(cache=True, nogil=True)
-def n_distinct_pairs(lo, hi, n):  # type: ignore[no-untyped-def]
-    """How many distinct pairs ``(lo[q], hi[q])`` of ints in ``[0, n)`` there are: bucketed by ``lo``, no sort."""
-    ptr, rows = csr_transpose(np.arange(lo.shape[0] + 1), lo, n)
-    seen = np.full(n, -1, np.int64)
-    count = 0
-    for a in range(n):
-        for q in range(ptr[a], ptr[a + 1]):
-            b = hi[rows[q]]
-            if seen[b] != a:
-                seen[b] = a
-                count += 1
-    return count
 
 
 @njit(cache=True, nogil=True)

