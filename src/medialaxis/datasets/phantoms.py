@@ -262,7 +262,13 @@ def _panel_layout(shape: tuple[int, int, int], thickness: int, margin: int) -> t
 
 
 def ribbed_panel_truth(shape: tuple[int, int, int], *, thickness: int = 8, margin: int = 8) -> list[Rect]:
-    """The exact mid-surface of :func:`ribbed_panel` (voxel index coordinates)."""
+    """The exact mid-surface of :func:`ribbed_panel` (voxel index coordinates), without rendering it.
+
+    Examples
+    --------
+    >>> [r.origin.tolist() for r in ribbed_panel_truth((48, 96, 64), margin=4)][:2]
+    [[7.5, 3.5, 3.5], [7.5, 25.5, 3.5]]
+    """
     return _panel_layout(tuple(shape), int(thickness), int(margin))[1]  # type: ignore[arg-type]
 
 
@@ -286,6 +292,12 @@ def ribbed_panel_slab(
     written slab by slab equals the one rendered whole, at any slab size.
     ``levels`` are the background and material grey values (e.g. ``(1000,
     3000)`` for a 16-bit scan; the noise is a fraction of their difference).
+
+    Examples
+    --------
+    >>> shape = (48, 96, 64)
+    >>> bool(np.array_equal(ribbed_panel_slab(shape, 10, 20, margin=4), ribbed_panel(shape, margin=4).volume[10:20]))
+    True
     """
     from scipy import ndimage
 
