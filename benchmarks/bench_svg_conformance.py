@@ -24,7 +24,7 @@ Run (about a minute)::
 ``--git`` is the librsvg git directory (default ``$MEDIALAXIS_LIBRSVG_GIT`` or
 ``/work/.mirror/GNOME+librsvg/repo``, as the search tool's ``fetch`` brings
 it); ``--baseline REV`` also scores the SVG reader of medialaxis at git
-revision ``REV`` (``src/medialaxis/planar/vectors.py:_read_svg``, before
+revision ``REV`` (``src/medialaxis/planar/reading/vectors.py:_read_svg``, before
 svgelements) in the same run.
 """
 
@@ -110,7 +110,7 @@ def score(ours: np.ndarray, ref: np.ndarray) -> float:
 
 def old_reader(rev: str):
     source = subprocess.run(
-        ["git", "show", f"{rev}:src/medialaxis/planar/vectors.py"], check=True, capture_output=True, text=True
+        ["git", "show", f"{rev}:src/medialaxis/planar/reading/vectors.py"], check=True, capture_output=True, text=True
     ).stdout
     module = types.ModuleType("medialaxis_old_vectors")
     exec(compile(source, "old_vectors.py", "exec"), module.__dict__)  # noqa: S102 - our own source at REV

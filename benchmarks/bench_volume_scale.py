@@ -146,7 +146,7 @@ def child(tool: str, path: str, n: int, chunks: int, jobs: int) -> dict:
     elif tool == "kimimaro":
         import kimimaro
 
-        from medialaxis.volume.sources import open_source
+        from medialaxis.volume.files.sources import open_source
 
         src = open_source(path)
         t0 = time.perf_counter()

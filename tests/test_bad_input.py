@@ -7,7 +7,8 @@ import pytest
 import shapely
 
 import medialaxis as mx
-from medialaxis.planar import images, voronoi_medial_axis
+from medialaxis.planar import voronoi_medial_axis
+from medialaxis.planar.reading import images
 
 
 def test_empty_mask():

@@ -25,9 +25,9 @@ from medialaxis.cli.batch import SHAPE_SUFFIXES, expand_inputs
 from medialaxis.core import formats
 from medialaxis.core.io import WRITERS
 from medialaxis.mesh.inputs import load_mesh
-from medialaxis.planar.inputs import load_planar
-from medialaxis.volume.readers import read_volume
-from medialaxis.volume.sources import open_source
+from medialaxis.planar.reading.inputs import load_planar
+from medialaxis.volume.files.readers import read_volume
+from medialaxis.volume.files.sources import open_source
 
 SQUARE = shapely.box(2.0, 3.0, 12.0, 9.0)  # area 60
 DISK = (np.hypot(*np.mgrid[-32:32, -32:32]) < 20).astype(np.uint8) * 255  # a disk of radius 20 pixels

@@ -84,7 +84,7 @@ def test_needle_meshes_are_refused_before_sampling_millions_of_points():
 
 
 def test_volumes_are_refused_by_their_declared_size_before_reading(tmp_path, monkeypatch):
-    from medialaxis.volume import readers
+    from medialaxis.volume.files import readers
 
     np.save(tmp_path / "v.npy", np.zeros((40, 40, 40), np.uint8))
     monkeypatch.setattr(readers, "memory_budget", lambda: 32 * 1000)

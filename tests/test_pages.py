@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
-from medialaxis.core import scene3d
-from medialaxis.core.html import medial_page, write_html
+from medialaxis.core.export import scene3d
+from medialaxis.core.export.html import medial_page, write_html
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("plotly")
@@ -184,7 +184,7 @@ def test_png_uses_one_scale_on_all_axes(box_axis):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from medialaxis.core.plot import plot_axis
+    from medialaxis.core.export.plot import plot_axis
 
     fig = plot_axis(box_axis)
     try:

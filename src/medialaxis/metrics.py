@@ -64,7 +64,7 @@ def reconstruction_error(
             raise InvalidInputError("the axis keeps no shape; pass the original shape")
         region = ma.shape
     else:
-        from medialaxis.planar.inputs import load_planar
+        from medialaxis.planar.reading.inputs import load_planar
 
         if ma.frame == "image":
             spacing = ma.metadata.get("spacing") if spacing is None else spacing

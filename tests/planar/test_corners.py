@@ -7,11 +7,11 @@ import pytest
 import shapely
 from shapely import affinity
 
-from medialaxis.planar._corner_kernels import corner_piece_state, corner_triangle, sample_edges
 from medialaxis.planar._kernels import piece_state
-from medialaxis.planar.corners import ring_arrays
+from medialaxis.planar.boundary._corner_kernels import corner_piece_state, corner_triangle, sample_edges
+from medialaxis.planar.boundary.corners import ring_arrays
+from medialaxis.planar.boundary.sampling import simplify_rings
 from medialaxis.planar.pipeline import planar_stages
-from medialaxis.planar.sampling import simplify_rings
 
 # A right-angled corner at (0, 0): the ring runs clockwise (the region on its right), (0, 4) -> (0, 0) -> (6, 0).
 SQUARE = shapely.Polygon([(0, 0), (0, 4), (6, 4), (6, 0)])
@@ -118,7 +118,7 @@ def test_co_circular_samples_give_the_same_sampling_turned_or_mirrored(shape: sh
 
 
 def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> None:
-    from medialaxis.planar._corner_kernels import corner_piece_state_memo
+    from medialaxis.planar.boundary._corner_kernels import corner_piece_state_memo
 
     st = planar_stages(shapely.Polygon([(0, 0), (0, 4), (3, 4), (3, 7), (9, 7), (9, 0)]))
     smp, tri = st.samples, st.triangulation
@@ -140,7 +140,7 @@ def test_the_corner_tests_kept_between_rounds_give_the_state_tested_anew() -> No
 @pytest.mark.parametrize("seed", range(12))
 def test_the_fast_whole_circles_are_the_sorted_scans(seed: int) -> None:
     """Circles repeated exactly, within the scan's 1e-9 and just beyond it, equal x of different circles, not finite."""
-    from medialaxis.planar._circle_kernels import _whole_circles, whole_circles
+    from medialaxis.planar.boundary._circle_kernels import _whole_circles, whole_circles
 
     rng = np.random.default_rng(seed)
     n = 400
@@ -166,7 +166,7 @@ def test_the_fast_whole_circles_are_the_sorted_scans(seed: int) -> None:
 @pytest.mark.parametrize("share", [0.0, 0.003, 0.05, 0.9])
 def test_the_whole_circles_buckets_find_what_the_sorted_scan_finds(share: float) -> None:
     """One corner triangle, corners all at one x, few or most triangles corners: the bucketed search's answer."""
-    from medialaxis.planar._circle_kernels import _whole_circles, whole_circles
+    from medialaxis.planar.boundary._circle_kernels import _whole_circles, whole_circles
 
     rng = np.random.default_rng(int(share * 1000))
     n = 300

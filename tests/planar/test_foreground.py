@@ -7,7 +7,7 @@ import pytest
 import shapely
 
 import medialaxis as mx
-from medialaxis.planar.inputs import shape_side
+from medialaxis.planar.reading.inputs import shape_side
 
 
 def _rect_image(dark: bool) -> np.ndarray:

@@ -11,12 +11,12 @@ from PIL import Image
 from scipy.spatial import Delaunay, cKDTree
 from shapely.geometry import MultiPolygon, Point, box
 
-from medialaxis.planar import adaptive
-from medialaxis.planar._refine_kernels import first_sample as adaptive_first_sample
-from medialaxis.planar._rounds_kernels import FAILED
+from medialaxis.planar.boundary import adaptive
+from medialaxis.planar.boundary._refine_kernels import first_sample as adaptive_first_sample
+from medialaxis.planar.boundary._rounds_kernels import FAILED
+from medialaxis.planar.boundary.sampling import simplify_rings
 from medialaxis.planar.delaunay import circumcircles, jitter
 from medialaxis.planar.pipeline import planar_stages
-from medialaxis.planar.sampling import simplify_rings
 
 KIMIA = Path(__file__).resolve().parents[1] / "data" / "kimia99"
 
@@ -95,7 +95,7 @@ def test_a_failed_insertion_falls_back_to_rounds_from_scratch(monkeypatch: pytes
 
 
 def test_interp_is_numpys_bit_for_bit() -> None:
-    from medialaxis.planar._refine_kernels import interp
+    from medialaxis.planar.boundary._refine_kernels import interp
 
     rng = np.random.default_rng(7)
     xp = np.concatenate([[0.0], np.cumsum(rng.exponential(1.0, 40))])
@@ -107,9 +107,9 @@ def test_interp_is_numpys_bit_for_bit() -> None:
 
 @pytest.mark.parametrize("name", list(SHAPES))
 def test_the_compiled_first_sample_is_sample_of_the_start_arcs(name: str) -> None:
-    from medialaxis.planar._refine_kernels import first_sample
-    from medialaxis.planar.corners import ring_arrays
-    from medialaxis.planar.sampling import sample
+    from medialaxis.planar.boundary._refine_kernels import first_sample
+    from medialaxis.planar.boundary.corners import ring_arrays
+    from medialaxis.planar.boundary.sampling import sample
 
     region, tolerance = SHAPES[name]
     rings = simplify_rings(region, 0.0)
@@ -123,9 +123,9 @@ def test_the_compiled_first_sample_is_sample_of_the_start_arcs(name: str) -> Non
 
 
 def _assembled_reference(points, arc, ring, n_rings, tv, tn, count, centre, radius, where):  # type: ignore[no-untyped-def]
-    """NumPy version of :func:`medialaxis.planar._refine_kernels.assembled` (its code before it was compiled)."""
+    """NumPy version of :func:`medialaxis.planar.boundary._refine_kernels.assembled` (its code before it was compiled)."""
     from medialaxis.planar._delaunay_kernels import drop_corners
-    from medialaxis.planar._refine_kernels import CORNERS
+    from medialaxis.planar.boundary._refine_kernels import CORNERS
 
     order = np.lexsort((arc, ring))
     rank = np.empty_like(order)
@@ -151,7 +151,7 @@ def test_the_compiled_assembly_is_its_numpy_reference(name: str, monkeypatch: py
         calls.append(tuple(np.copy(a) if isinstance(a, np.ndarray) else a for a in args))
         return assembled(*args)
 
-    from medialaxis.planar._refine_kernels import assembled
+    from medialaxis.planar.boundary._refine_kernels import assembled
 
     monkeypatch.setattr(adaptive, "assembled", recording)
     adaptive.sample_and_triangulate(rings, rings.region, tolerance, tolerance)
@@ -162,7 +162,7 @@ def test_the_compiled_assembly_is_its_numpy_reference(name: str, monkeypatch: py
 
 @pytest.mark.parametrize("name", list(SHAPES))
 def test_the_compiled_ring_arrays_are_their_numpy_reference(name: str) -> None:
-    from medialaxis.planar.corners import ring_arrays, ring_arrays_reference
+    from medialaxis.planar.boundary.corners import ring_arrays, ring_arrays_reference
 
     rings = simplify_rings(SHAPES[name][0], 0.0)
     got, expected = ring_arrays(rings), ring_arrays_reference(rings)

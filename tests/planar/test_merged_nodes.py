@@ -10,8 +10,8 @@ from shapely.geometry import LineString
 from medialaxis.planar.axis import raw_axis
 from medialaxis.planar.axis_arrays import polygon_axis_arrays
 from medialaxis.planar.axis_layer import polygon_axes
-from medialaxis.planar.inputs import load_planar
 from medialaxis.planar.pipeline import sampled, voronoi_medial_axis
+from medialaxis.planar.reading.inputs import load_planar
 from tests.planar.merging import merge_close_nodes
 
 #: Tolerances from a fifth of the narrower strip's width to above it: clusters of short edges along the bend.

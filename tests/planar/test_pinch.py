@@ -62,7 +62,7 @@ def test_the_axis_stays_in_the_water_by_an_island_spike_touching_the_shore(spike
 def test_contacts_on_the_island_and_the_shore_are_as_far_apart_as_the_shore_through_the_pinch() -> None:
     """The arc of an edge whose contacts lie on two rings: along each ring to the pinch, the shorter way (shapely)."""
     from medialaxis.planar.axis import raw_axis
-    from medialaxis.planar.corners import ring_arrays
+    from medialaxis.planar.boundary.corners import ring_arrays
     from medialaxis.planar.pipeline import planar_stages
 
     lake = _spiked(20.0, 900.0, 10.0)
@@ -85,8 +85,8 @@ def test_contacts_on_the_island_and_the_shore_are_as_far_apart_as_the_shore_thro
 
 
 def test_the_vertices_at_one_point_are_paired_as_numpy_pairs_them() -> None:
-    from medialaxis.planar.corners import ring_arrays, ring_arrays_reference
-    from medialaxis.planar.sampling import simplify_rings
+    from medialaxis.planar.boundary.corners import ring_arrays, ring_arrays_reference
+    from medialaxis.planar.boundary.sampling import simplify_rings
 
     rings = simplify_rings(_spiked(20.0, 900.0, 10.0), 0.0)
     got, expected = ring_arrays(rings), ring_arrays_reference(rings)

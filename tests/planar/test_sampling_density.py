@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from shapely.geometry import MultiPolygon, Point, box
 
-from medialaxis.planar import adaptive
 from medialaxis.planar._kernels import DRAWING_OVER_SPLIT, OVER_SPLIT
-from medialaxis.planar.sampling import initial_arcs, refine_arcs, refine_arcs_reference, sample, simplify_rings
+from medialaxis.planar.boundary import adaptive
+from medialaxis.planar.boundary.sampling import initial_arcs, refine_arcs, refine_arcs_reference, sample, simplify_rings
 
 REGION = MultiPolygon([Point(0, 0).buffer(1.0, 16).difference(Point(0.2, 0).buffer(0.3, 8)), box(2, 0, 3, 0.4)])
 

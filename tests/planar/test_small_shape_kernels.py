@@ -11,10 +11,10 @@ import shapely
 from PIL import Image
 from shapely.geometry import MultiPolygon, Point, box
 
-from medialaxis.planar._contour_kernels import contour_rings, mask_contours_reference
 from medialaxis.planar._inside_kernels import UNSURE, RegionLocator, locate_points, locate_points_reference
 from medialaxis.planar._kernels import circumcircles_kernel
 from medialaxis.planar.delaunay import circumcircles
+from medialaxis.planar.reading._contour_kernels import contour_rings, mask_contours_reference
 
 KIMIA = Path(__file__).resolve().parents[1] / "data" / "kimia99"
 
@@ -120,7 +120,7 @@ def test_component_labels_group_as_scipy_does() -> None:
 
 
 def test_refine_kernel_matches_its_reference() -> None:
-    from medialaxis.planar.sampling import (
+    from medialaxis.planar.boundary.sampling import (
         initial_arcs,
         refine_arcs,
         refine_arcs_reference,
@@ -184,8 +184,8 @@ def _wavy_annulus() -> Any:
 
 @pytest.mark.parametrize("shape", ["wavy annulus", "hole in a flat bump"])
 def test_plain_simplify_is_taken_only_where_it_is_the_topology_preserving_one(shape: str) -> None:
-    from medialaxis.planar._simplify_kernels import flattening_is_safe, flattening_is_safe_reference
-    from medialaxis.planar.sampling import _ring_arrays, topology_preserving_simplify
+    from medialaxis.planar.boundary._simplify_kernels import flattening_is_safe, flattening_is_safe_reference
+    from medialaxis.planar.boundary.sampling import _ring_arrays, topology_preserving_simplify
 
     region = _wavy_annulus() if shape == "wavy annulus" else _bumpy_square()
     assert region.is_valid
@@ -203,8 +203,8 @@ def test_plain_simplify_is_taken_only_where_it_is_the_topology_preserving_one(sh
 
 
 def test_a_flattening_across_another_ring_is_refused() -> None:
-    from medialaxis.planar._simplify_kernels import flattening_is_safe, flattening_is_safe_reference
-    from medialaxis.planar.sampling import _ring_arrays
+    from medialaxis.planar.boundary._simplify_kernels import flattening_is_safe, flattening_is_safe_reference
+    from medialaxis.planar.boundary.sampling import _ring_arrays
 
     region = _bumpy_square()
     xy, start = _ring_arrays(region)

@@ -143,9 +143,9 @@ def test_certain_picks_of_a_window_are_the_whole_sheets(seed, cut, reach):
 
 def test_a_block_without_free_edge_rays_marches_none():
     # a block whose sheet has no free-edge vertex asks for chords along no ray (it raised on 1024^3 panels)
-    from medialaxis.volume.blocks import BlockSampler
-    from medialaxis.volume.extension import centre_on_chords, march_to_iso
-    from medialaxis.volume.sources import ArraySource
+    from medialaxis.volume.blockwise.blocks import BlockSampler
+    from medialaxis.volume.files.sources import ArraySource
+    from medialaxis.volume.sheet.extension import centre_on_chords, march_to_iso
 
     grey = np.full((8, 8, 8), 3000.0)
     none = np.zeros((0, 3))

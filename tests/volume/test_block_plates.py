@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from medialaxis.errors import EmptyShapeError
-from medialaxis.volume.block_plates import block_plates, kth_smallest
-from medialaxis.volume.blocks import BlockScan
+from medialaxis.volume.blockwise.block_plates import block_plates, kth_smallest
+from medialaxis.volume.blockwise.blocks import BlockScan
 from medialaxis.volume.plates import nominal_thicknesses, plate_summary
 
 

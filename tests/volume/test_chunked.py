@@ -13,7 +13,7 @@ import pytest
 import medialaxis as mx
 from medialaxis.datasets import ribbed_panel, ribbed_panel_slab, ribbed_panel_truth, t_phantom
 from medialaxis.errors import Cancelled
-from medialaxis.volume import chunked
+from medialaxis.volume.blockwise import chunked
 from medialaxis.volume.validation import distance_to_rects, mesh_topology
 
 #: Panel whose chunk borders (16, 34, 48) pass through its junctions and free edges: the
@@ -148,7 +148,7 @@ def test_a_progress_bar_counts_the_blocks(small16, capsys):
 def test_the_shell_keeps_only_every_steps_voxels_of_the_planes_it_reads():
     import tracemalloc
 
-    from medialaxis.volume.sources import ArraySource
+    from medialaxis.volume.files.sources import ArraySource
 
     volume = np.zeros((128, 1024, 1024), np.uint8)  # pages never written cost nothing
     volume[40:80, 300:700, 300:700] = 200

@@ -7,8 +7,8 @@ import pytest
 
 import medialaxis as mx
 from medialaxis.errors import EmptyShapeError, InputFileError, InvalidInputError, UnsupportedFormatError
+from medialaxis.volume.files.readers import read_volume
 from medialaxis.volume.inputs import load_volume
-from medialaxis.volume.readers import read_volume
 
 
 @pytest.fixture

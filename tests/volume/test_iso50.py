@@ -60,7 +60,7 @@ def test_the_rim_by_blocks_is_the_whole_rim():
 def test_a_chord_mid_point_is_on_the_mid_plane_whatever_the_normal():
     """A flat plate (exact: its grey value is a ramp of the distance to its mid-plane): the mid-point
     of a chord along a normal 20 degrees off is on the mid-plane; a chord longer than the plate is refused."""
-    from medialaxis.volume.extension import centre_on_chords
+    from medialaxis.volume.sheet.extension import centre_on_chords
 
     n = np.array([1.0, 1.0, 0.0]) / np.sqrt(2.0)
     index = np.indices((40, 40, 40), dtype=np.float64).transpose(1, 2, 3, 0)

@@ -87,7 +87,7 @@ def test_sheet_labels_match_reference(seed, nseeds):
 
 @given(st.integers(0, 10_000), st.floats(0.2, 0.8), st.booleans())
 def test_block_labels_match_reference(seed, p, sheets):
-    from medialaxis.volume.triangles import _block_labels, block_labels_reference
+    from medialaxis.volume.sheet.triangles import _block_labels, block_labels_reference
 
     occ = _random_sheet(seed, p=p)
     vox = np.argwhere(occ)

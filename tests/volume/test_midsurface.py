@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 import medialaxis as mx
 from medialaxis.datasets import t_phantom
 from medialaxis.volume.pipeline import volume_stages
-from medialaxis.volume.polygonize import BOUNDARY, EXTENSION, JUNCTION, SURFACE
+from medialaxis.volume.sheet.polygonize import BOUNDARY, EXTENSION, JUNCTION, SURFACE
 from medialaxis.volume.validation import coverage, distance_to_rects, mesh_topology
 
 

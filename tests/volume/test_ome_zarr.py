@@ -15,8 +15,8 @@ import pytest
 import medialaxis as mx
 from medialaxis.datasets import t_phantom
 from medialaxis.errors import InvalidInputError
-from medialaxis.volume.ome_zarr import image_levels
-from medialaxis.volume.sources import open_source
+from medialaxis.volume.files.ome_zarr import image_levels
+from medialaxis.volume.files.sources import open_source
 
 zarr = pytest.importorskip("zarr")
 

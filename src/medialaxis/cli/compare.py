@@ -125,7 +125,7 @@ def save_match_picture(
     of the two shapes show in the same hues.
     """
     from medialaxis.compare.distance import shape_signature
-    from medialaxis.core.plot import draw_region
+    from medialaxis.core.export.plot import draw_region
 
     fig, axes = _pyplot().subplots(1, 2, figsize=(10, 5))
     hue = np.linspace(0.0, 1.0, max(len(points_a), 1))
@@ -156,7 +156,7 @@ def save_match_picture(
 def save_search_grid(query: Path, results: list[tuple[Path, float]], path: Path, *, columns: int = 4) -> None:
     """Draw the query and its best matches as a grid: each shape with its medial axis, rank and distance."""
     import medialaxis as mx
-    from medialaxis.core.plot import draw_axis, draw_region
+    from medialaxis.core.export.plot import draw_axis, draw_region
 
     panels = [(query, "query", "#2c6fbb")] + [
         (p, f"{rank}. distance {d:.3g}", "#445") for rank, (p, d) in enumerate(results, 1)

@@ -46,7 +46,7 @@ class Format:
         Per domain (``"planar"``, ``"mesh"``, ``"volume"``, ``"result"``, ``"raster"``) that reads
         the format, its reader as ``"module:function"``; empty for an output-only format.
     block_reader : str or None
-        The volume's block reader (:func:`medialaxis.volume.sources.open_source`), if it has one.
+        The volume's block reader (:func:`medialaxis.volume.files.sources.open_source`), if it has one.
     writer : str or None
         The function ``writer(result, path)`` that writes a :class:`~medialaxis.MedialAxis` in it.
     holds : tuple of (str, frozenset of str) or None
@@ -182,14 +182,14 @@ def writer_missing(suffix: str) -> str | None:
 
 
 # ------------------------------------------------------------ the table
-_IMAGE = "medialaxis.planar.images:read_image"
-_DRAWING = "medialaxis.planar.inputs:read_drawing"
-_VECTOR = "medialaxis.planar.vectors:read_vector"
+_IMAGE = "medialaxis.planar.reading.images:read_image"
+_DRAWING = "medialaxis.planar.reading.inputs:read_drawing"
+_VECTOR = "medialaxis.planar.reading.vectors:read_vector"
 _MESH = "medialaxis.mesh.inputs:load_mesh"
 _RESULT = "medialaxis.core.lossless:load"
 _RASTER = "medialaxis.gis.rasters:read_mask"
-_VOLUME = "medialaxis.volume.readers:"
-_BLOCKS = "medialaxis.volume.source_files:"
+_VOLUME = "medialaxis.volume.files.readers:"
+_BLOCKS = "medialaxis.volume.files.source_files:"
 _WRITE = "medialaxis.core.io:"
 _ANY = ("any result", frozenset(KINDS))
 _LINES = ("lines and points", frozenset({"planar curves", "space curves", "voxel sets"}))

@@ -7,9 +7,9 @@ still works). Exports: ``.geojson``, ``.svg`` (axis over the shape),
 radius, edges with length and radius), ``.obj`` (``v``, ``l`` for curve
 edges, ``f``; VTK reads the curves, meshio's and trimesh's OBJ readers only
 the faces), ``.ply``, ``.vtk``, ``.vtu`` and ``.swc``
-(:mod:`medialaxis.core.mesh_files`: files that meshio, trimesh, pyvista and
+(:mod:`medialaxis.core.export.mesh_files`: files that meshio, trimesh, pyvista and
 neuron tools open) and ``.html`` (interactive offline view, 2D or 3D,
-:mod:`medialaxis.core.html`; the viewer library is written beside it once).
+:mod:`medialaxis.core.export.html`; the viewer library is written beside it once).
 A 2D result is written in its source's frame, with the same (x, y) in every
 format (:mod:`medialaxis.core.frames`). A format that cannot hold the kind of
 result (:data:`HOLDS`) is refused before anything is written. Every file is
@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis.core import mesh_files
+from medialaxis.core.export import mesh_files
 from medialaxis.core.formats import FORMATS, entry_point, format_of, suffix_of, writer_missing
 from medialaxis.core.frames import coordinates_note, plane_xy, y_down
 from medialaxis.core.lossless import LOSSLESS, is_result_file, load
@@ -121,7 +121,7 @@ def write_svg(ma: MedialAxis, path: Path) -> None:
 def write_png(ma: MedialAxis, path: Path) -> None:
     import matplotlib
 
-    from medialaxis.core.plot import plot_axis
+    from medialaxis.core.export.plot import plot_axis
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
@@ -139,7 +139,7 @@ def write_png(ma: MedialAxis, path: Path) -> None:
 
 
 def _through(write: Callable[[MedialAxis, Any], None], mode: str) -> Callable[[MedialAxis, Path], None]:
-    """A writer of :mod:`medialaxis.core.mesh_files`, through an atomic file."""
+    """A writer of :mod:`medialaxis.core.export.mesh_files`, through an atomic file."""
 
     def run(ma: MedialAxis, path: Path) -> None:
         with atomic_write(path, mode) as fh:
@@ -176,7 +176,7 @@ def write_obj(ma: MedialAxis, path: Path) -> None:
 
 
 def write_html(ma: MedialAxis, path: Path) -> None:
-    from medialaxis.core import html  # plotly view
+    from medialaxis.core.export import html  # plotly view
 
     html.write_html(ma, path)
 

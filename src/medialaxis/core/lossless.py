@@ -20,10 +20,10 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis.core.export.scene3d import Surface
 from medialaxis.core.metadata import jsonable
 from medialaxis.core.outputs import atomic_write
 from medialaxis.core.result import MedialAxis
-from medialaxis.core.scene3d import Surface
 from medialaxis.errors import InputFileError, UnsupportedFormatError
 
 __all__ = ["load", "is_result_file", "write_json", "write_npz", "jsonable", "FORMAT_VERSION", "LOSSLESS"]

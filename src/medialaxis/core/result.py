@@ -11,8 +11,8 @@ from typing import Any, Literal
 import numpy as np
 
 from medialaxis.core import graph as _graph
-from medialaxis.core import interop
 from medialaxis.core.branch import Branch
+from medialaxis.core.export import interop
 from medialaxis.core.homology import betti_numbers
 from medialaxis.core.metadata import frozen_metadata
 from medialaxis.core.summary import branch_table
@@ -70,7 +70,7 @@ class MedialAxis:
     shape : object, optional
         The input region the axis belongs to, when the method keeps it: a
         shapely geometry for planar inputs, the input mesh (trimesh) for the
-        mesh methods, the isosurface (:class:`~medialaxis.core.scene3d.Surface`)
+        mesh methods, the isosurface (:class:`~medialaxis.core.export.scene3d.Surface`)
         for the volume methods. Used by :meth:`reconstruct` and the pictures;
         saved with the result (a surface as its vertices and faces).
     raw : MedialAxis, optional
@@ -301,44 +301,44 @@ class MedialAxis:
         (True, True)
         >>> import matplotlib.pyplot as plt; plt.close(ax.figure)
         """
-        from medialaxis.core.plot import plot
+        from medialaxis.core.export.plot import plot
 
         return plot(self, ax, shape=shape, color_by_radius=color_by_radius, nodes=nodes, colorbar=colorbar,
                     title=title)
 
     def _repr_png_(self) -> bytes:
         """The picture of :meth:`plot`, for Jupyter (drawn off pyplot, so nothing else is shown)."""
-        from medialaxis.core.plot import png_bytes
+        from medialaxis.core.export.plot import png_bytes
 
         return png_bytes(self)
 
     # -------------------------------------------------------------- interop
     def to_shapely(self) -> Any:
         """The branches of a planar curve axis as a shapely MultiLineString,
-        in the result's coordinates (see :func:`medialaxis.core.interop.to_shapely`)."""
+        in the result's coordinates (see :func:`medialaxis.core.export.interop.to_shapely`)."""
         return interop.to_shapely(self)
 
     def to_trimesh(self) -> Any:
         """A :class:`trimesh.Trimesh` of the faces (surfaces) or a ``Path3D`` /
         ``Path2D`` of the branches (curves), with ``vertex_attributes["radius"]``;
-        a ``PointCloud`` for points only (see :func:`medialaxis.core.interop.to_trimesh`)."""
+        a ``PointCloud`` for points only (see :func:`medialaxis.core.export.interop.to_trimesh`)."""
         return interop.to_trimesh(self)
 
     def to_image(self) -> Any:
         """``(skeleton, distance)`` images on the input's pixel grid, as
         skimage's ``medial_axis(return_distance=True)`` (the distance only on
         the skeleton); image and volume results only (see
-        :func:`medialaxis.core.skeleton_image.to_image`)."""
-        from medialaxis.core.skeleton_image import to_image
+        :func:`medialaxis.core.export.skeleton_image.to_image`)."""
+        from medialaxis.core.export.skeleton_image import to_image
 
         return to_image(self)
 
     def to_pyvista(self) -> Any:
-        """The result as a :class:`pyvista.PolyData` (see :func:`medialaxis.core.interop.to_pyvista`)."""
+        """The result as a :class:`pyvista.PolyData` (see :func:`medialaxis.core.export.interop.to_pyvista`)."""
         return interop.to_pyvista(self)
 
     def to_napari(self) -> list[tuple[Any, dict[str, Any], str]]:
-        """napari layer-data tuples (see :func:`medialaxis.core.interop.to_napari`)."""
+        """napari layer-data tuples (see :func:`medialaxis.core.export.interop.to_napari`)."""
         return interop.to_napari(self)
 
     def to_networkx(self) -> Any:

@@ -79,8 +79,8 @@ class FrameWriter:
         """Write ``flow.html`` (and the viewer library beside it) and return every file written."""
         if not self._frames:
             return list(self.paths)
-        from medialaxis.core.html import Page, write_page
-        from medialaxis.core.scene3d import cluster_decimate, equal_ranges
+        from medialaxis.core.export.html import Page, write_page
+        from medialaxis.core.export.scene3d import cluster_decimate, equal_ranges
 
         page = Page("diffusion flow: red points are skeletal (frozen), grey ones still move")
         first = self._first_mesh

@@ -28,7 +28,7 @@ from medialaxis.planar._graph_kernels import (
     regrow_tips_kernel,
 )
 from medialaxis.planar._inside_kernels import locate_points
-from medialaxis.planar._pinch_kernels import pinch_arcs
+from medialaxis.planar.boundary._pinch_kernels import pinch_arcs
 
 __all__ = ["inner_centres", "contact_arcs", "merged_nodes", "pruned_graph", "kept_edges", "selected_nodes",
            "pruned_axis"]
@@ -55,7 +55,7 @@ def inner_centres(centres, inside, segments, start, members, y0, height):  # typ
 
 @njit(cache=True, nogil=True)
 def contact_arcs(contact, arc, ring, ring_length):  # type: ignore[no-untyped-def]
-    """:meth:`medialaxis.planar.sampling.BoundarySample.arc_between` of each contact pair (inf across rings)."""
+    """:meth:`medialaxis.planar.boundary.sampling.BoundarySample.arc_between` of each contact pair (inf across rings)."""
     out = np.empty(len(contact))
     for e in range(len(contact)):
         a, b = contact[e, 0], contact[e, 1]
@@ -207,7 +207,7 @@ def pruned_axis(pos, simplices, neighbors, inner, tri_points, tri_radii, points,
     ``points``, ``nxt``, ``arc``, ``ring``, ``ring_length`` describe
     the boundary sample (more than ``k`` samples; radii from the pieces at
     the ``k`` nearest), ``rings_s``, ``rings_start``, ``touching`` the rings'
-    arc lengths and pinches (:func:`~medialaxis.planar._pinch_kernels.pinch_arcs`), ``tri_points`` and ``tri_radii`` the triangulation's
+    arc lengths and pinches (:func:`~medialaxis.planar.boundary._pinch_kernels.pinch_arcs`), ``tri_points`` and ``tri_radii`` the triangulation's
     vertices and circumradii (a node's ball in :func:`merged_nodes`),
     ``segments`` ... ``height`` the region's compiled inside test. The nearest
     samples of a node are found along the triangulation's edges (``simplices``,

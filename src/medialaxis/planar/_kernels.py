@@ -17,7 +17,7 @@ by the tests.
 :func:`circumcircles_kernel` is :func:`medialaxis.planar.delaunay.circumcircles`
 (the reference) compiled, with the same operations in the same order;
 likewise :func:`split_pieces` is the loop of
-:func:`medialaxis.planar.sampling.refine_arcs_reference` over all rings at
+:func:`medialaxis.planar.boundary.sampling.refine_arcs_reference` over all rings at
 once (``np.mod`` as NumPy evaluates it).
 """
 
@@ -231,7 +231,7 @@ def split_count(points, i, j, radius, conforming, tolerance, min_length, ratio, 
 @njit(cache=True, nogil=True)
 def split_pieces(arcs, a_offsets, points, nxt, ring_length, piece_radius, conforming, tolerance, min_length, ratio,  # type: ignore[no-untyped-def]
                  over_split=OVER_SPLIT):
-    """The refinement of :func:`medialaxis.planar.sampling.refine_arcs` on concatenated arcs.
+    """The refinement of :func:`medialaxis.planar.boundary.sampling.refine_arcs` on concatenated arcs.
 
     Returns ``(new_arcs, new_offsets)``; ``new_offsets[0] == -1`` when no piece is split.
     """

@@ -24,10 +24,10 @@ from medialaxis.planar._distance_kernels import boundary_distance_kernel
 from medialaxis.planar._graph_kernels import dual_edges
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar._kernels import nearest_piece_distance, triangle_centroids
-from medialaxis.planar._pinch_kernels import pinch_arcs
-from medialaxis.planar.corners import RingArrays
+from medialaxis.planar.boundary._pinch_kernels import pinch_arcs
+from medialaxis.planar.boundary.corners import RingArrays
+from medialaxis.planar.boundary.sampling import BoundarySample
 from medialaxis.planar.delaunay import Triangulation
-from medialaxis.planar.sampling import BoundarySample
 
 __all__ = ["RawAxis", "proper_triangles", "inner_triangles", "axis_positions", "raw_axis", "boundary_distance", "dual_edges_reference"]
 
@@ -159,7 +159,7 @@ def raw_axis(
 ) -> RawAxis:
     """Build the inner Voronoi graph (see module docstring); ``locator``: the compiled inside test of ``region``;
     ``closed``: the sampled rings, whose pinches join the arcs of contacts on two rings
-    (:func:`medialaxis.planar._pinch_kernels.pinch_arcs`)."""
+    (:func:`medialaxis.planar.boundary._pinch_kernels.pinch_arcs`)."""
     t_in, pos = axis_positions(tri, inside, region, locator)
     # Dual edges between inner triangles (compiled; dual_edges_reference is the NumPy version)
     edges, contact, diameter, adjacent = dual_edges(tri.simplices, tri.neighbors, t_in.astype(np.int64),

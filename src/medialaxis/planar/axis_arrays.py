@@ -18,12 +18,12 @@ import numpy as np
 from medialaxis.planar._axis_kernels import inner_centres, pruned_axis
 from medialaxis.planar._inside_kernels import RegionLocator
 from medialaxis.planar.axis import axis_positions
-from medialaxis.planar.corners import RingArrays, ring_arrays
+from medialaxis.planar.boundary.corners import RingArrays, ring_arrays
+from medialaxis.planar.boundary.sampling import BoundarySample
 from medialaxis.planar.delaunay import Triangulation
 from medialaxis.planar.options import PlanarOptions
 from medialaxis.planar.pipeline import _load, sampled, voronoi_medial_axis
 from medialaxis.planar.pruning import REGROW_DETOUR
-from medialaxis.planar.sampling import BoundarySample
 
 __all__ = ["AxisArrays", "polygon_axis_arrays", "axis_of_sample", "NEAREST"]
 

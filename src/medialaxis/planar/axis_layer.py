@@ -22,11 +22,11 @@ import shapely
 
 from medialaxis.core.validate import MAX_COORDINATE, check_number
 from medialaxis.planar._inside_kernels import RegionLocator
-from medialaxis.planar.adaptive import incremental_sample
 from medialaxis.planar.axis_arrays import NEAREST, AxisArrays, axis_of_sample, polygon_axis_arrays
-from medialaxis.planar.corners import closed_ring_arrays
+from medialaxis.planar.boundary.adaptive import incremental_sample
+from medialaxis.planar.boundary.corners import closed_ring_arrays
 from medialaxis.planar.pipeline import MIN_RING_FRACTION, SIMPLIFY_ABOVE, parameters
-from medialaxis.planar.vectors import NEAR_DUPLICATE
+from medialaxis.planar.reading.vectors import NEAR_DUPLICATE
 
 __all__ = ["polygon_axes"]
 
@@ -66,7 +66,7 @@ def _merged(geoms: np.ndarray, tolerance: np.ndarray) -> np.ndarray:
 
 
 def _valid_regions(geoms: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`medialaxis.planar.vectors.validate_polygonal`'s region of each geometry it takes as it is, and which."""
+    """:func:`medialaxis.planar.reading.vectors.validate_polygonal`'s region of each geometry it takes as it is, and which."""
     n = len(geoms)
     ok = np.isin(shapely.get_type_id(geoms), (3, 6)) & ~shapely.is_empty(geoms)
     ok &= shapely.get_num_coordinates(geoms) > 0

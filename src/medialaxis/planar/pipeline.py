@@ -26,15 +26,15 @@ from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, InvalidInputError
 from medialaxis.planar._axis_kernels import merged_nodes
 from medialaxis.planar._kernels import DRAWING_OVER_SPLIT, OVER_SPLIT
-from medialaxis.planar.adaptive import sample_and_triangulate
 from medialaxis.planar.axis import RawAxis, boundary_distance, raw_axis
-from medialaxis.planar.corners import ring_arrays
+from medialaxis.planar.boundary.adaptive import sample_and_triangulate
+from medialaxis.planar.boundary.corners import ring_arrays
+from medialaxis.planar.boundary.sampling import BoundarySample, Rings, simplify_rings
 from medialaxis.planar.delaunay import Triangulation
-from medialaxis.planar.inputs import PlanarInput, load_planar
-from medialaxis.planar.labels import merged_label_axes
 from medialaxis.planar.options import PlanarOptions
 from medialaxis.planar.pruning import prune_graph
-from medialaxis.planar.sampling import BoundarySample, Rings, simplify_rings
+from medialaxis.planar.reading.inputs import PlanarInput, load_planar
+from medialaxis.planar.reading.labels import merged_label_axes
 
 __all__ = ["voronoi_medial_axis", "planar_stages", "reprune", "Stages", "DEFAULT_DETOUR", "STAGES"]
 
@@ -178,7 +178,7 @@ def sampled(
     if boundary == "canny":
         if not src.is_raster:
             raise InvalidInputError("boundary='canny' needs an image input")
-        from medialaxis.planar.canny import canny_stages
+        from medialaxis.planar.boundary.canny import canny_stages
 
         smp, rings, tri, inside = canny_stages(src, tolerance)
     else:

@@ -17,7 +17,7 @@ def stages_figure(stages: Stages) -> Any:
     """Four panels: boundary samples, Delaunay triangulation, raw axis, pruned axis."""
     import matplotlib.pyplot as plt
 
-    from medialaxis.core.plot import _xy, draw_axis, draw_region
+    from medialaxis.core.export.plot import _xy, draw_axis, draw_region
 
     ma = stages.result
     fig, axes = plt.subplots(1, 4, figsize=(18, 5))

@@ -6,9 +6,9 @@ Michikawa and Suzuki, "Improving medial surfaces for reverse engineering"
 medial voxels. Both are reached through :func:`medialaxis.medial_axis`.
 """
 
+from medialaxis.volume.files.readers import read_volume
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.pipeline import VolumeStages, midsurface_medial_axis, volume_stages
-from medialaxis.volume.readers import read_volume
 from medialaxis.volume.voxel_axis import medial_voxel_axis
 
 __all__ = [

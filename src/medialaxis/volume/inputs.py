@@ -273,7 +273,7 @@ def load_volume(
     ----------
     volume : (Z, Y, X) array_like, str or path
         A bool mask, grey values, or a file/folder read by
-        :func:`medialaxis.volume.readers.read_volume`. Never modified.
+        :func:`medialaxis.volume.files.readers.read_volume`. Never modified.
     iso : float, optional
         Foreground is ``grey > iso``. Default: 0.5 for bool input, otherwise
         :func:`iso50`: half-way between the modes of the background and
@@ -306,7 +306,7 @@ def load_volume(
     """
     file_spacing = None
     if isinstance(volume, (str, os.PathLike)):
-        from medialaxis.volume.readers import read_volume
+        from medialaxis.volume.files.readers import read_volume
 
         array, file_spacing = read_volume(volume, shape=raw_shape, dtype=raw_dtype)
     else:

@@ -55,7 +55,7 @@ class VoxelOptions(Options):
         Data type of a ``.raw`` file (e.g. ``"uint16"``).""",
         flag=Flag("data type of a .raw file (e.g. uint16)", type=str), kind="dtype, optional")
     chunks: Any = option(None, """
-        Block size of the chunked route (:mod:`~medialaxis.volume.chunked`),
+        Block size of the chunked route (:mod:`~medialaxis.volume.blockwise.chunked`),
         for volumes larger than memory: the volume is read and processed a
         block at a time, each with a halo (see below); the medial voxels of
         each block wait in a folder (``spill``). Default: blocks of 256 for a Dask or Zarr array,
@@ -125,7 +125,7 @@ class MidsurfaceOptions(VoxelOptions):
         returns a result without the mesh: ``metadata["written"]``,
         ``["vertices"]`` and ``["faces"]``; in memory the result is written
         and returned. A ``.ome.zarr`` path gets an OME-Zarr image of the wall thickness on the
-        mid-surface's voxels, the mesh in its group ``mesh`` (:mod:`~medialaxis.volume.ome_zarr`).""",
+        mid-surface's voxels, the mesh in its group ``mesh`` (:mod:`~medialaxis.volume.files.ome_zarr`).""",
         kind="str or path, optional")
     spill: Any = option(None, """
         Folder for the blocks' medial voxels and mesh pieces of the chunked

@@ -6,12 +6,12 @@ Stages (each kept by :func:`volume_stages`):
 2. sub-voxel boundary and nearest-boundary transform (:mod:`~medialaxis.volume.distance`);
 3. plate thickness (:mod:`~medialaxis.volume.plates`) and medial voxels, the grid
    lambda-medial axis (:mod:`~medialaxis.volume.medial`);
-4. sub-sampling polygonization (:mod:`~medialaxis.volume.polygonize`);
-5. dent removal at junctions, eq. (1) (:mod:`~medialaxis.volume.dents`);
-6. extension of the free edges to the isosurface (:mod:`~medialaxis.volume.extension`).
+4. sub-sampling polygonization (:mod:`~medialaxis.volume.sheet.polygonize`);
+5. dent removal at junctions, eq. (1) (:mod:`~medialaxis.volume.sheet.dents`);
+6. extension of the free edges to the isosurface (:mod:`~medialaxis.volume.sheet.extension`).
 
-Stages 4-6 are :mod:`~medialaxis.volume.stages`, shared with the route for volumes
-larger than memory (:mod:`~medialaxis.volume.chunked`), which the public functions
+Stages 4-6 are :mod:`~medialaxis.volume.sheet.stages`, shared with the route for volumes
+larger than memory (:mod:`~medialaxis.volume.blockwise.chunked`), which the public functions
 take by themselves for large inputs.
 """
 
@@ -30,16 +30,16 @@ from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
-from medialaxis.volume.chunked import check_out, chunked_midsurface, use_chunks
+from medialaxis.volume.blockwise.chunked import check_out, chunked_midsurface, use_chunks
+from medialaxis.volume.blockwise.stitch import write_zarr_mesh
 from medialaxis.volume.distance import Features, feature_transform
+from medialaxis.volume.files.ome_zarr import is_ome_zarr_out, write_in_memory
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
-from medialaxis.volume.ome_zarr import is_ome_zarr_out, write_in_memory
 from medialaxis.volume.options import MidsurfaceOptions
 from medialaxis.volume.plates import PlateThickness, plate_thickness
-from medialaxis.volume.polygonize import Polygonization
-from medialaxis.volume.shell import isosurface_shell
-from medialaxis.volume.stages import (
+from medialaxis.volume.sheet.polygonize import Polygonization
+from medialaxis.volume.sheet.stages import (
     assemble,
     check_range,
     dents_stage,
@@ -48,7 +48,7 @@ from medialaxis.volume.stages import (
     polygonize_stage,
     stage_metadata,
 )
-from medialaxis.volume.stitch import write_zarr_mesh
+from medialaxis.volume.shell import isosurface_shell
 
 __all__ = ["midsurface_medial_axis", "volume_stages", "VolumeStages", "iso_of", "thickness_and_lam"]
 

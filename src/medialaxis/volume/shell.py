@@ -7,7 +7,7 @@ import math
 import numpy as np
 from skimage.measure import marching_cubes
 
-from medialaxis.core.scene3d import Surface
+from medialaxis.core.export.scene3d import Surface
 from medialaxis.volume.inputs import VolumeInput
 
 __all__ = ["isosurface_shell"]

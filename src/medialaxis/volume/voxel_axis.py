@@ -1,6 +1,6 @@
 """The medial voxels of a volume (``method="voxels"``): the grid lambda-medial axis of
 :mod:`~medialaxis.volume.medial`, each voxel classed as sheet, free edge or junction
-(:mod:`~medialaxis.volume.regions`), whole or by blocks (:mod:`~medialaxis.volume.chunked`)."""
+(:mod:`~medialaxis.volume.regions`), whole or by blocks (:mod:`~medialaxis.volume.blockwise.chunked`)."""
 
 from __future__ import annotations
 
@@ -11,15 +11,15 @@ from typing import Any
 from medialaxis._progress import Progress, check_cancel
 from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
-from medialaxis.volume.chunked import chunked_voxels, use_chunks
+from medialaxis.volume.blockwise.chunked import chunked_voxels, use_chunks
 from medialaxis.volume.distance import feature_transform
 from medialaxis.volume.inputs import load_volume
 from medialaxis.volume.medial import medial_voxels
 from medialaxis.volume.options import VoxelOptions
 from medialaxis.volume.pipeline import iso_of, thickness_and_lam
 from medialaxis.volume.regions import VOXEL_KINDS, classify_voxels
+from medialaxis.volume.sheet.stages import dropped_report, stage_metadata
 from medialaxis.volume.shell import isosurface_shell
-from medialaxis.volume.stages import dropped_report, stage_metadata
 from medialaxis.volume.voxel_table import voxel_table
 
 __all__ = ["medial_voxel_axis", "STAGES"]

@@ -1,0 +1,1 @@
+"""Planar inputs to regions: images (grey, colour, label), vector geometries and their files."""
