@@ -3,15 +3,17 @@ cancellation."""
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import itertools
 import sys
+import time
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any, TypeVar
 
 from medialaxis.errors import Cancelled
 
-__all__ = ["Progress", "progress", "check_cancel", "stage_callback"]
+__all__ = ["Progress", "progress", "check_cancel", "stage_callback", "StageClock"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,3 +84,43 @@ def stage_callback(callback: Callable[[Progress], Any] | None, method: str) -> C
         return None
     calls = itertools.count()
     return lambda stage: callback(Progress(method, stage, next(calls)))
+
+
+class StageClock:
+    """The stages of a run, in order: each announced to the callback, timed, and shown on a progress bar.
+
+    >>> clock = StageClock("voxels", ("load", "measure"))
+    >>> with clock("load"):
+    ...     pass
+    >>> with clock("measure"):
+    ...     pass
+    >>> sorted(clock.timings)
+    ['load', 'measure']
+    """
+
+    def __init__(self, method: str, stages: tuple[str, ...], callback: Callable[[Progress], Any] | None = None,
+                 show: bool | None = None, desc: str | None = None) -> None:
+        self.method, self.stages, self.callback = method, stages, callback
+        self.timings: dict[str, float] = {}
+        self._bar: Any = None
+        if _enabled(show):
+            from tqdm.auto import tqdm
+
+            self._bar = tqdm(total=len(stages), desc=desc or method, leave=False, file=sys.stderr)
+
+    @contextlib.contextmanager
+    def __call__(self, stage: str) -> Iterator[None]:
+        """Run one stage: the callback hears of it first (``False`` cancels); Ctrl-C inside becomes :class:`Cancelled`."""
+        step = self.stages.index(stage)
+        try:
+            check_cancel(self.callback, Progress(self.method, stage, step, len(self.stages)))
+            started = time.perf_counter()
+            yield
+            self.timings[stage] = time.perf_counter() - started
+        except KeyboardInterrupt as exc:
+            raise Cancelled(f"{self.method}: cancelled") from exc
+        finally:
+            if self._bar is not None:
+                self._bar.update(1)
+                if step == len(self.stages) - 1 or sys.exc_info()[0] is not None:
+                    self._bar.close()

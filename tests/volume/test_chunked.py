@@ -14,6 +14,7 @@ import medialaxis as mx
 from medialaxis.datasets import ribbed_panel, ribbed_panel_slab, ribbed_panel_truth, t_phantom
 from medialaxis.errors import Cancelled
 from medialaxis.volume.blockwise import chunked
+from medialaxis.volume.shell import shell_of_source
 from medialaxis.volume.validation import distance_to_rects, mesh_topology
 
 #: Panel whose chunk borders (16, 34, 48) pass through its junctions and free edges: the
@@ -154,7 +155,7 @@ def test_the_shell_keeps_only_every_steps_voxels_of_the_planes_it_reads():
     volume[40:80, 300:700, 300:700] = 200
     tracemalloc.start()
     try:
-        shell = chunked.shell_of_source(ArraySource(volume), 100.0, np.ones(3))
+        shell = shell_of_source(ArraySource(volume), 100.0, np.ones(3))
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from medialaxis._progress import Progress, check_cancel, progress
+from medialaxis._progress import Progress, StageClock
 from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
@@ -40,6 +40,7 @@ from medialaxis.volume.options import MidsurfaceOptions
 from medialaxis.volume.plates import PlateThickness, plate_thickness
 from medialaxis.volume.sheet.polygonize import Polygonization
 from medialaxis.volume.sheet.stages import (
+    MedialStage,
     assemble,
     check_range,
     dents_stage,
@@ -50,7 +51,10 @@ from medialaxis.volume.sheet.stages import (
 )
 from medialaxis.volume.shell import isosurface_shell
 
-__all__ = ["midsurface_medial_axis", "volume_stages", "VolumeStages", "iso_of", "thickness_and_lam"]
+__all__ = ["midsurface_medial_axis", "volume_stages", "VolumeStages", "iso_of", "thickness_and_lam", "STAGES"]
+
+#: The stages the callback hears of, in order (the whole volume in memory).
+STAGES = ("binarize", "distance", "medial voxels", "polygonize", "dents", "extension")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -61,8 +65,10 @@ class VolumeStages:
     ----------
     source : VolumeInput
     features : Features
-    thickness, lam : float
-        Values used (physical units).
+    thickness : float
+        The nominal plate thickness, or the median of the plates kept (physical units).
+    lam : float or None
+        The lambda used (physical units); None: each plate's own.
     medial : MedialVoxels
     mesh : Polygonization
         The sub-sampled mesh before dent removal and extension.
@@ -78,7 +84,7 @@ class VolumeStages:
     source: VolumeInput
     features: Features
     thickness: float
-    lam: float
+    lam: float | None
     medial: MedialVoxels
     mesh: Polygonization
     result: MedialAxis
@@ -144,44 +150,35 @@ def volume_stages(
     chunked = [k for k in ("chunks", "scheduler", "n_jobs", "out", "spill") if getattr(opts, k) is not None]
     if chunked:
         raise InvalidInputError(f"the stages are kept whole in memory: {', '.join(chunked)} do not apply")
-    iso, threshold, thickness, lam, spacing = opts.iso, opts.threshold, opts.thickness, opts.lam, opts.spacing
-    extend, remove_dents, rng, raw_shape, raw_dtype = opts.extend, opts.remove_dents, opts.rng, opts.raw_shape, opts.raw_dtype
-    timings: dict[str, float] = {}
     density = check_number(opts.density, "density", positive=True)
-    stages = ["binarize", "distance", "medial voxels", "polygonize", "dents", "extension"]
-    state: dict[str, Any] = {}
-    for step, stage in enumerate(progress(stages, desc="mid-surface", show=opts.show_progress)):
-        check_cancel(callback, Progress("midsurface", stage, step, len(stages)))
-        t0 = time.perf_counter()
-        if stage == "binarize":
-            state["source"] = load_volume(volume, iso=iso_of(iso, threshold), spacing=spacing, raw_shape=raw_shape, raw_dtype=raw_dtype)
-        elif stage == "distance":
-            state["features"] = feature_transform(state["source"])
-            state["plates"], state["lam"] = thickness_and_lam(state["features"], thickness, lam)
-            state["thickness"] = state["plates"].value
-        elif stage == "medial voxels":
-            state["medial"] = medial_voxels(state["features"], state["lam"], state["plates"])
-            state["dropped"] = dropped_report(state["medial"], state["plates"], state["lam"])
-        elif stage == "polygonize":
-            state["grid"] = state["features"]
-            polygonize_stage(state, density, rng)
-        elif stage == "dents":
-            dents_stage(state, remove_dents)
-        elif stage == "extension" and extend:
-            src = state["source"]
-            extension_stage(state, src.grey, src.iso, src.spacing, density)
-        timings[stage] = time.perf_counter() - t0
-    src = state["source"]
-    metadata = stage_metadata("midsurface", src.iso, state["plates"], state["lam"], state["dropped"], src.spacing,
-                              src.mask.shape, threshold_method=src.threshold_method)
-    metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density})
+    clock = StageClock("midsurface", STAGES, callback, opts.show_progress, desc="mid-surface")
+    with clock("binarize"):
+        src = load_volume(volume, iso=iso_of(opts.iso, opts.threshold), spacing=opts.spacing, raw_shape=opts.raw_shape,
+                          raw_dtype=opts.raw_dtype)
+    with clock("distance"):
+        features = feature_transform(src)
+        plates, lam = thickness_and_lam(features, opts.thickness, opts.lam)
+    with clock("medial voxels"):
+        medial = medial_voxels(features, lam, plates)
+        dropped = dropped_report(medial, plates, lam)
+    stage = MedialStage(medial, features, plates, lam)
+    with clock("polygonize"):
+        sheet = polygonize_stage(stage, density, opts.rng)
+    with clock("dents"):
+        sheet = dents_stage(stage, sheet, opts.remove_dents)
+    with clock("extension"):
+        if opts.extend:
+            sheet = extension_stage(stage, sheet, src.grey, src.iso, src.spacing, density)
+    metadata = stage_metadata("midsurface", src.iso, plates, lam, dropped, src.spacing, src.mask.shape,
+                              threshold_method=src.threshold_method)
+    metadata.update({"extend": bool(opts.extend), "remove_dents": bool(opts.remove_dents), "density": density})
+    timings = clock.timings
     t0 = time.perf_counter()
     shell = isosurface_shell(src)
     timings["shell"] = time.perf_counter() - t0
     metadata["timings"] = timings
-    result, steps = assemble(state, metadata, shell)
-    return VolumeStages(src, state["features"], state["thickness"], state["lam"], state["medial"], state["mesh"], result,
-                        timings, steps)
+    result, steps = assemble(stage, sheet, metadata, shell)
+    return VolumeStages(src, features, stage.thickness, lam, medial, sheet.mesh, result, timings, steps)
 
 
 @takes_options(MidsurfaceOptions)

@@ -8,7 +8,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from medialaxis._progress import Progress, check_cancel
+from medialaxis._progress import Progress, StageClock
 from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.volume.blockwise.chunked import chunked_voxels, use_chunks
@@ -70,24 +70,21 @@ def medial_voxel_axis(
         given = {k: v for k, v in vars(opts).items() if k not in ("iso", "threshold", "chunks")}
         return chunked_voxels(volume, chunks=sizes, iso=iso_of(opts.iso, opts.threshold), callback=callback, **given)
     started = time.perf_counter()
-
-    def stage(step: int, name: str) -> None:
-        check_cancel(callback, Progress("voxels", name, step, len(STAGES)))
-
-    stage(0, STAGES[0])
-    src = load_volume(volume, iso=iso_of(opts.iso, opts.threshold), spacing=opts.spacing, raw_shape=opts.raw_shape,
-                      raw_dtype=opts.raw_dtype)
-    stage(1, STAGES[1])
-    features = feature_transform(src)
-    plates, lam_value = thickness_and_lam(features, opts.thickness, opts.lam)
-    stage(2, STAGES[2])
-    medial = medial_voxels(features, lam_value, plates)
-    dropped = dropped_report(medial, plates, lam_value)
-    stage(3, STAGES[3])
-    kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
+    clock = StageClock("voxels", STAGES, callback, opts.show_progress)
+    with clock("binarize"):
+        src = load_volume(volume, iso=iso_of(opts.iso, opts.threshold), spacing=opts.spacing, raw_shape=opts.raw_shape,
+                          raw_dtype=opts.raw_dtype)
+    with clock("distance"):
+        features = feature_transform(src)
+        plates, lam_value = thickness_and_lam(features, opts.thickness, opts.lam)
+    with clock("medial voxels"):
+        medial = medial_voxels(features, lam_value, plates)
+        dropped = dropped_report(medial, plates, lam_value)
+    with clock("classify"):
+        kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
     metadata = stage_metadata("voxels", src.iso, plates, lam_value, dropped, src.spacing, src.mask.shape,
                               threshold_method=src.threshold_method)
-    metadata.update(voxel_kinds=VOXEL_KINDS, timings={"total": time.perf_counter() - started})
+    metadata.update(voxel_kinds=VOXEL_KINDS, timings=dict(clock.timings, total=time.perf_counter() - started))
     return MedialAxis(
         features.physical(medial.voxels), medial.radius,
         extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},

@@ -33,6 +33,7 @@ the sheet; the client holds the blocks' counts (their pair lengths one block at 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import shutil
@@ -45,7 +46,6 @@ from typing import Any
 import numpy as np
 
 from medialaxis._progress import Progress, check_cancel, stage_callback
-from medialaxis.core.export.scene3d import Surface
 from medialaxis.core.parallel import check_jobs, check_scheduler, run_tasks
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
@@ -61,16 +61,18 @@ from medialaxis.volume.blockwise.tiles import (
     load_sheet,
     mesh_block,
     mesh_plan_halo,
+    sheet_counts,
     store_sheet,
 )
 from medialaxis.volume.distance import Grid
 from medialaxis.volume.files.ome_zarr import stream_out
 from medialaxis.volume.files.sources import Source, is_zarr_folder, open_source
-from medialaxis.volume.inputs import VolumeInput, check_spacing
+from medialaxis.volume.inputs import check_spacing
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels
 from medialaxis.volume.plates import DEFAULT_MIN_THICKNESS, PlateThickness
 from medialaxis.volume.sheet.polygonize import JUNCTION_SPACING, pick_seed
 from medialaxis.volume.sheet.stages import check_range, dropped_report, mesh_result, stage_metadata
+from medialaxis.volume.shell import shell_of_source
 
 __all__ = ["DEFAULT_CHUNK", "CHUNKED_VOXELS", "check_chunks", "check_out", "chunked_medial_voxels", "chunked_midsurface",
            "chunked_voxels", "use_chunks"]
@@ -147,17 +149,33 @@ def _stored(item: tuple[Any, tuple[int, int, int]], folder: str, fn: Callable[..
     return store_sheet(fn(item[0], *args), item[1], folder)
 
 
-def _sheet(parts: list[SheetPart]) -> tuple[MedialVoxels, Grid | None, int]:
-    """The counts of the blocks' medial voxels and the crop grid of the whole foreground (spacing set by the caller)."""
-    boxes = [(p.lo, p.hi) for p in parts if p.lo is not None]
-    foreground = sum(p.foreground for p in parts)
-    counts = MedialVoxels(np.zeros((0, 3), np.int64), np.zeros((0, 3)), np.zeros(0), np.zeros((0, 3)), np.zeros(0),
-                          np.zeros(0), sum(p.sheet_pairs for p in parts), np.concatenate([p.dropped_gaps for p in parts]))
-    if not boxes or sum(p.count for p in parts) == 0:
-        return counts, None, foreground
-    lo = np.min([b[0] for b in boxes], axis=0) - 1
-    hi = np.max([b[1] for b in boxes], axis=0) + 1
-    return counts, Grid(lo, tuple(int(s) for s in hi - lo), np.zeros(3)), foreground
+@dataclasses.dataclass(frozen=True)
+class BlockVoxels:
+    """What the medial-voxel passes leave: the source, the levels and plates found, the blocks' voxels on disk.
+
+    ``medial`` holds the counts only (the voxels wait in the folder, one
+    file per block of ``items``); ``parts`` describe each block's share;
+    ``run`` runs tasks where the blocks ran (threads or the cluster).
+    """
+
+    source: Source
+    iso: float
+    threshold_method: str
+    minimum: float
+    spacing: np.ndarray
+    grid: Grid
+    medial: MedialVoxels
+    plates: PlateThickness
+    lam: float | None
+    chunks: tuple[int, int, int]
+    halo: np.ndarray
+    parts: list[SheetPart]
+    items: list[Any]
+    run: Callable[..., list[Any]]
+
+    @property
+    def thickness(self) -> float:
+        return float(self.plates.value)
 
 
 def chunked_medial_voxels(
@@ -165,13 +183,8 @@ def chunked_medial_voxels(
     spacing: Any = None, raw_shape: Any = None, raw_dtype: Any = None, scheduler: Any = None, n_jobs: int | None = None,
     callback: Callable[[Progress], Any] | None = None, show_progress: bool | None = None, folder: str,
     method: str = "midsurface",
-) -> dict[str, Any]:
-    """Passes 1-3: the medial voxels of a volume, block by block, each block's written to ``folder``.
-
-    Returns a state dict with ``source``, ``iso``, ``threshold_method``, ``minimum``, ``spacing``,
-    ``grid``, ``medial`` (the counts only), ``parts`` (:class:`~medialaxis.volume.blockwise.tiles.SheetPart`),
-    ``plates``, ``thickness``, ``lam``, ``chunks``, ``halo`` and ``run`` (runs tasks where the blocks ran).
-    """
+) -> BlockVoxels:
+    """Passes 1-3: the medial voxels of a volume, block by block, each block's written to ``folder``."""
     check_scheduler(scheduler)
     check_jobs(n_jobs)
     source = open_source(volume, raw_shape=raw_shape, raw_dtype=raw_dtype)
@@ -224,7 +237,7 @@ def chunked_medial_voxels(
                 _check_halo(halo, chunks, source.shape)
                 parts = run(_stored, items, folder, medial_block, source, iso_value, spacing, halo, lam_value, plates,
                             nominal, limit, depth, desc="plate labels")
-        medial, grid, foreground = _sheet(parts)
+        medial, grid, foreground = sheet_counts(parts)
         _check_foreground(foreground, source, iso_value)
         if grid is None:
             what = f"lam={lam_value:g}" if lam_value is not None else f"plates {plates.lower:g} to {plates.upper:g} thick"
@@ -232,9 +245,8 @@ def chunked_medial_voxels(
         grid = Grid(grid.offset, grid.shape, spacing)
         if nominal is not None:  # marks the result as judged per plate (labels live in the blocks)
             plates = PlateThickness(plates.value, plates.lower, plates.upper, np.zeros(0), ranged=True)
-        return {"source": source, "iso": iso_value, "threshold_method": threshold_method, "minimum": minimum,
-                "spacing": spacing, "grid": grid, "medial": medial, "plates": plates, "thickness": plates.value,
-                "lam": lam_value, "chunks": chunks, "halo": halo, "parts": parts, "items": items, "run": run}
+        return BlockVoxels(source, iso_value, threshold_method, minimum, spacing, grid, medial, plates, lam_value,
+                           chunks, halo, parts, items, run)  # type: ignore[arg-type]
     except BaseException:
         _cleanup(source)
         raise
@@ -284,23 +296,6 @@ def _cleanup(source: Source) -> None:
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def shell_of_source(source: Source, iso: float, spacing: np.ndarray, cells: int = 128) -> Surface | None:
-    """The isosurface of a large volume at the shell's step (every ``step``-th voxel, read slice by slice)."""
-    from medialaxis.volume.shell import isosurface_shell
-
-    step = max(1, math.ceil(max(source.shape) / cells))
-    Z, Y, X = source.shape
-    # each plane subsampled into its own array: a strided view would keep the whole plane alive
-    # (128 planes of 2048^2 float32 held 2 GiB in the client)
-    planes = [np.array(source.read((slice(z, z + 1), slice(0, Y), slice(0, X)))[0, ::step, ::step], np.float32)
-              for z in range(0, Z, step)]
-    grey = np.stack(planes)
-    mask = grey > iso
-    if not mask.any():
-        return None
-    return isosurface_shell(VolumeInput(grey, mask, iso, spacing * step), cells=max(grey.shape))
-
-
 def check_out(out: Any) -> None:
     """``out`` is None or a ``.ply`` or ``.zarr`` path (the formats the mesh streams to)."""
     if out is not None:
@@ -314,17 +309,17 @@ def _sheet_folder(spill: Any) -> str:
     return tempfile.mkdtemp(prefix="medialaxis-sheet-", dir=None if spill is None else str(spill))
 
 
-def _mesh_plan(state: dict[str, Any], folder: str, density: float, rng: Any, extend: bool, remove_dents: bool) -> MeshPlan:
-    spacing, plates, grid = state["spacing"], state["plates"], state["grid"]
-    largest = max(p.largest_radius for p in state["parts"])
+def _mesh_plan(state: BlockVoxels, folder: str, density: float, rng: Any, extend: bool, remove_dents: bool) -> MeshPlan:
+    spacing, plates, grid = state.spacing, state.plates, state.grid
+    largest = max(p.largest_radius for p in state.parts)
     reach = max(density * largest, 1.5 * float(spacing.max())) * JUNCTION_SPACING
-    plate = 2.0 * largest if plates.local else float(state["thickness"])
-    extend_reach = 1.5 * plate + 2.0 * density * (largest if plates.local else 0.5 * float(state["thickness"]))
+    plate = 2.0 * largest if plates.local else float(state.thickness)
+    extend_reach = 1.5 * plate + 2.0 * density * (largest if plates.local else 0.5 * float(state.thickness))
     halo, exact = mesh_plan_halo(reach, spacing, extend_reach)
-    minimum = state["minimum"] if np.isfinite(state["minimum"]) else state["iso"] - 1.0
-    return MeshPlan(folder, tuple(state["chunks"]), tuple(state["source"].shape), grid.offset,
+    minimum = state.minimum if np.isfinite(state.minimum) else state.iso - 1.0
+    return MeshPlan(folder, tuple(state.chunks), tuple(state.source.shape), grid.offset,
                     grid.offset + np.array(grid.shape), spacing, density, pick_seed(rng),
-                    plates, float(state["thickness"]), state["lam"], float(state["iso"]), float(minimum), bool(extend),
+                    plates, float(state.thickness), state.lam, float(state.iso), float(minimum), bool(extend),
                     bool(remove_dents), float(reach), int(halo), int(exact))
 
 
@@ -346,23 +341,23 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
     try:
         started = time.perf_counter()
         state = chunked_medial_voxels(volume, chunks=chunks, folder=folder, **options)
-        source = state["source"]
+        source = state.source
         medial_seconds = time.perf_counter() - started
-        state["dropped"] = dropped_report(state["medial"], state["plates"], state["lam"])
+        dropped = dropped_report(state.medial, state.plates, state.lam)
         plan = _mesh_plan(state, folder, density, rng, extend, remove_dents)
-        items = [item for item, part in zip(state["items"], state["parts"]) if part.count]
-        counts = state["run"](mesh_block, items, plan, source, desc="mesh")
-        metadata = stage_metadata("midsurface", state["iso"], state["plates"], state["lam"], state["dropped"],
-                                  state["spacing"], source.shape, threshold_method=state["threshold_method"])
+        items = [item for item, part in zip(state.items, state.parts) if part.count]
+        counts = state.run(mesh_block, items, plan, source, desc="mesh")
+        metadata = stage_metadata("midsurface", state.iso, state.plates, state.lam, dropped,
+                                  state.spacing, source.shape, threshold_method=state.threshold_method)
         metadata.update({"extend": bool(extend), "remove_dents": bool(remove_dents), "density": density,
-                         "chunks": list(state["chunks"]), "halo": state["halo"].tolist(),
+                         "chunks": list(state.chunks), "halo": state.halo.tolist(),
                          "mesh_halo": max(c["halo"] for c in counts), "decompressed": _decompressed(source),
                          "blocks": _block_figures(state, counts, folder),
                          "timings": _block_timings(counts, medial_seconds, time.perf_counter() - started)})
-        shell = shell_of_source(source, state["iso"], state["spacing"])
+        shell = shell_of_source(source, state.iso, state.spacing)
         if out is not None:
-            vertices, faces = stream_out(out, folder, counts, state["chunks"], [i for _, i in state["items"]], source,
-                                         state["spacing"])
+            vertices, faces = stream_out(out, folder, counts, state.chunks, [i for _, i in state.items], source,
+                                         state.spacing)
             metadata.update({"written": str(out), "vertices": vertices, "faces": faces})
             return MedialAxis(np.zeros((0, 3)), np.zeros(0), metadata=metadata, shape=shell)
         points, radii, kind, faces = join_pieces(folder, [c["index"] for c in counts if c["vertices"] or c["faces"]])
@@ -374,11 +369,11 @@ def chunked_midsurface(volume: Any, *, chunks: tuple[int, int, int], extend: boo
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def _block_figures(state: dict[str, Any], counts: list[dict[str, Any]], folder: str) -> dict[str, int]:
+def _block_figures(state: BlockVoxels, counts: list[dict[str, Any]], folder: str) -> dict[str, int]:
     """Sizes per block (for planning a cluster): blocks, bytes of the sheets and pieces, medial voxels."""
     sheets = sum(f.stat().st_size for f in Path(folder).glob("sheet_*.npz"))
-    return {"blocks": len(state["items"]), "sheet_blocks": len(counts), "sheet_bytes": sheets,
-            "piece_bytes": int(sum(c["bytes"] for c in counts)), "medial_voxels": int(sum(p.count for p in state["parts"]))}
+    return {"blocks": len(state.items), "sheet_blocks": len(counts), "sheet_bytes": sheets,
+            "piece_bytes": int(sum(c["bytes"] for c in counts)), "medial_voxels": int(sum(p.count for p in state.parts))}
 
 
 def _block_timings(counts: list[dict[str, Any]], medial_seconds: float, seconds: float) -> dict[str, float]:
@@ -398,21 +393,21 @@ def chunked_voxels(volume: Any, *, chunks: tuple[int, int, int], spill: Any = No
     source = None
     try:
         state = chunked_medial_voxels(volume, chunks=chunks, folder=folder, method="voxels", **options)
-        source = state["source"]
-        grid, plates = state["grid"], state["plates"]
-        medial = load_sheet(folder, [i for _, i in state["items"]])
+        source = state.source
+        grid, plates = state.grid, state.plates
+        medial = load_sheet(folder, [i for _, i in state.items])
         medial = MedialVoxels(medial.voxels - grid.offset, medial.position, medial.radius, medial.normal,
                               medial.distance, medial.coherence)
-        dropped = dropped_report(state["medial"], plates, state["lam"])
+        dropped = dropped_report(state.medial, plates, state.lam)
         kind = classify_voxels(voxel_table(medial.voxels, grid.shape), medial.voxels)
-        metadata = stage_metadata("voxels", state["iso"], plates, state["lam"], dropped, state["spacing"], source.shape,
-                                  threshold_method=state["threshold_method"])
-        metadata.update({"chunks": list(state["chunks"]), "halo": state["halo"].tolist(), "decompressed": _decompressed(source),
+        metadata = stage_metadata("voxels", state.iso, plates, state.lam, dropped, state.spacing, source.shape,
+                                  threshold_method=state.threshold_method)
+        metadata.update({"chunks": list(state.chunks), "halo": state.halo.tolist(), "decompressed": _decompressed(source),
                          "voxel_kinds": VOXEL_KINDS})
         return MedialAxis(
             grid.physical(medial.voxels), medial.radius,
             extras={"position": medial.position, "normal": medial.normal, "voxel_kind": kind},
-            metadata=metadata, shape=shell_of_source(source, state["iso"], state["spacing"]),
+            metadata=metadata, shape=shell_of_source(source, state.iso, state.spacing),
         )
     finally:
         if source is not None:

@@ -38,10 +38,10 @@ from medialaxis.volume.distance import Grid
 from medialaxis.volume.medial import MedialVoxels
 from medialaxis.volume.plates import PlateThickness
 from medialaxis.volume.sheet.polygonize import polygonize
-from medialaxis.volume.sheet.stages import dents_stage, extension_stage
+from medialaxis.volume.sheet.stages import MedialStage, SheetMesh, dents_stage, extension_stage
 
 __all__ = ["SheetPart", "MeshPlan", "store_sheet", "load_sheet", "mesh_block", "forget_window", "vertex_names", "name_voxels",
-           "PIECE_FIELDS"]
+           "PIECE_FIELDS", "sheet_counts"]
 
 #: Bits per axis of a vertex name (volumes up to 2^20 voxels along an axis).
 AXIS_BITS = 20
@@ -199,33 +199,32 @@ def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source:
         with _WINDOW_LOCK:
             last = _LAST_WINDOW.get("key") == key and _LAST_WINDOW["value"]
         if last:
-            medial, mesh, state = last
+            medial, stage, sheet = last
         else:
             medial = load_sheet(plan.folder, _neighbours(plan, wlo, whi), wlo, whi)
-            mesh = state = None
+            stage = sheet = None
         core = np.all((medial.voxels >= lo) & (medial.voxels < hi), axis=1)
         if not core.any():
             return {"index": index, "vertices": 0, "faces": 0, "halo": halo, "voxels": len(medial.voxels)}
-        if mesh is None:
-            mesh, state = _window_mesh(medial, wlo, whi, plan)
+        if sheet is None:
+            stage, sheet = _window_mesh(medial, wlo, whi, plan)
         near = np.all((medial.voxels >= lo - plan.exact) & (medial.voxels < hi + plan.exact), axis=1)
-        if mesh.certain[near].all():
+        if sheet.mesh.certain[near].all():
             break
         if halo >= 4 * max(plan.chunks):
             raise InvalidInputError(f"the block at {block.lo} cannot mesh its sheet from a window of {halo} voxels "
                                     f"around it; use larger chunks")
         halo *= 2
+    assert stage is not None and sheet is not None
     if not last:
-        dents_stage(state, plan.remove_dents)
+        sheet = dents_stage(stage, sheet, plan.remove_dents)
         if plan.extend:
             sampler = BlockSampler(source, plan.chunks, plan.minimum)
-            extension_stage(state, sampler, plan.iso, plan.spacing, plan.density)
-        else:
-            state["extended_from"] = np.zeros(0, np.int64)
+            sheet = extension_stage(stage, sheet, sampler, plan.iso, plan.spacing, plan.density)
         if np.array_equal(wlo, plan.crop) and np.array_equal(whi, plan.crop_hi):  # the whole sheet: kept
             with _WINDOW_LOCK:
-                _LAST_WINDOW.update(key=key, value=(medial, mesh, state))
-    piece = _owned_piece(state, mesh, state["medial"].voxels, lo, hi)
+                _LAST_WINDOW.update(key=key, value=(medial, stage, sheet))
+    piece = _owned_piece(stage, sheet, lo, hi)
     path = Path(plan.folder) / ("mesh_{}_{}_{}.npz".format(*index))
     np.savez(path, **piece)
     return {"index": index, "vertices": len(piece["names"]), "faces": len(piece["faces"]), "halo": halo,
@@ -233,8 +232,9 @@ def mesh_block(item: tuple[Block, tuple[int, int, int]], plan: MeshPlan, source:
             "cpu_seconds": time.thread_time() - cpu, "bytes": path.stat().st_size}
 
 
-def _window_mesh(medial: MedialVoxels, wlo: np.ndarray, whi: np.ndarray, plan: MeshPlan) -> tuple[Any, dict[str, Any]]:
-    """The polygonization of a window ``[wlo, whi)`` of the sheet and the stage state after it."""
+def _window_mesh(medial: MedialVoxels, wlo: np.ndarray, whi: np.ndarray,
+                 plan: MeshPlan) -> tuple[MedialStage, SheetMesh]:
+    """The medial voxels of a window ``[wlo, whi)`` of the sheet and their polygonization."""
     offset = wlo - 1
     local = dataclasses.replace(medial, voxels=medial.voxels - offset)
     grid = Grid(offset, tuple(int(s) for s in whi - wlo + 2), plan.spacing)
@@ -248,19 +248,18 @@ def _window_mesh(medial: MedialVoxels, wlo: np.ndarray, whi: np.ndarray, plan: M
     # the band, and every voxel one of its voxels may remove (a box around it: a superset of the balls)
     band = (within(width), within(2 * width))
     mesh = polygonize(grid, local, density=plan.density, seed=plan.seed, band=band, shift=offset - plan.crop)
-    state = {"medial": local, "grid": grid, "plates": plan.plates, "thickness": plan.thickness, "lam": plan.lam,
-             "mesh": mesh, "points": mesh.points, "faces": mesh.faces, "radii": mesh.radii, "kind": mesh.kind}
-    return mesh, state
+    return MedialStage(local, grid, plan.plates, plan.lam), SheetMesh.of(mesh)
 
 
-def _owned_piece(state: dict[str, Any], mesh: Any, voxels: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> dict[str, Any]:
+def _owned_piece(stage: MedialStage, sheet: SheetMesh, lo: np.ndarray, hi: np.ndarray) -> dict[str, Any]:
     """The vertices (used by a face) and faces of the window that the core ``[lo, hi)`` owns."""
+    mesh = sheet.mesh
     picks = mesh.picks
-    source = np.concatenate([np.arange(len(picks)), state["extended_from"]])
-    where = voxels[picks][source]  # window (crop) index of each vertex's voxel (an extension: its source's)
-    at = where + state["grid"].offset
+    source = np.concatenate([np.arange(len(picks)), sheet.extended_from])
+    where = stage.medial.voxels[picks][source]  # window (crop) index of each vertex's voxel (an extension: its source's)
+    at = where + stage.grid.offset
     names = vertex_names(at, np.arange(len(source)) >= len(picks))
-    faces = state["faces"]
+    faces = sheet.faces
     used = np.zeros(len(source), bool)
     used[faces.ravel()] = True
     inside = np.all((at >= lo) & (at < hi), axis=1)
@@ -270,5 +269,18 @@ def _owned_piece(state: dict[str, Any], mesh: Any, voxels: np.ndarray, lo: np.nd
     first_at = name_voxels(first)
     owned = np.all((first_at >= lo) & (first_at < hi), axis=1)
     order = mesh.order_key[source[keep]]
-    return {"names": names[keep], "order": order, "points": state["points"][keep], "radii": state["radii"][keep],
-            "kind": state["kind"][keep], "faces": names[faces[owned]]}
+    return {"names": names[keep], "order": order, "points": sheet.points[keep], "radii": sheet.radii[keep],
+            "kind": sheet.kind[keep], "faces": names[faces[owned]]}
+
+
+def sheet_counts(parts: list[SheetPart]) -> tuple[MedialVoxels, Grid | None, int]:
+    """The counts of the blocks' medial voxels and the crop grid of the whole foreground (spacing set by the caller)."""
+    boxes = [(p.lo, p.hi) for p in parts if p.lo is not None]
+    foreground = sum(p.foreground for p in parts)
+    counts = MedialVoxels(np.zeros((0, 3), np.int64), np.zeros((0, 3)), np.zeros(0), np.zeros((0, 3)), np.zeros(0),
+                          np.zeros(0), sum(p.sheet_pairs for p in parts), np.concatenate([p.dropped_gaps for p in parts]))
+    if not boxes or sum(p.count for p in parts) == 0:
+        return counts, None, foreground
+    lo = np.min([b[0] for b in boxes], axis=0) - 1
+    hi = np.max([b[1] for b in boxes], axis=0) + 1
+    return counts, Grid(lo, tuple(int(s) for s in hi - lo), np.zeros(3)), foreground

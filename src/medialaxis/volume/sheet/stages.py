@@ -1,7 +1,7 @@
 """The stages of the mid-surface pipeline after the medial voxels, shared by the in-memory and chunked routes.
 
-Each stage reads and updates a state dict (``medial``, ``grid``, ``plates``,
-``thickness``, ``lam``; then ``mesh``, ``points``, ``faces``, ``radii``, ``kind``):
+Each stage reads the medial voxels (:class:`MedialStage`) and returns the mesh as it leaves it
+(:class:`SheetMesh`, frozen):
 
 1. :func:`polygonize_stage`: sub-sampling polygonization (:mod:`~medialaxis.volume.sheet.polygonize`);
 2. :func:`dents_stage`: free edges, junction dents and creases by eq. (1) (:mod:`~medialaxis.volume.sheet.dents`);
@@ -11,6 +11,7 @@ Each stage reads and updates a state dict (``medial``, ``grid``, ``plates``,
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 from typing import Any
 
@@ -24,9 +25,17 @@ from medialaxis.volume.plates import TUBE_ROUTE, PlateThickness
 from medialaxis.volume.sheet.dents import bent_vertices
 from medialaxis.volume.sheet.dents import remove_dents as _remove_dents
 from medialaxis.volume.sheet.extension import extend_mesh
-from medialaxis.volume.sheet.polygonize import BOUNDARY, CREASE_COHERENCE, EXTENSION, JUNCTION, SURFACE, polygonize
+from medialaxis.volume.sheet.polygonize import (
+    BOUNDARY,
+    CREASE_COHERENCE,
+    EXTENSION,
+    JUNCTION,
+    SURFACE,
+    Polygonization,
+    polygonize,
+)
 
-__all__ = ["polygonize_stage", "dents_stage", "extension_stage", "assemble", "mesh_result", "stage_metadata", "dropped_report",
+__all__ = ["MedialStage", "SheetMesh", "polygonize_stage", "dents_stage", "extension_stage", "assemble", "mesh_result", "stage_metadata", "dropped_report",
            "thickness_range", "check_range"]
 
 
@@ -47,6 +56,62 @@ FREE_EDGE_RINGS = 2
 #: Warn when the medial test leaves out at least this fraction of the pairs
 #: that see both faces of a plate (a plate outside the thickness asked for).
 DROPPED_WARNING = 0.01
+
+
+@dataclasses.dataclass(frozen=True)
+class MedialStage:
+    """The medial voxels and what the mesh stages read of them.
+
+    Attributes
+    ----------
+    medial : MedialVoxels
+        On ``grid`` (a whole volume's, or a block's window).
+    grid : Features or Grid
+        Its ``offset``, ``shape``, ``spacing`` and ``physical()``.
+    plates : PlateThickness
+    lam : float or None
+        ``None``: each plate's own.
+    """
+
+    medial: MedialVoxels
+    grid: Any
+    plates: PlateThickness
+    lam: float | None
+
+    @property
+    def thickness(self) -> float:
+        """The nominal plate thickness, or the median of the plates kept."""
+        return float(self.plates.value)
+
+
+@dataclasses.dataclass(frozen=True)
+class SheetMesh:
+    """The mid-surface mesh as a stage leaves it.
+
+    Attributes
+    ----------
+    mesh : Polygonization
+        The polygonization the stages started from.
+    points, faces, radii, kind : ndarray
+        The mesh now (``kind``: the polygonization's vertex classes, and ``EXTENSION``).
+    dented_points : ndarray or None
+        The points after the dent stage (for ``VolumeStages.steps``).
+    extended_from : (e,) int ndarray
+        The vertex each extension vertex was extended from.
+    """
+
+    mesh: Polygonization
+    points: np.ndarray
+    faces: np.ndarray
+    radii: np.ndarray
+    kind: np.ndarray
+    dented_points: np.ndarray | None = None
+    extended_from: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0, np.int64))
+
+    @classmethod
+    def of(cls, mesh: Polygonization) -> SheetMesh:
+        """The mesh as the polygonization made it."""
+        return cls(mesh, mesh.points, mesh.faces, mesh.radii, mesh.kind)
 
 
 def check_range(thickness: Any) -> tuple[float, float]:
@@ -103,54 +168,49 @@ def stage_metadata(method: str, iso: float, plates: PlateThickness, lam: float |
     }
 
 
-def polygonize_stage(state: dict[str, Any], density: float, rng: Any) -> None:
-    """Sub-sampling polygonization of ``state["medial"]`` on ``state["grid"]``."""
-    mesh = polygonize(state["grid"], state["medial"], density=density, rng=rng)
-    state["mesh"] = mesh
-    state["points"], state["faces"] = mesh.points, mesh.faces
-    state["radii"], state["kind"] = mesh.radii, mesh.kind
+def polygonize_stage(stage: MedialStage, density: float, rng: Any) -> SheetMesh:
+    """Sub-sampling polygonization of the medial voxels."""
+    return SheetMesh.of(polygonize(stage.grid, stage.medial, density=density, rng=rng))
 
 
-def dents_stage(state: dict[str, Any], remove_dents: bool) -> None:
+def dents_stage(stage: MedialStage, sheet: SheetMesh, remove_dents: bool) -> SheetMesh:
     """Free edges, dents at junctions and creases put on the planes of the faces beside them (eq. 1)."""
-    kind = state["kind"]
+    kind, faces = sheet.kind, sheet.faces
     special = (kind == JUNCTION) | (kind == BOUNDARY)
     # free-edge vertices mix in boundary points of the end face: put them
     # on the planes of the interior faces next to them (eq. 1 as well)
-    moved = state["points"]
+    moved = sheet.points
     for _ in range(FREE_EDGE_PASSES):
-        moved = _remove_dents(moved, state["faces"], kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
+        moved = _remove_dents(moved, faces, kind == BOUNDARY, special, rings=FREE_EDGE_RINGS)
     if remove_dents:
-        moved = _remove_dents(moved, state["faces"], kind == JUNCTION, special)
+        moved = _remove_dents(moved, faces, kind == JUNCTION, special)
         # creases (a sheet bending sharply) are rounded like dents: put
         # them on the planes of the faces on either side
-        crease = (kind == SURFACE) & (state["medial"].coherence[state["mesh"].picks] < CREASE_COHERENCE)
-        crease |= (kind == SURFACE) & bent_vertices(moved, state["faces"])
+        crease = (kind == SURFACE) & (stage.medial.coherence[sheet.mesh.picks] < CREASE_COHERENCE)
+        crease |= (kind == SURFACE) & bent_vertices(moved, faces)
         for _ in range(CREASE_PASSES):
-            moved = _remove_dents(moved, state["faces"], crease, special | crease, rings=2)
-    state["points"] = moved
-    state["dented_points"] = moved
+            moved = _remove_dents(moved, faces, crease, special | crease, rings=2)
+    return dataclasses.replace(sheet, points=moved, dented_points=moved)
 
 
-def extension_stage(state: dict[str, Any], grey: Any, iso: float, spacing: np.ndarray, density: float) -> None:
+def extension_stage(stage: MedialStage, sheet: SheetMesh, grey: Any, iso: float, spacing: np.ndarray,
+                    density: float) -> SheetMesh:
     """Free edges extended to the isosurface (``grey``: an array, or a sampler with ``sample`` and ``minimum``)."""
-    if state["plates"].local:
-        # each free edge reaches as far as its own plate's thickness allows
-        plate = 2.0 * state["radii"]
-    else:
-        plate = state["thickness"]
+    local = stage.plates.local
+    # each free edge reaches as far as its own plate's thickness allows
+    plate = 2.0 * sheet.radii if local else stage.thickness
     # the sampling radius: each vertex's own, or half the part's plate thickness (known before the mesh,
     # so that a block of the mesh extends its edges as the whole mesh does)
-    sample_radius = density * (state["radii"] if state["plates"].local else 0.5 * state["thickness"])
+    sample_radius = density * (sheet.radii if local else 0.5 * stage.thickness)
     points, faces, source = extend_mesh(
-        state["points"], state["faces"], grey, iso, spacing,
+        sheet.points, sheet.faces, grey, iso, spacing,
         max_length=1.5 * plate + 2.0 * sample_radius,
-        free=state["kind"] == BOUNDARY, junction=state["kind"] == JUNCTION,
+        free=sheet.kind == BOUNDARY, junction=sheet.kind == JUNCTION,
         probe=0.5 * plate + 2.0 * float(spacing.max()), chord=plate,
     )
-    state["points"], state["faces"], state["extended_from"] = points, faces, source
-    state["radii"] = np.concatenate([state["radii"], state["radii"][source]])
-    state["kind"] = np.concatenate([state["kind"], np.full(len(source), EXTENSION, np.int8)])
+    return dataclasses.replace(
+        sheet, points=points, faces=faces, extended_from=source, radii=np.concatenate([sheet.radii, sheet.radii[source]]),
+        kind=np.concatenate([sheet.kind, np.full(len(source), EXTENSION, np.int8)]))
 
 
 def mesh_result(points: np.ndarray, radii: np.ndarray, kind: np.ndarray, faces: np.ndarray, metadata: dict[str, Any],
@@ -171,25 +231,26 @@ def mesh_result(points: np.ndarray, radii: np.ndarray, kind: np.ndarray, faces: 
                       metadata=metadata, shape=shell)
 
 
-def assemble(state: dict[str, Any], metadata: dict[str, Any], shell: Any) -> tuple[MedialAxis, dict[str, MedialAxis]]:
+def assemble(stage: MedialStage, sheet: SheetMesh, metadata: dict[str, Any],
+             shell: Any) -> tuple[MedialAxis, dict[str, MedialAxis]]:
     """The result and the axis after each stage (``VolumeStages.steps``)."""
-    if len(state["faces"]):
+    points, faces, radii, kind = sheet.points, sheet.faces, sheet.radii, sheet.kind
+    if len(faces):
         # a lone medial voxel (a noisy corner) is a vertex without a face: not part of the mid-surface
-        used = np.zeros(len(state["points"]), bool)
-        used[state["faces"].ravel()] = True
+        used = np.zeros(len(points), bool)
+        used[faces.ravel()] = True
         if not used.all():
-            new_index = np.cumsum(used) - 1
-            state["faces"] = new_index[state["faces"]]
-            for key in ("points", "radii", "kind"):
-                state[key] = state[key][used]
-    result = mesh_result(state["points"], state["radii"], state["kind"], state["faces"], metadata, shell)
-    mesh, medial, grid = state["mesh"], state["medial"], state["grid"]
+            faces = (np.cumsum(used) - 1)[faces]
+            points, radii, kind = points[used], radii[used], kind[used]
+    result = mesh_result(points, radii, kind, faces, metadata, shell)
+    mesh, medial, grid = sheet.mesh, stage.medial, stage.grid
     voxel_meta = dict(metadata, method="voxels")
+    dented = sheet.points if sheet.dented_points is None else sheet.dented_points
     steps = {
         "medial_voxels": MedialAxis(grid.physical(medial.voxels), medial.radius, metadata=voxel_meta, shape=shell),
         "polygonized": MedialAxis(mesh.points, mesh.radii, faces=mesh.faces, metadata=metadata,
                                   extras={"vertex_kind": mesh.kind}, shape=shell),
-        "dents_removed": MedialAxis(state["dented_points"], mesh.radii, faces=mesh.faces, metadata=metadata,
+        "dents_removed": MedialAxis(dented, mesh.radii, faces=mesh.faces, metadata=metadata,
                                     extras={"vertex_kind": mesh.kind}, shape=shell),
         "extended": result,
     }
