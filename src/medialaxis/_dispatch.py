@@ -58,10 +58,11 @@ RESULT = "result"
 PRUNING_OPTIONS = ("lam", "detour")
 
 #: Re-pruning entry points, keyed by (domain, method): where lambda means something and the result keeps what
-#: it was selected from (the planar unpruned axis, the mesh Voronoi method's full complex).
+#: it was selected from (the planar unpruned axis, the mesh Voronoi method's full complex, a skeleton's branches).
 REPRUNERS: dict[tuple[str, str], str] = {
     ("planar", "voronoi"): "medialaxis.planar.pipeline:reprune",
     ("mesh", "voronoi"): "medialaxis.mesh.reprune:reprune",
+    ("mesh", "flow"): "medialaxis.mesh.branch_prune:reprune",
 }
 
 #: The default colour axis of a 3D array (scikit-image's ``channel_axis``).
@@ -229,4 +230,6 @@ def load_result(path: str | os.PathLike[str], method: str | None, options: Mappi
             f"apply when computing an axis (only {', '.join(PRUNING_OPTIONS)} re-prune a saved one)"
         )
     pruning = {k: v for k, v in options.items() if v is not None}
+    if pruning and not hasattr(ma, "prune"):
+        raise InvalidInputError(f"{str(path)!r}: {ma._no_prune()}")
     return ma.prune(**pruning) if pruning else ma

@@ -66,6 +66,15 @@ def test_reprune_refuses_what_needs_the_voronoi_diagram_again(torus):
     with pytest.raises(mx.InvalidInputError, match="smaller lam needs the Voronoi diagram again"):
         ma.prune(lam=0.5 * ma.metadata["lam"])
     assert ma.prune() is ma and ma.prune(lam=ma.metadata["lam"]).betti == ma.betti
-    capsule = trimesh.creation.capsule(height=2.0, radius=0.5, count=[12, 12])
-    with pytest.raises(mx.InvalidInputError, match="'flow' method cannot be re-pruned"):
-        mx.medial_axis(capsule, method="flow").prune(lam=0.1)
+
+
+def test_prune_is_absent_where_lambda_does_not_apply():
+    """Mid-surfaces and voxel sets have no prune(): hasattr says so, and the error says why."""
+    plate = np.zeros((16, 16, 16), bool)
+    plate[3:13, 3:13, 6:10] = True
+    for method in ("midsurface", "voxels"):
+        ma = mx.medial_axis(plate, method=method)
+        assert not hasattr(ma, "prune") and "prune" not in dir(ma)
+        with pytest.raises(AttributeError, match="have no prune"):
+            ma.prune(lam=1.0)
+    assert hasattr(mx.medial_axis(trimesh.creation.box(extents=(2, 1, 0.5)), samples=1000), "prune")

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+import functools
+from collections.abc import Callable, Mapping
 from functools import cached_property
 from types import MappingProxyType
 from typing import Any, Literal
@@ -121,11 +122,12 @@ class MedialAxis:
         )
 
     def __getattr__(self, name: str) -> Any:
-        # Only called when normal lookup fails: expose documented extras.
+        # Only called when normal lookup fails: expose documented extras; say why an operation is absent.
         extras = self.__dict__.get("extras", {})
         if name in extras:
             return extras[name]
-        raise AttributeError(f"{type(self).__name__!s} has no attribute {name!r}")
+        why = self._no_prune() if name == "prune" else None
+        raise AttributeError(why or f"{type(self).__name__!s} has no attribute {name!r}")
 
     def __repr__(self) -> str:
         method = self.metadata.get("method", "?")
@@ -349,41 +351,39 @@ class MedialAxis:
         return _graph.to_networkx(self.points, self.radii, self._all_edges)
 
     # ------------------------------------------------------------- derived
-    def prune(self, lam: float | None = None, **options: Any) -> MedialAxis:
-        """Re-prune the axis with another ``lam`` without recomputing it.
+    @property
+    def prune(self) -> Callable[..., MedialAxis]:
+        """``prune(lam=None, **options)``: the axis re-pruned with another ``lam``, without recomputing it.
 
-        Planar results re-prune their unpruned axis (any ``lam`` and
-        ``detour``); mesh Voronoi results collapse their full complex down to
-        the facets at least ``lam`` wide, homotopy kept, and compact it again
-        (``lam`` at least the one it was computed with;
-        :func:`medialaxis.mesh.reprune.reprune`).
-
-        Parameters
-        ----------
-        lam : float, optional
-            New lambda (smallest contact-set diameter kept, output units).
-            ``None`` keeps the value used for this result.
-        **options
-            Other pruning parameters of the method that built the axis.
-
-        Returns
-        -------
-        MedialAxis
-
-        Raises
-        ------
-        InvalidInputError
-            If the result does not carry what it was pruned from, or its
-            method has no lambda to re-prune by (flow skeletons, volume results).
+        Present where lambda means something and the result keeps what it was
+        pruned from; absent elsewhere (``hasattr(ma, "prune")`` is False:
+        mid-surfaces and voxel sets). Planar results re-prune their unpruned
+        axis (any ``lam`` and ``detour``); mesh Voronoi results collapse their
+        full complex down to the facets at least ``lam`` wide, homotopy kept
+        (``lam`` at least the one computed with;
+        :func:`medialaxis.mesh.reprune.reprune`); flow skeletons drop the
+        terminal branches narrower than ``lam``
+        (:func:`medialaxis.mesh.branch_prune.reprune`). ``lam=None``: the value used.
         """
         from medialaxis._dispatch import repruner
 
-        reprune = repruner(self.metadata)  # refuses the methods that have no lambda to re-prune by
-        if self.raw is None and "face_contact_diameter" not in self.extras:  # a mesh's full complex is its own
-            raise InvalidInputError(
-                f"this {self.metadata.get('method', '?')!r} result keeps no unpruned axis to re-prune"
-            )
-        return reprune(self, lam=lam, **options)
+        why = self._no_prune()
+        if why:
+            raise AttributeError(why)
+        return functools.partial(repruner(self.metadata), self)
+
+    def _no_prune(self) -> str | None:
+        """Why this result has no ``prune``, or None."""
+        from medialaxis._dispatch import REPRUNERS
+
+        if (self.domain, self.method) not in REPRUNERS:
+            return f"{self.method!r} results ({self.kind}) have no prune(): lambda does not apply once computed"
+        if self.raw is None and self.method == "voronoi" and "face_contact_diameter" not in self.extras:
+            return f"this {self.method!r} result keeps no unpruned axis to re-prune"  # a mesh's full complex is its own
+        return None
+
+    def __dir__(self) -> list[str]:
+        return [n for n in super().__dir__() if n != "prune" or not self._no_prune()]
 
     def reconstruct(self, *, raster: bool = False, resolution: int = 64) -> Any:
         """Union of the medial balls.
