@@ -85,9 +85,14 @@ _LAZY = {
     "MidsurfaceOptions": "medialaxis.volume.options",
     "VoxelOptions": "medialaxis.volume.options",
 }
+_SUBMODULES = ("datasets",)  # mx.datasets without importing it first
 
 
 def __getattr__(name: str):
+    if name in _SUBMODULES:
+        import importlib
+
+        return importlib.import_module(f"medialaxis.{name}")
     if name in _LAZY:
         import importlib
 

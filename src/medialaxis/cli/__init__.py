@@ -110,7 +110,7 @@ def _main(argv: Sequence[str] | None, debug: bool) -> int:
         except SystemExit as exc:  # --help and --version
             return int(exc.code or 0)
         if not getattr(args, "run", None):
-            commands = ", ".join(sorted(parser._subparsers._group_actions[0].choices))  # type: ignore[union-attr]
+            commands = ", ".join(sorted(parser._subparsers._group_actions[0].choices))  # type: ignore[union-attr,arg-type]
             raise UsageError(f"a command is required: {commands} (see medialaxis --help)")
         return int(args.run(args))
     except (UsageError, UnsupportedFormatError) as exc:

@@ -9,7 +9,7 @@ result against it). The torus's medial axis is its core circle.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -56,7 +56,7 @@ def segment_distance(points: np.ndarray, segments: np.ndarray) -> np.ndarray:
     return best
 
 
-def capsules_mesh(segments: Sequence[Sequence[Sequence[float]]], radius: float, *, pitch: float) -> object:
+def capsules_mesh(segments: Any, radius: float, *, pitch: float) -> Any:
     """Watertight mesh of the union of capsules (marching cubes, grid step ``pitch``).
 
     Parameters
@@ -104,7 +104,7 @@ def capsules_mesh(segments: Sequence[Sequence[Sequence[float]]], radius: float, 
     return mesh
 
 
-def tripod_mesh(*, radius: float = 0.5, arm: float = 3.0, pitch: float = 0.08) -> object:
+def tripod_mesh(*, radius: float = 0.5, arm: float = 3.0, pitch: float = 0.08) -> Any:
     """A tripod of three capsules (see :func:`tripod_segments`) as a watertight mesh.
 
     Its curve skeleton is the three segments of :func:`tripod_segments`, its radius ``radius``.
@@ -118,7 +118,7 @@ def tripod_mesh(*, radius: float = 0.5, arm: float = 3.0, pitch: float = 0.08) -
     return capsules_mesh(tripod_segments(arm), radius, pitch=pitch)
 
 
-def torus_mesh(major_radius: float = 1.0, minor_radius: float = 0.35, *, sections: tuple[int, int] = (64, 24)) -> object:
+def torus_mesh(major_radius: float = 1.0, minor_radius: float = 0.35, *, sections: tuple[int, int] = (64, 24)) -> Any:
     """A solid torus as a watertight mesh (trimesh's ``creation.torus``).
 
     Its medial axis is the core circle of radius ``major_radius`` in the plane z = 0, with radius

@@ -20,6 +20,7 @@ True
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 import numpy as np
 
@@ -241,7 +242,7 @@ def member_phantom(
     return Phantom(_render(mask, blur, noise, rng), mask, rects, float(e), (float(e),) * 5)
 
 
-def _panel_layout(shape: tuple[int, int, int], thickness: int, margin: int) -> tuple[list[tuple[tuple[int, ...], tuple[int, ...]]], list[Rect]]:
+def _panel_layout(shape: tuple[int, int, int], thickness: int, margin: int) -> tuple[list[Any], list[Rect]]:
     """Boxes ``(lo, hi)`` of the ribbed panel and its true mid-surface."""
     Z, Y, X = _check(shape, thickness, 32)
     m, e = margin, thickness
@@ -283,7 +284,7 @@ def ribbed_panel_slab(
     noise: float = 0.05,
     rng: int = 0,
     levels: tuple[float, float] = (0.0, 1.0),
-    dtype: object = np.float32,
+    dtype: Any = np.float32,
 ) -> np.ndarray:
     """Rows ``start:stop`` (along axis 0) of the grey values of :func:`ribbed_panel`.
 

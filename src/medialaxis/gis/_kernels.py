@@ -5,7 +5,7 @@ reference in the tests) in one compiled call: the same kernels
 (:func:`medialaxis.core._kernels.neighbour_lists`, then
 :func:`~medialaxis.core._kernels.branch_walks`), the chains flat, ready for
 ``shapely.linestrings(..., indices=...)``. :func:`axis_widths_kernel` is
-:func:`medialaxis.gis.features.axis_widths_reference` with NumPy's sums
+``axis_widths_reference`` (``tests/gis_reference.py``) with NumPy's sums
 (:func:`pairwise_sum`, the pairwise summation of ``np.add.reduce``), so the
 same widths to the last bit (tested).
 """

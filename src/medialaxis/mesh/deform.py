@@ -113,7 +113,7 @@ def deform(mesh: Any, skeleton: Any, new_points: Any, *, smoothing: float = 0.5)
     Examples
     --------
     >>> import medialaxis as mx
-    >>> from medialaxis.mesh.flow_samples import capsules_mesh
+    >>> from medialaxis.datasets import capsules_mesh
     >>> capsule = capsules_mesh([[[0, 0, 0], [3, 0, 0]]], 0.5, pitch=0.1)
     >>> sk = mx.medial_axis(capsule, method="flow")
     >>> moved = mx.deform(capsule, sk, sk.points + [0.0, 0.0, 1.0])

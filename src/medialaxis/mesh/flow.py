@@ -130,7 +130,7 @@ def flow_skeleton(
     Examples
     --------
     >>> import medialaxis as mx
-    >>> from medialaxis.mesh.flow_samples import capsules_mesh
+    >>> from medialaxis.datasets import capsules_mesh
     >>> capsule = capsules_mesh([[[0, 0, 0], [3, 0, 0]]], 0.5, pitch=0.1)
     >>> sk = mx.medial_axis(capsule, method="flow")
     >>> len(sk.endpoints), len(sk.junctions)

@@ -37,7 +37,7 @@ class FrameWriter:
     Examples
     --------
     >>> import tempfile, medialaxis as mx
-    >>> from medialaxis.mesh.flow_samples import capsules_mesh
+    >>> from medialaxis.datasets import capsules_mesh
     >>> from medialaxis.mesh.flow_frames import FrameWriter
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     writer = FrameWriter(tmp)

@@ -89,7 +89,7 @@ def _means(pos, cluster):  # type: ignore[no-untyped-def]
 def merged_nodes(pos, reach, edges, tolerance, segments, start, members, y0, height):  # type: ignore[no-untyped-def]
     """Clusters of edges shorter than ``tolerance`` contracted to their mean point, as far as it stays inside.
 
-    As :func:`medialaxis.planar.pruning.merge_close_nodes`, except that a
+    As ``merge_close_nodes`` of ``tests/planar/merging.py``, except that a
     cluster is left alone (its nodes and edges kept) where the region
     (``segments`` ... ``height``: its
     :class:`~medialaxis.planar._inside_kernels.RegionLocator`) does not surely

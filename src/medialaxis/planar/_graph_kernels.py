@@ -5,8 +5,8 @@ small graphs of one shape, where their set-up costs more than the work:
 
 - :func:`merge_clusters` contracts tree-shaped clusters of short edges by
   union-find and keeps the first of each set of edges that become parallel;
-  :func:`medialaxis.planar.pruning.merge_close_nodes_reference` is the
-  SciPy/NumPy version, used by the tests.
+  ``merge_close_nodes_reference`` in ``tests/planar/merging.py`` is the
+  SciPy/NumPy version the tests compare it with.
 - :func:`component_labels` labels connected components by union-find (the
   numbering differs from SciPy's; the pruning only groups by it).
 - :func:`adjacency_lists` gives each node's neighbours and edge indices (CSR).

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 from scipy.spatial import cKDTree
 
-from medialaxis.volume.phantoms import Rect
+from medialaxis.datasets import Rect
 
 __all__ = ["distance_to_rects", "sample_triangles", "coverage", "MeshTopology", "mesh_topology"]
 
