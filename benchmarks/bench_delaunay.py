@@ -12,7 +12,7 @@ ours). Every engine runs on one thread.
 
 Engines:
 
-* ours: ``medialaxis.mesh.delaunay.delaunay_tetrahedra`` (simplices,
+* ours: ``medialaxis.mesh.sample.delaunay.delaunay_tetrahedra`` (simplices,
   neighbours and hull), warmed up on a small input first (numba compilation);
 * SciPy's Qhull, our previous engine: ``scipy.spatial.Delaunay`` with
   ``"Qbb Qc Q12 QJ"`` on the points in Morton (Z-order) order; the time
@@ -83,9 +83,9 @@ def torus_samples(n_vertices: int) -> tuple[np.ndarray, int]:
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from bench_mesh_voronoi import bumpy_torus
 
-    from medialaxis.mesh.inputs import load_mesh
-    from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, pseudo_normals, sample_surface
-    from medialaxis.mesh.sampling import sample_count as _sample_count
+    from medialaxis.mesh.sample.sampling import adaptive_spacing, lfs_estimate, pseudo_normals, sample_surface
+    from medialaxis.mesh.sample.sampling import sample_count as _sample_count
+    from medialaxis.mesh.solid.inputs import load_mesh
 
     work = load_mesh(bumpy_torus(n_vertices), watertight=True).mesh
     count = _sample_count(None, len(work.vertices))  # the number of vertices (at least 20,000)
@@ -96,7 +96,7 @@ def torus_samples(n_vertices: int) -> tuple[np.ndarray, int]:
 
 
 def run_ours(points: np.ndarray) -> tuple[int, str]:
-    from medialaxis.mesh.delaunay import delaunay_tetrahedra
+    from medialaxis.mesh.sample.delaunay import delaunay_tetrahedra
 
     simplices, _, _ = delaunay_tetrahedra(points)
     return len(simplices), ""
@@ -205,7 +205,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3, help="runs per engine and input; the best is kept")
     args = parser.parse_args()
 
-    from medialaxis.mesh.delaunay import delaunay_tetrahedra
+    from medialaxis.mesh.sample.delaunay import delaunay_tetrahedra
 
     print(versions())
     delaunay_tetrahedra(np.random.default_rng(1).random((2000, 3)))  # warm the numba cache

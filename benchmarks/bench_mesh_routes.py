@@ -163,7 +163,7 @@ def solid_topology(path: str) -> dict | None:
     from solid_interior import interior_betti
 
     import medialaxis as mx
-    from medialaxis.mesh.inputs import load_mesh
+    from medialaxis.mesh.solid.inputs import load_mesh
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

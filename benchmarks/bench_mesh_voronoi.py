@@ -126,7 +126,7 @@ def speed(n_vertices: int, clock=time.perf_counter, ellipsoid_only: bool = False
 def qmat_table() -> None:
     import trimesh
 
-    from medialaxis.mesh.qmat import simplify_medial_mesh
+    from medialaxis.mesh.simplify.qmat import simplify_medial_mesh
     from medialaxis.mesh.voronoi import voronoi_medial_axis
 
     for name, m in (

@@ -138,12 +138,12 @@ def inside_flags(mesh, centres: np.ndarray, radii: np.ndarray, slack: float = BA
 def error(mesh, centres, radii, edges, faces) -> float:
     """Two-sided error over the diagonal: ``mat_error``'s (the triangles' sides counted as edges), or,
     past ``INDEPENDENT`` spheres (MATFP's thousands, where its loops take minutes), the package's
-    exact envelope (``medialaxis.mesh.envelope.two_sided_distance``)."""
+    exact envelope (``medialaxis.mesh.simplify.envelope.two_sided_distance``)."""
     faces = np.asarray(faces, np.int64).reshape(-1, 3)
     sides = np.concatenate([np.asarray(edges, np.int64).reshape(-1, 2), faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
     sides = np.unique(np.sort(sides, axis=1), axis=0)
     if len(centres) > INDEPENDENT:
-        from medialaxis.mesh.envelope import two_sided_distance
+        from medialaxis.mesh.simplify.envelope import two_sided_distance
 
         diag = float(np.linalg.norm(np.ptp(np.asarray(mesh.vertices), axis=0)))
         return max(two_sided_distance(np.asarray(centres, float), np.asarray(radii, float), sides, faces, mesh)) / diag
@@ -213,7 +213,7 @@ def ours(mesh, name: str, count: int, mode: str, reuse: Path | None, points, tre
     is taken from the call's).
     """
     import medialaxis as mx
-    from medialaxis.mesh.qmat import simplify_medial_mesh
+    from medialaxis.mesh.simplify.qmat import simplify_medial_mesh
 
     kept = reuse / f"{name}.pkl" if reuse else None
     stored = pickle.loads(kept.read_bytes()) if kept is not None and kept.exists() else None
@@ -368,7 +368,7 @@ def main() -> None:
     args = ap.parse_args()
     import trimesh
 
-    from medialaxis.mesh.qmat import simplify_medial_mesh
+    from medialaxis.mesh.simplify.qmat import simplify_medial_mesh
     from medialaxis.mesh.voronoi import voronoi_medial_axis
 
     # compile the kernels first (cached on disk after the first run): seconds are steady state

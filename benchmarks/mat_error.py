@@ -1,7 +1,7 @@
 """Two-sided error of a medial mesh against its input surface, measured independently.
 
 Written for the benchmarks, apart from the package's own error figures
-(``medialaxis.mesh.envelope.two_sided_distance``), in the way the Q-MAT and
+(``medialaxis.mesh.simplify.envelope.two_sided_distance``), in the way the Q-MAT and
 Coverage Axis papers measure it:
 
 1. The medial mesh's spheres are interpolated linearly in (centre, radius)

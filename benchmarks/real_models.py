@@ -372,7 +372,7 @@ def describe(path: str | os.PathLike, *, crossings: bool = True) -> dict:
         Mesh file readable by trimesh.
     crossings : bool
         Also count the pairs of faces that cross (with medialaxis's own
-        test, :func:`medialaxis.mesh.crossings.crossing_pairs`; ``None``
+        test, :func:`medialaxis.mesh.solid.crossings.crossing_pairs`; ``None``
         where that is not available).
 
     Returns
@@ -416,7 +416,7 @@ def describe(path: str | os.PathLike, *, crossings: bool = True) -> dict:
     pairs = None
     if crossings:
         try:
-            from medialaxis.mesh.crossings import crossing_pairs
+            from medialaxis.mesh.solid.crossings import crossing_pairs
         except ImportError:
             pass
         else:

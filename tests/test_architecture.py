@@ -161,3 +161,17 @@ def test_modules_stay_small(name):
 
 #: Modules allowed over the limit, with their size (they may shrink, not grow): none today.
 LINE_LIMIT: dict[str, int] = {}
+
+
+#: Most modules a folder of the package may hold (docs/architecture.md, "Size").
+MAX_MODULES_PER_FOLDER = 20
+
+
+def test_no_folder_holds_more_than_twenty_modules():
+    counts: dict[str, int] = {}
+    for path in MODULES.values():
+        if path.name != "__init__.py":
+            folder = str(path.parent.relative_to(SRC))
+            counts[folder] = counts.get(folder, 0) + 1
+    crowded = {folder: n for folder, n in counts.items() if n > MAX_MODULES_PER_FOLDER}
+    assert not crowded, f"split these folders into subpackages by stage: {crowded}"

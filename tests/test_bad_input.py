@@ -241,7 +241,7 @@ def test_overflowing_coordinates_are_named():
 
 
 def test_crossing_kernel_matches_its_reference():
-    from medialaxis.mesh._intersect_kernels import first_crossing, first_crossing_reference
+    from medialaxis.mesh.solid._intersect_kernels import first_crossing, first_crossing_reference
 
     rng = np.random.default_rng(5)
     triangles = rng.normal(size=(400, 3, 3))

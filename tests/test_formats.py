@@ -24,7 +24,7 @@ from medialaxis._dispatch import classify
 from medialaxis.cli.batch import SHAPE_SUFFIXES, expand_inputs
 from medialaxis.core import formats
 from medialaxis.core.io import WRITERS
-from medialaxis.mesh.inputs import load_mesh
+from medialaxis.mesh.solid.inputs import load_mesh
 from medialaxis.planar.reading.inputs import load_planar
 from medialaxis.volume.files.readers import read_volume
 from medialaxis.volume.files.sources import open_source

@@ -163,7 +163,7 @@ def test_volume_results_keep_their_isosurface_as_shell():
 
 
 def test_flow_page_shows_the_input_and_the_frames_have_a_slider(tmp_path):
-    from medialaxis.mesh.flow_frames import FrameWriter
+    from medialaxis.mesh.skeleton.flow_frames import FrameWriter
 
     capsule = trimesh.creation.capsule(height=2.0, radius=0.5, count=[24, 24])
     sk = mx.medial_axis(capsule, method="flow")

@@ -60,8 +60,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from medialaxis.core.io import load
     from medialaxis.core.result import Branch, MedialAxis
     from medialaxis.gis import centerlines
-    from medialaxis.mesh.deform import deform
     from medialaxis.mesh.options import FlowOptions, MeshVoronoiOptions
+    from medialaxis.mesh.skeleton.deform import deform
     from medialaxis.metrics import reconstruction_error
     from medialaxis.planar.options import PlanarOptions
     from medialaxis.volume.options import MidsurfaceOptions, VoxelOptions
@@ -77,7 +77,7 @@ _LAZY = {
     "reconstruction_error": "medialaxis.metrics",
     "shape_distance": "medialaxis.compare",
     "distance_matrix": "medialaxis.compare",
-    "deform": "medialaxis.mesh.deform",
+    "deform": "medialaxis.mesh.skeleton.deform",
     "centerlines": "medialaxis.gis",
     "PlanarOptions": "medialaxis.planar.options",
     "MeshVoronoiOptions": "medialaxis.mesh.options",

@@ -61,8 +61,8 @@ PRUNING_OPTIONS = ("lam", "detour")
 #: it was selected from (the planar unpruned axis, the mesh Voronoi method's full complex, a skeleton's branches).
 REPRUNERS: dict[tuple[str, str], str] = {
     ("planar", "voronoi"): "medialaxis.planar.pipeline:reprune",
-    ("mesh", "voronoi"): "medialaxis.mesh.reprune:reprune",
-    ("mesh", "flow"): "medialaxis.mesh.branch_prune:reprune",
+    ("mesh", "voronoi"): "medialaxis.mesh.medial.reprune:reprune",
+    ("mesh", "flow"): "medialaxis.mesh.skeleton.branch_prune:reprune",
 }
 
 #: The default colour axis of a 3D array (scikit-image's ``channel_axis``).

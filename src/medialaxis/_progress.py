@@ -32,7 +32,7 @@ class Progress:
         How many calls the run makes, when known.
     state : object
         What the method shows of its work, or None: the flow's
-        :class:`~medialaxis.mesh.flow_mesh.FlowState` (the contracting mesh, for a
+        :class:`~medialaxis.mesh.skeleton.flow_mesh.FlowState` (the contracting mesh, for a
         progressive display).
     """
 

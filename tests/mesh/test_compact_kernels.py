@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from medialaxis.mesh._compact_kernels import (
+from medialaxis.mesh.medial._compact_kernels import (
     _cheap_terms,
     _segment_distance2,
     _triangle_distance2,
@@ -14,7 +14,7 @@ from medialaxis.mesh._compact_kernels import (
     moves,
     structure,
 )
-from medialaxis.mesh.compact import complex_edges, sphere_quadrics
+from medialaxis.mesh.medial.compact import complex_edges, sphere_quadrics
 from medialaxis.mesh.voronoi import voronoi_medial_axis
 
 trimesh = pytest.importorskip("trimesh")

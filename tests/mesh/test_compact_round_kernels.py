@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from medialaxis.mesh._compact_kernels import lattice
-from medialaxis.mesh._compact_round_kernels import (
+from medialaxis.mesh.medial._compact_kernels import lattice
+from medialaxis.mesh.medial._compact_round_kernels import (
     changed_prims,
     merge_into,
     morton_codes,
@@ -13,7 +13,7 @@ from medialaxis.mesh._compact_round_kernels import (
     remap_faces,
     ties_by_source,
 )
-from medialaxis.mesh.compact import complex_edges
+from medialaxis.mesh.medial.compact import complex_edges
 
 
 def test_ties_by_source_is_the_lexsort_by_cost_then_source_then_edge():
@@ -121,7 +121,7 @@ def test_complex_edges_counts_the_triangles_on_each_edge():
 def test_small_rounds_run_on_one_thread():
     import numba
 
-    from medialaxis.mesh.compact import PARALLEL_ROWS, threads_for
+    from medialaxis.mesh.medial.compact import PARALLEL_ROWS, threads_for
 
     before = numba.get_num_threads()
     with threads_for(PARALLEL_ROWS - 1):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import medialaxis.mesh.compact as compact
+import medialaxis.mesh.medial.compact as compact
 from medialaxis.mesh.voronoi import voronoi_medial_axis
 
 trimesh = pytest.importorskip("trimesh")

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from medialaxis.mesh.compact import _relabelled
-from medialaxis.mesh.voronoi_complex import euler_characteristic
+from medialaxis.mesh.medial.compact import _relabelled
+from medialaxis.mesh.medial.voronoi_complex import euler_characteristic
 
 
 def _edge_set(faces, edges):

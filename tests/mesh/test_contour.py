@@ -15,9 +15,9 @@ import medialaxis as mx
 
 trimesh = pytest.importorskip("trimesh")
 
-from medialaxis.mesh._fast_winding_kernels import WindingTree  # noqa: E402
-from medialaxis.mesh._winding_kernels import winding_numbers_reference  # noqa: E402
-from medialaxis.mesh.inputs import load_mesh  # noqa: E402
+from medialaxis.mesh.solid._fast_winding_kernels import WindingTree  # noqa: E402
+from medialaxis.mesh.solid._winding_kernels import winding_numbers_reference  # noqa: E402
+from medialaxis.mesh.solid.inputs import load_mesh  # noqa: E402
 
 
 def _soup(mesh, shrink: float = 0.02):
@@ -49,7 +49,7 @@ def test_a_triangle_soup_gets_its_solid_contoured(monkeypatch):
     assert solid.volume == pytest.approx(sphere.volume, rel=0.02)
     assert loaded.found["contoured"] == 1
     # through the whole route on a coarser grid than the default 128 cells (time: the contour's vertices)
-    monkeypatch.setattr("medialaxis.mesh.contour.CELLS", 48)
+    monkeypatch.setattr("medialaxis.mesh.solid.contour.CELLS", 48)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", mx.MedialAxisWarning)
         ma = mx.medial_axis(soup, samples=6000)

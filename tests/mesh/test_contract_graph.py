@@ -7,7 +7,7 @@ from scipy import sparse
 from scipy.sparse import csgraph
 from scipy.spatial import Delaunay
 
-from medialaxis.mesh.contract_graph import _spanning_forest_with_cycles
+from medialaxis.mesh.skeleton.contract_graph import _spanning_forest_with_cycles
 
 
 def _reference(pos, node_edges, n_cycles):

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 import trimesh
 
-from medialaxis.mesh import crossings
-from medialaxis.mesh._intersect_kernels import crossing_mask
-from medialaxis.mesh.crossings import candidate_pairs, crossing_pairs, unit_triangles
+from medialaxis.mesh.solid import crossings
+from medialaxis.mesh.solid._intersect_kernels import crossing_mask
+from medialaxis.mesh.solid.crossings import candidate_pairs, crossing_pairs, unit_triangles
 
 
 def _all_crossings(tri: np.ndarray, faces: np.ndarray) -> set[tuple[int, int]]:

@@ -8,7 +8,7 @@ from scipy.spatial.transform import Rotation
 
 import medialaxis as mx
 from medialaxis.datasets import capsules_mesh, segment_distance, tripod_mesh, tripod_segments
-from medialaxis.mesh.deform import _minimal_rotation, node_rotations
+from medialaxis.mesh.skeleton.deform import _minimal_rotation, node_rotations
 
 
 @pytest.fixture(scope="module")

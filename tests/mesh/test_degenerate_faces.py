@@ -16,8 +16,8 @@ import pytest
 
 import medialaxis as mx
 from medialaxis.errors import MedialAxisWarning
-from medialaxis.mesh.degenerate import coordinate_accuracy, degenerate_faces, remove_degenerate_faces
-from medialaxis.mesh.inputs import load_mesh
+from medialaxis.mesh.solid.degenerate import coordinate_accuracy, degenerate_faces, remove_degenerate_faces
+from medialaxis.mesh.solid.inputs import load_mesh
 
 trimesh = pytest.importorskip("trimesh")
 manifold3d = pytest.importorskip("manifold3d")

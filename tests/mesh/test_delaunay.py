@@ -18,8 +18,8 @@ import trimesh
 from scipy.spatial import ConvexHull, Delaunay, cKDTree
 
 from medialaxis.errors import ComputationError, InvalidInputError
-from medialaxis.mesh._predicates import GRID_BITS, _insphere, _orient
-from medialaxis.mesh.delaunay import JOGGLE, _delaunay, delaunay_tetrahedra
+from medialaxis.mesh.sample._predicates import GRID_BITS, _insphere, _orient
+from medialaxis.mesh.sample.delaunay import JOGGLE, _delaunay, delaunay_tetrahedra
 
 #: Vertices of the face opposite vertex k.
 FACES = np.array([[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]])
@@ -218,7 +218,7 @@ def test_duplicates_keep_the_first_point():
 
 
 def test_growing_the_arrays_changes_nothing(monkeypatch):
-    import medialaxis.mesh.delaunay as kernels
+    import medialaxis.mesh.sample.delaunay as kernels
 
     points = np.asarray(trimesh.creation.uv_sphere(count=[24, 24]).vertices)
     expected = delaunay_tetrahedra(points)

@@ -8,7 +8,7 @@ import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from medialaxis.mesh.envelope import envelope_gap, envelope_samples, primitives, two_sided_distance
+from medialaxis.mesh.simplify.envelope import envelope_gap, envelope_samples, primitives, two_sided_distance
 
 
 def _dense_gap(points, centres, radii, pairs, faces, steps=400, grid=120):
@@ -126,7 +126,7 @@ def test_the_exhaustive_check_ends_where_every_local_distance_overstates():
     """A triangle soup's local closest-point search finds no near face for most points: every local distance
     overstates. The exact search must then reach the true largest distance, in few batches (it took over
     40 minutes 64 points at a time, the whole array sorted each round)."""
-    from medialaxis.mesh.signed_distance import SignedDistance
+    from medialaxis.mesh.sample.signed_distance import SignedDistance
 
     sphere = trimesh.creation.icosphere(subdivisions=4)
     exact = SignedDistance(sphere)

@@ -12,8 +12,8 @@ from scipy.spatial.transform import Rotation
 import medialaxis as mx
 from medialaxis._progress import Progress
 from medialaxis.datasets import capsules_mesh, segment_distance, tripod_mesh, tripod_segments
-from medialaxis.mesh import _flow_operators as ops
 from medialaxis.mesh.flow import FlowState, nonmanifold_vertices
+from medialaxis.mesh.skeleton import _flow_operators as ops
 
 RADIUS = 0.5
 CAPSULE_AXIS = np.array([[[0.0, 0.0, 0.0], [3.0, 0.0, 0.0]]])
@@ -334,7 +334,7 @@ def test_medial_poles_of_a_sphere_are_its_centre():
 
 
 def test_handle_count_is_the_genus():
-    from medialaxis.mesh.contract_graph import handle_count
+    from medialaxis.mesh.skeleton.contract_graph import handle_count
 
     torus = trimesh.creation.torus(major_radius=2.0, minor_radius=0.5)
     sphere = trimesh.creation.icosphere(subdivisions=1)
@@ -415,7 +415,7 @@ def test_curvature_tips_of_a_noisy_tripod(tripod):
                                                                  major_sections=12, minor_sections=6),
                                   lambda: trimesh.creation.icosphere(subdivisions=1)])
 def test_splitting_long_edges_keeps_the_surface(make):
-    from medialaxis.mesh.refine import split_long_edges
+    from medialaxis.mesh.skeleton.refine import split_long_edges
 
     mesh = make()
     longest = mesh.edges_unique_length.max()

@@ -12,7 +12,7 @@ import pytest
 import trimesh
 
 import medialaxis as mx
-from medialaxis.mesh.flow_refine import surface_samples
+from medialaxis.mesh.skeleton.flow_refine import surface_samples
 
 
 def core_circle_distance(points: np.ndarray, major: float) -> np.ndarray:
@@ -113,7 +113,7 @@ def test_square_section_arc_nodes_lie_on_its_arc():
 
 def test_thin_plate_poles_reach_the_other_side():
     """Vertices nearer than the shrinking ball's ``ignore`` distance still stop it when they lie straight below."""
-    from medialaxis.mesh import _flow_operators as ops
+    from medialaxis.mesh.skeleton import _flow_operators as ops
 
     plate = trimesh.creation.box(extents=(10.0, 10.0, 0.4)).subdivide().subdivide().subdivide()
     points, faces = np.asarray(plate.vertices), np.asarray(plate.faces)
@@ -149,7 +149,7 @@ def test_nodes_of_a_non_round_section_move_onto_its_medial_axis():
     from shapely import affinity
     from shapely.geometry import Point
 
-    from medialaxis.mesh.flow_refine import centre_nodes
+    from medialaxis.mesh.skeleton.flow_refine import centre_nodes
 
     ellipse = affinity.scale(Point(0, 0).buffer(1.0, quad_segs=32), 1.0, 0.6)
     tube = trimesh.creation.extrude_polygon(ellipse, 8.0).subdivide_to_size(0.15)
@@ -169,7 +169,7 @@ def test_nodes_of_a_non_round_section_move_onto_its_medial_axis():
 
 def test_a_wide_thin_cad_plate_finishes():
     """A 10 x 10 x 0.2 box of 8 vertices: refined for its thickness up to a bound (75,000 vertices hung the graph)."""
-    from medialaxis.mesh.refine import MAX_REFINED
+    from medialaxis.mesh.skeleton.refine import MAX_REFINED
 
     sk = mx.medial_axis(trimesh.creation.box(extents=(10.0, 10.0, 0.2)), method="flow")
     assert sk.metadata["refined_vertices"] <= MAX_REFINED

@@ -71,7 +71,7 @@ def test_a_torus_is_one_centred_ring() -> None:
 
 
 def test_what_is_a_voxel_staircase() -> None:
-    from medialaxis.mesh._flow_operators import on_voxel_grid
+    from medialaxis.mesh.skeleton._flow_operators import on_voxel_grid
 
     z, y, x = np.mgrid[:40, :40, :40]
     ball = (x - 20) ** 2 + (y - 20) ** 2 + (z - 20) ** 2 <= 144
@@ -83,7 +83,7 @@ def test_what_is_a_voxel_staircase() -> None:
 
 
 def test_a_turned_staircase_is_one() -> None:
-    from medialaxis.mesh._flow_operators import _snapped, grid_frames, on_voxel_grid
+    from medialaxis.mesh.skeleton._flow_operators import _snapped, grid_frames, on_voxel_grid
 
     z, y, x = np.mgrid[:40, :40, :40]
     ball = _surface((x - 20) ** 2 + (y - 20) ** 2 + (z - 20) ** 2 <= 144)

@@ -7,10 +7,10 @@ import trimesh
 from scipy.spatial import cKDTree
 
 import medialaxis as mx
-from medialaxis.mesh._voronoi_kernels import nearest_other_sample, small_cavities
-from medialaxis.mesh.signed_distance import SignedDistance
-from medialaxis.mesh.voronoi_complex import medial_complex, open_cells
-from medialaxis.mesh.voronoi_diagram import tetrahedralise
+from medialaxis.mesh.medial._voronoi_kernels import nearest_other_sample, small_cavities
+from medialaxis.mesh.medial.voronoi_complex import medial_complex, open_cells
+from medialaxis.mesh.medial.voronoi_diagram import tetrahedralise
+from medialaxis.mesh.sample.signed_distance import SignedDistance
 
 
 def _u_shape() -> trimesh.Trimesh:
@@ -66,7 +66,7 @@ def test_a_buried_sample_does_not_close_a_void():
     edges = np.unique(np.sort(np.r_[faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [0, 2]], cx.edges], 1), axis=0)
     n_points = len(np.unique(np.r_[faces.ravel(), cx.edges.ravel()]))
     assert n_points - len(edges) + len(faces) == 1  # a ball is contractible: no void left
-    from medialaxis.mesh.voronoi_diagram import edge_rings
+    from medialaxis.mesh.medial.voronoi_diagram import edge_rings
 
     edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(len(dt.simplices)), 0.0)
     dropped = open_cells(dt, inner, edge_ij, np.ones(len(edge_ij), bool), length)

@@ -16,7 +16,7 @@ import pytest
 from mesh_balls import interpolated_balls
 
 import medialaxis as mx
-from medialaxis.mesh.inputs import load_mesh
+from medialaxis.mesh.solid.inputs import load_mesh
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("manifold3d")

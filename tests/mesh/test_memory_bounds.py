@@ -10,8 +10,8 @@ trimesh = pytest.importorskip("trimesh")
 
 import medialaxis as mx  # noqa: E402
 import medialaxis._jit as jit  # noqa: E402
-from medialaxis.mesh._closest_kernels import closest_point_reference, face_tree  # noqa: E402
-from medialaxis.mesh.signed_distance import SignedDistance  # noqa: E402
+from medialaxis.mesh.sample._closest_kernels import closest_point_reference, face_tree  # noqa: E402
+from medialaxis.mesh.sample.signed_distance import SignedDistance  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -108,7 +108,7 @@ def test_beside_works_at_once_when_no_thread_can_be_started(monkeypatch):
 
 def test_the_compaction_does_not_depend_on_how_many_rows_are_made_at_once(monkeypatch):
     # the reach check of each round runs CHUNK rows at a time (bounded temporaries; the sphere quadrics make none)
-    import medialaxis.mesh.compact_inside as compact_inside
+    import medialaxis.mesh.medial.compact_inside as compact_inside
 
     mesh = trimesh.creation.torus(3, 1, major_sections=24, minor_sections=12)
     results = []

@@ -94,8 +94,8 @@ def test_exact_distance_of_the_medial_points_matches_a_brute_force(model):
     # the medial points of a scanned model are nearly equidistant from whole patches of faces: the case
     # SignedDistance.exact is for. Truth: the distance to every face (brute force) and trimesh's own
     # containment test; the compact radii are balls empty of the surface
-    from medialaxis.mesh._closest_kernels import closest_point_reference
-    from medialaxis.mesh.signed_distance import SignedDistance
+    from medialaxis.mesh.sample._closest_kernels import closest_point_reference
+    from medialaxis.mesh.sample.signed_distance import SignedDistance
 
     _, mesh, ma = model
     points = ma.points

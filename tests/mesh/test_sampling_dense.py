@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 import trimesh
 
-from medialaxis.mesh.sampling import sample_surface
-from medialaxis.mesh.voronoi_diagram import tetrahedralise
+from medialaxis.mesh.medial.voronoi_diagram import tetrahedralise
+from medialaxis.mesh.sample.sampling import sample_surface
 
 
 def _dense_plate(thickness=0.02, size=1.0, subdivisions=5):

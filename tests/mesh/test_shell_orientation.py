@@ -8,7 +8,7 @@ import trimesh
 
 import medialaxis as mx
 from medialaxis.errors import MedialAxisWarning
-from medialaxis.mesh.crossings import inside_out_shells
+from medialaxis.mesh.solid.crossings import inside_out_shells
 
 
 def _ball(radius: float, at=(0.0, 0.0, 0.0), inward: bool = False, subdivisions: int = 3) -> trimesh.Trimesh:
@@ -70,7 +70,7 @@ def test_a_porous_block_keeps_its_pores_by_both_winding_paths(monkeypatch):
     n_free = len(parts[-1].faces)
     expected = list(range(len(porous.faces) - n_free, len(porous.faces)))
     assert inside_out_shells(porous.vertices, porous.faces).tolist() == expected
-    from medialaxis.mesh import crossings
+    from medialaxis.mesh.solid import crossings
 
     monkeypatch.setattr(crossings, "EXACT_TERMS", 0)  # the fast winding tree
     assert inside_out_shells(porous.vertices, porous.faces).tolist() == expected

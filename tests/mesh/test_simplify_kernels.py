@@ -3,7 +3,7 @@
 The reference collapse is the loop ``qmat`` ran before it was compiled
 (``heapq`` of ``(cost, i, j, version i, version j)`` tuples, neighbour and
 triangle sets), written again here; both share the merge cost
-(:func:`~medialaxis.mesh._simplify_kernels.optimum`), so the spheres, the
+(:func:`~medialaxis.mesh.simplify._simplify_kernels.optimum`), so the spheres, the
 triangles and the curve must agree exactly.
 """
 
@@ -16,8 +16,16 @@ import pytest
 import trimesh
 from scipy.spatial import cKDTree
 
-from medialaxis.mesh._simplify_kernels import PENDING, collapse, kd_build, kd_knn, optimum, pair_costs, snap_many
-from medialaxis.mesh.qmat import _collapsed_mesh, _initial_quadrics
+from medialaxis.mesh.simplify._simplify_kernels import (
+    PENDING,
+    collapse,
+    kd_build,
+    kd_knn,
+    optimum,
+    pair_costs,
+    snap_many,
+)
+from medialaxis.mesh.simplify.qmat import _collapsed_mesh, _initial_quadrics
 from medialaxis.mesh.voronoi import voronoi_medial_axis
 
 

@@ -15,7 +15,7 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from medialaxis.errors import InvalidInputError
-from medialaxis.mesh.qmat import simplify_medial_mesh
+from medialaxis.mesh.simplify.qmat import simplify_medial_mesh
 from medialaxis.mesh.voronoi import voronoi_medial_axis
 
 
@@ -97,7 +97,7 @@ def test_the_method_takes_the_mode_by_keyword(torus):
 
 
 def test_shrinking_balls_of_a_sphere_and_a_capsule_are_their_medial_balls():
-    from medialaxis.mesh.medial_candidates import shrinking_balls
+    from medialaxis.mesh.simplify.medial_candidates import shrinking_balls
 
     # the vertices with their exact normals: every ball of a sphere is the sphere itself
     vertices = np.asarray(trimesh.creation.icosphere(subdivisions=4, radius=2.0).vertices)
@@ -117,7 +117,7 @@ def test_shrinking_balls_of_a_sphere_and_a_capsule_are_their_medial_balls():
 
 
 def test_only_contacts_on_the_sphere_count_for_its_span():
-    from medialaxis.mesh.medial_candidates import ON_SPHERE, _spans
+    from medialaxis.mesh.simplify.medial_candidates import ON_SPHERE, _spans
 
     # a unit sphere at the origin touching a slab's two sides at (0, 0, -1) and (0, 0, 1), and the
     # same with its upper contact 5% of the radius off the sphere: it touches one side only
@@ -141,9 +141,9 @@ def test_a_chord_across_a_bend_is_split_by_the_inscribed_sphere():
     holds interpolated spheres reaching out of the tube on the inside of the bend (at its middle, 0.866
     from the axis: 0.134 nearer the hole than the core, yet still of radius 0.3). The split puts there
     the inscribed sphere of radius 0.3 - 0.134; the inner equator point 0.134 deep is then 20 times less deep."""
-    from medialaxis.mesh.envelope import envelope_gap
-    from medialaxis.mesh.signed_distance import SignedDistance
-    from medialaxis.mesh.simplify_split import split_at
+    from medialaxis.mesh.sample.signed_distance import SignedDistance
+    from medialaxis.mesh.simplify.envelope import envelope_gap
+    from medialaxis.mesh.simplify.simplify_split import split_at
 
     mesh = trimesh.creation.torus(major_radius=1.0, minor_radius=0.3, major_sections=256, minor_sections=64)
     spheres = _core_spheres(np.arange(0, 360, 60))
@@ -164,8 +164,8 @@ def test_a_split_keeps_the_topology_of_the_medial_mesh():
     """A thin triangle along the chord (corners at 0, 60 and 30 degrees on the core): the deepest point
     lies on its side, which is split with the triangle on it; the others split into three. The Euler
     characteristic (an independent count of vertices, edges and faces) stays that of a disc."""
-    from medialaxis.mesh.signed_distance import SignedDistance
-    from medialaxis.mesh.simplify_split import split_at
+    from medialaxis.mesh.sample.signed_distance import SignedDistance
+    from medialaxis.mesh.simplify.simplify_split import split_at
 
     mesh = trimesh.creation.torus(major_radius=1.0, minor_radius=0.3, major_sections=256, minor_sections=64)
     spheres = _core_spheres([0, 60, 30])
@@ -186,8 +186,8 @@ def test_a_patch_is_the_largest_ball_inside_tangent_at_its_point_or_at_a_corner_
     # a 1 x 1 x 1 box: the ball tangent to the top face at (0.2, 0.5) reaches the side x = 0 beyond radius 0.2,
     # the one at the face's centre the bottom beyond 0.5; a ball already inside is kept; at a corner no ball
     # tangent along its normal is inside: the ball at the centre given, its radius brought to its depth
-    from medialaxis.mesh.signed_distance import SignedDistance
-    from medialaxis.mesh.simplify_cover import INSCRIBED, _inscribed
+    from medialaxis.mesh.sample.signed_distance import SignedDistance
+    from medialaxis.mesh.simplify.simplify_cover import INSCRIBED, _inscribed
 
     box = trimesh.creation.box([1.0, 1.0, 1.0])
     box.apply_translation([0.5, 0.5, 0.5])
@@ -222,8 +222,8 @@ def test_the_gaps_after_a_split_are_those_of_the_split_mesh(seed):
     """The cover repair updates the gaps after a split only where the pieces it removed were the nearest
     (``_gap_after``); the truth is ``envelope_gap`` of the split mesh from scratch, at points inside and
     outside, near the corner spheres too (which the update leaves out of the pieces removed)."""
-    from medialaxis.mesh.envelope import envelope_gap
-    from medialaxis.mesh.simplify_cover import _gap_after
+    from medialaxis.mesh.simplify.envelope import envelope_gap
+    from medialaxis.mesh.simplify.simplify_cover import _gap_after
 
     rng = np.random.default_rng(seed)
     spheres = np.c_[rng.uniform(-1, 1, (6, 3)), rng.uniform(0.1, 0.4, 6)]

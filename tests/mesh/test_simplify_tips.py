@@ -15,10 +15,10 @@ import pytest
 import trimesh
 from scipy.spatial import cKDTree
 
-from medialaxis.mesh.envelope import surface_sample
-from medialaxis.mesh.medial_candidates import MedialCandidates, inscribed_along
-from medialaxis.mesh.qmat import simplify_medial_mesh
-from medialaxis.mesh.signed_distance import SignedDistance
+from medialaxis.mesh.sample.signed_distance import SignedDistance
+from medialaxis.mesh.simplify.envelope import surface_sample
+from medialaxis.mesh.simplify.medial_candidates import MedialCandidates, inscribed_along
+from medialaxis.mesh.simplify.qmat import simplify_medial_mesh
 from medialaxis.mesh.voronoi import voronoi_medial_axis
 
 A, B = 2.0, 0.5  # the spheroid's semi-axes

@@ -7,7 +7,7 @@ import pytest
 import trimesh
 
 import medialaxis as mx
-from medialaxis.mesh.sampling import MIN_SHELL_SAMPLES, shell_spacing
+from medialaxis.mesh.sample.sampling import MIN_SHELL_SAMPLES, shell_spacing
 
 
 def test_a_small_box_beside_a_ball_keeps_its_point():

@@ -11,7 +11,7 @@ from skimage.measure import euler_number, label
 
 import medialaxis as mx
 import medialaxis.mesh.voronoi as voronoi
-from medialaxis.mesh.crossings import solid_betti
+from medialaxis.mesh.solid.crossings import solid_betti
 
 
 def _block_with_tunnels_and_a_cavity() -> trimesh.Trimesh:

@@ -14,7 +14,7 @@ import trimesh
 import medialaxis as mx
 import medialaxis.mesh.voronoi as voronoi
 from medialaxis.core.homology import betti_numbers
-from medialaxis.mesh.stray_cycles import complement_voids, cut_stray_cycles, without_stray_cycles
+from medialaxis.mesh.medial.stray_cycles import complement_voids, cut_stray_cycles, without_stray_cycles
 
 RIM = 8  # a disc: centre 0, rim points 1..8
 

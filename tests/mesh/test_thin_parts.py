@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import medialaxis as mx
-from medialaxis.mesh.thin_parts import local_thickness
+from medialaxis.mesh.sample.thin_parts import local_thickness
 
 trimesh = pytest.importorskip("trimesh")
 shapely = pytest.importorskip("shapely")
@@ -53,7 +53,7 @@ def test_an_extruded_l_plate_with_a_hole_keeps_its_tunnel(tmp_path):
 
 def test_a_thin_part_capped_below_its_count_is_warned_about_once(tmp_path, monkeypatch):
     # the thin-part check runs beside the Delaunay insertion; its warning still comes once, from the call
-    import medialaxis.mesh.thin_parts as sampling
+    import medialaxis.mesh.sample.thin_parts as sampling
 
     trimesh.creation.box(extents=(10.0, 10.0, 0.2)).export(tmp_path / "plate.stl")
     monkeypatch.setattr(sampling, "THIN_SAMPLES", 30_000)  # the plate wants about 55,000

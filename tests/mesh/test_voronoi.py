@@ -9,8 +9,8 @@ from mesh_balls import interpolated_balls
 
 import medialaxis as mx
 from medialaxis.errors import EmptyShapeError, InvalidInputError, MedialAxisWarning
-from medialaxis.mesh._closest_kernels import closest_on_candidates, closest_point_reference, face_spheres
-from medialaxis.mesh._collapse_kernels import collapse_facets, collapse_free_sides
+from medialaxis.mesh.medial._collapse_kernels import collapse_facets, collapse_free_sides
+from medialaxis.mesh.sample._closest_kernels import closest_on_candidates, closest_point_reference, face_spheres
 from medialaxis.mesh.voronoi import euler_characteristic, voronoi_medial_axis
 
 
@@ -243,7 +243,7 @@ def test_sampling_metadata_and_adaptivity():
     assert md["n_samples"] > len(flat.vertices)
     assert 0 < md["epsilon"] < md["lam"] < md["lam_bound"]
     assert 0 < md["epsilon_lfs"] < 1
-    from medialaxis.mesh.sampling import adaptive_spacing, lfs_estimate, pseudo_normals
+    from medialaxis.mesh.sample.sampling import adaptive_spacing, lfs_estimate, pseudo_normals
 
     spacing = adaptive_spacing(flat, lfs_estimate(flat, 2000, pseudo_normals(flat)), 10_000)
     rim = np.abs(flat.triangles_center[:, 2]) < 0.05
@@ -275,7 +275,7 @@ def test_exact_signed_distance_matches_brute_force_where_many_faces_are_nearly_e
     # points on the axis of a faceted surface of revolution (whole rings of faces nearly equidistant),
     # deep inside it and outside: distance against a brute force over every face, sign against
     # trimesh's own containment test
-    from medialaxis.mesh.signed_distance import SignedDistance
+    from medialaxis.mesh.sample.signed_distance import SignedDistance
 
     mesh = trimesh.creation.uv_sphere(radius=1.0, count=[64, 64])
     mesh.apply_scale([3, 1, 1])
@@ -327,7 +327,7 @@ def test_collapse_kernels_match_python_and_keep_euler():
 
 def test_reach_lattice_of_the_compaction():
     # the spheres the compaction's reach check samples over a triangle and an edge (corners left out)
-    from medialaxis.mesh._compact_kernels import lattice
+    from medialaxis.mesh.medial._compact_kernels import lattice
 
     spheres = np.array([[0.0, 0, 0, 1.0], [1.0, 0, 0, 1.0], [0.0, 1.0, 0, 2.0]])
     prims = np.array([[0, 1, 2], [0, 1, 1]])
@@ -421,7 +421,7 @@ def test_a_scan_with_small_holes_gets_the_solid_its_winding_number_defines():
 
 
 def test_signed_volume_is_exact_far_from_the_origin_and_load_mesh_turns_an_inward_mesh_out():
-    from medialaxis.mesh.inputs import load_mesh, signed_volume
+    from medialaxis.mesh.solid.inputs import load_mesh, signed_volume
 
     box = trimesh.creation.box(extents=(2.0, 3.0, 4.0))
     box.apply_translation([1e6, -2e6, 3e6])
@@ -464,7 +464,7 @@ def test_html_view_is_self_contained(tmp_path, box):
 def test_slab_distance_kernels_against_a_dense_grid():
     # distance in (x, y, z, r) from a sphere to a segment / triangle of spheres, against the
     # minimum over a dense barycentric grid (the exact value lies at most a grid step below)
-    from medialaxis.mesh._compact_kernels import _segment_distance2, _triangle_distance2
+    from medialaxis.mesh.medial._compact_kernels import _segment_distance2, _triangle_distance2
 
     rng = np.random.default_rng(3)
     n = 60

@@ -10,7 +10,7 @@ import trimesh
 
 import medialaxis as mx
 from medialaxis.errors import InvalidInputError
-from medialaxis.mesh.qmat import _initial_quadrics, simplify_medial_mesh
+from medialaxis.mesh.simplify.qmat import _initial_quadrics, simplify_medial_mesh
 from medialaxis.mesh.voronoi import voronoi_medial_axis
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "meshes"

@@ -17,9 +17,9 @@ import medialaxis as mx
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("manifold3d")
 
-from medialaxis.mesh._winding_kernels import winding_numbers, winding_numbers_reference  # noqa: E402
-from medialaxis.mesh.arrangement import solid_surface  # noqa: E402
-from medialaxis.mesh.inputs import load_mesh  # noqa: E402
+from medialaxis.mesh.solid._winding_kernels import winding_numbers, winding_numbers_reference  # noqa: E402
+from medialaxis.mesh.solid.arrangement import solid_surface  # noqa: E402
+from medialaxis.mesh.solid.inputs import load_mesh  # noqa: E402
 
 
 def _parts(name: str) -> list:
@@ -101,7 +101,7 @@ def test_the_solid_surface_is_the_union_manifold3d_computes(name):
 @pytest.mark.parametrize("name", ["spheres", "capsules", "nested", "ring", "tilted"])
 def test_the_fast_winding_tree_gives_the_same_solid(name, monkeypatch):
     # many patches on a large mesh are judged through the tree (arrangement.EXACT_TERMS); forced here
-    import medialaxis.mesh.arrangement as arrangement
+    import medialaxis.mesh.solid.arrangement as arrangement
 
     parts = _parts(name)
     soup = trimesh.util.concatenate(parts)
@@ -196,7 +196,7 @@ def test_a_triangle_soup_with_a_hole_is_welded_before_its_hole_is_capped():
 
 
 def test_solids_touching_along_an_edge_are_kept_apart_as_manifold3d_keeps_them():
-    from medialaxis.mesh.inputs import load_mesh
+    from medialaxis.mesh.solid.inputs import load_mesh
 
     parts = [_box([0, 0, 0], [1, 1, 1]), _box([1, 1, 0], [2, 2, 1])]
     mesh = trimesh.util.concatenate(parts)
@@ -211,7 +211,7 @@ def test_solids_touching_along_an_edge_are_kept_apart_as_manifold3d_keeps_them()
 
 
 def test_holes_touching_at_a_vertex_are_capped_each_on_its_own():
-    from medialaxis.mesh.inputs import load_mesh
+    from medialaxis.mesh.solid.inputs import load_mesh
 
     sphere = trimesh.creation.icosphere(3)
     v = sphere.faces[0, 0]

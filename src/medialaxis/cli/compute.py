@@ -297,7 +297,7 @@ def _run_compute(args: argparse.Namespace) -> int:
         else:
             writer = None
             if args.frames is not None:
-                from medialaxis.mesh.flow_frames import FrameWriter
+                from medialaxis.mesh.skeleton.flow_frames import FrameWriter
 
                 writer = options["callback"] = FrameWriter(args.frames)
             ma = mx.medial_axis(str(args.input), method=args.method, spacing=spacing, **options)

@@ -91,8 +91,8 @@ def _voronoi_torus(outdir: Path) -> str:
 def tripod_flow_case(outdir: Path) -> str:
     """Skeletonize and bend a tripod of capsules (radius 0.5, arms 3); one summary line."""
     from medialaxis.datasets import segment_distance, tripod_mesh, tripod_segments
-    from medialaxis.mesh.deform import deform
     from medialaxis.mesh.flow import flow_skeleton
+    from medialaxis.mesh.skeleton.deform import deform
 
     mesh = tripod_mesh(radius=0.5, arm=3.0, pitch=0.08)
     mesh.export(outdir / "tripod.ply")

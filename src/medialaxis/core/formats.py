@@ -185,7 +185,7 @@ def writer_missing(suffix: str) -> str | None:
 _IMAGE = "medialaxis.planar.reading.images:read_image"
 _DRAWING = "medialaxis.planar.reading.inputs:read_drawing"
 _VECTOR = "medialaxis.planar.reading.vectors:read_vector"
-_MESH = "medialaxis.mesh.inputs:load_mesh"
+_MESH = "medialaxis.mesh.solid.inputs:load_mesh"
 _RESULT = "medialaxis.core.lossless:load"
 _RASTER = "medialaxis.gis.rasters:read_mask"
 _VOLUME = "medialaxis.volume.files.readers:"

@@ -361,9 +361,9 @@ class MedialAxis:
         axis (any ``lam`` and ``detour``); mesh Voronoi results collapse their
         full complex down to the facets at least ``lam`` wide, homotopy kept
         (``lam`` at least the one computed with;
-        :func:`medialaxis.mesh.reprune.reprune`); flow skeletons drop the
+        :func:`medialaxis.mesh.medial.reprune.reprune`); flow skeletons drop the
         terminal branches narrower than ``lam``
-        (:func:`medialaxis.mesh.branch_prune.reprune`). ``lam=None``: the value used.
+        (:func:`medialaxis.mesh.skeleton.branch_prune.reprune`). ``lam=None``: the value used.
         """
         from medialaxis._dispatch import repruner
 

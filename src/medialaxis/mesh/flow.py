@@ -24,7 +24,7 @@ implicit mean-curvature step on the contracted surface (cotangent operator of
 the contracted geometry) then gathers each collapsed ring onto its centre.
 Degenerate edges are
 not collapsed one by one: the final grouping of
-:mod:`medialaxis.mesh.contract_graph` merges vertices that have come
+:mod:`medialaxis.mesh.skeleton.contract_graph` merges vertices that have come
 together, which is the equivalent of collapsing them, and turns the
 contracted mesh into the curve skeleton graph.
 
@@ -57,9 +57,10 @@ from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import ComputationError, EmptyShapeError, InvalidInputError
-from medialaxis.mesh import _flow_operators as ops
-from medialaxis.mesh.contract_graph import skeleton_graph
-from medialaxis.mesh.flow_mesh import (
+from medialaxis.mesh.options import FlowOptions
+from medialaxis.mesh.skeleton import _flow_operators as ops
+from medialaxis.mesh.skeleton.contract_graph import skeleton_graph
+from medialaxis.mesh.skeleton.flow_mesh import (
     FlowState,
     curvature_tips,
     nonmanifold_vertices,
@@ -67,9 +68,8 @@ from medialaxis.mesh.flow_mesh import (
     readonly,
     smoothed_gaussian_curvature,
 )
-from medialaxis.mesh.flow_refine import centre_nodes
-from medialaxis.mesh.options import FlowOptions
-from medialaxis.mesh.refine import refine_coarse
+from medialaxis.mesh.skeleton.flow_refine import centre_nodes
+from medialaxis.mesh.skeleton.refine import refine_coarse
 
 __all__ = ["FlowState", "flow_skeleton", "prepare_flow_mesh", "nonmanifold_vertices", "smoothed_gaussian_curvature"]
 
@@ -96,7 +96,7 @@ def flow_skeleton(
         cavities are left out, with a warning: a curve has no room for a void).
     callback : callable, optional
         ``callback(Progress)`` after every step, its ``state`` the
-        :class:`~medialaxis.mesh.flow_mesh.FlowState` (the contracting mesh);
+        :class:`~medialaxis.mesh.skeleton.flow_mesh.FlowState` (the contracting mesh);
         returning ``False`` cancels (:class:`~medialaxis.errors.Cancelled`).
     {options}
     Returns
@@ -107,7 +107,7 @@ def flow_skeleton(
         ``extras["correspondence"]`` (n_input,) is the node of each input
         vertex (``-1`` on a filled cavity's surface); metadata holds ``steps``, ``converged``, ``dt``, ``repairs``,
         ``refined_vertices`` (midpoints added to a coarse surface, see
-        :func:`~medialaxis.mesh.refine.refine_coarse`).
+        :func:`~medialaxis.mesh.skeleton.refine.refine_coarse`).
 
     Raises
     ------

@@ -14,7 +14,7 @@ _REPAIR_DOC = """
         Cap the holes of an open mesh even where its winding number leaves
         the solid undecided (without it, holes are capped where the rest of
         the surface decides inside and outside, and the mesh is refused
-        otherwise: :func:`medialaxis.mesh.inputs.load_mesh`)."""
+        otherwise: :func:`medialaxis.mesh.solid.inputs.load_mesh`)."""
 
 
 @dataclass(frozen=True)
@@ -37,11 +37,11 @@ class MeshVoronoiOptions(Options):
         Target number of surface samples. Default ``max(20000,
         n_vertices)``, more for a mostly thin part (up to 250,000, so that
         a plate's two sides are three spacings apart:
-        :func:`~medialaxis.mesh.thin_parts.thin_part_count`); the mesh
+        :func:`~medialaxis.mesh.sample.thin_parts.thin_part_count`); the mesh
         vertices are always included.""", flag=Flag("target number of surface samples", metavar="N"))
     simplify: int | float | None = option(None, """
         Reduce the medial mesh by quadric error minimisation on spheres
-        (:func:`medialaxis.mesh.qmat.simplify_medial_mesh`): an ``int`` is the
+        (:func:`medialaxis.mesh.simplify.qmat.simplify_medial_mesh`): an ``int`` is the
         most spheres kept (a quarter of them, or all those the
         compact complex lacks, placed last where the surface is farthest
         from the others: tips of limbs), a ``float`` in (0, 1) an error
@@ -67,7 +67,7 @@ class MeshVoronoiOptions(Options):
         the narrower facets and curve pieces needed for the complex to have
         the solid's homotopy type (connected, same number of tunnels),
         found by collapsing the dual complex of the inner Delaunay
-        tetrahedra (:mod:`medialaxis.mesh.voronoi_complex`). ``"lambda"``:
+        tetrahedra (:mod:`medialaxis.mesh.medial.voronoi_complex`). ``"lambda"``:
         Algorithm 5 literally, only the facets of at least ``lam``.""",
         flag=Flag("preserve: the solid's homotopy type (default); lambda: only the facets of at least lam"))
     repair: bool = option(False, _REPAIR_DOC, flag=REPAIR_FLAG)
@@ -76,7 +76,7 @@ class MeshVoronoiOptions(Options):
         kind="int or numpy.random.Generator")
     compact: bool = option(True, """
         ``True`` (default): the compact complex
-        (:func:`medialaxis.mesh.compact.compact_medial_axis`): edges are
+        (:func:`medialaxis.mesh.medial.compact.compact_medial_axis`): edges are
         contracted while the spheres left stay within the sampling error
         (``COMPACT_TOLERANCE * epsilon``) of the contacts and features they
         replace, keeping the homotopy type, so sheets thinner than the

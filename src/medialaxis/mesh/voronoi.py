@@ -1,10 +1,10 @@
 """Voronoi lambda-medial surfaces of closed triangle meshes (Algorithm 5 of "Curved Voronoi diagrams").
 
-1. Sample the surface (:mod:`medialaxis.mesh.sampling`): an epsilon-sample
+1. Sample the surface (:mod:`medialaxis.mesh.sample.sampling`): an epsilon-sample
    built from the mesh (vertices, edge points, face grids), with a spacing
    adapted to the local feature size estimated on a coarse first pass.
 2. Build the Delaunay tetrahedralisation of the sample, whose dual is the
-   Voronoi diagram (:mod:`medialaxis.mesh.voronoi_diagram`).
+   Voronoi diagram (:mod:`medialaxis.mesh.medial.voronoi_diagram`).
 3. Keep the Voronoi facets dual to Delaunay edges at least ``lam`` long
    (contact set at least ``lam`` wide) whose vertices all lie inside the
    solid; triangulate them as fans over shared vertices.
@@ -38,22 +38,22 @@ from medialaxis.errors import (
     MedialAxisError,
     MedialAxisWarning,
 )
-from medialaxis.mesh._voronoi_kernels import tet_centroids
-from medialaxis.mesh.crossings import crossing_pairs, shell_labels, solid_betti
-from medialaxis.mesh.inner_set import inner_tets
-from medialaxis.mesh.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
+from medialaxis.mesh.medial._voronoi_kernels import tet_centroids
+from medialaxis.mesh.medial.inner_set import inner_tets
+from medialaxis.mesh.medial.stray_cycles import complement_voids, without_stray_cycles
+from medialaxis.mesh.medial.voronoi_complex import euler_characteristic, medial_complex
 from medialaxis.mesh.options import MeshVoronoiOptions
-from medialaxis.mesh.sample_delaunay import tetrahedralised_sample
-from medialaxis.mesh.sampling import (
+from medialaxis.mesh.sample.sample_delaunay import tetrahedralised_sample
+from medialaxis.mesh.sample.sampling import (
     adaptive_spacing,
     lfs_estimate,
     pseudo_normals,
     sample_count,
     sample_surface,
 )
-from medialaxis.mesh.signed_distance import SignedDistance
-from medialaxis.mesh.stray_cycles import complement_voids, without_stray_cycles
-from medialaxis.mesh.voronoi_complex import euler_characteristic, medial_complex
+from medialaxis.mesh.sample.signed_distance import SignedDistance
+from medialaxis.mesh.solid.crossings import crossing_pairs, shell_labels, solid_betti
+from medialaxis.mesh.solid.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
 
@@ -93,7 +93,7 @@ def voronoi_medial_axis(
         made consistent and outward; small holes are capped; a surface that
         passes through itself or whose shells overlap or nest is replaced by
         the surface of the solid where its generalized winding number is at
-        least 1/2 (:mod:`medialaxis.mesh.arrangement`), with a warning. These
+        least 1/2 (:mod:`medialaxis.mesh.solid.arrangement`), with a warning. These
         repairs are listed in ``metadata["repairs"]``, what was found in
         ``metadata["defects"]``.
     callback : callable, optional
@@ -127,7 +127,7 @@ def voronoi_medial_axis(
         usually larger than the shape, hence the practical default ``lam``),
         ``euler_characteristic``, ``n_filling_faces``, ``n_cut_cycles`` (cycles the
         solid lacks, cut where they ran through points that are not medial:
-        :mod:`~medialaxis.mesh.stray_cycles`), ``timings`` (seconds
+        :mod:`~medialaxis.mesh.medial.stray_cycles`), ``timings`` (seconds
         per step; ``epsilon`` is the wait for the work done beside the Delaunay
         insertion: the thin-part check, the crossing check, epsilon, the closest-point structure),
         ``delaunay_share`` and ``defects`` (crossings, holes). The compact complex keeps a subset
@@ -189,7 +189,7 @@ def voronoi_medial_axis(
             raise InvalidInputError(f"simplify_error must be a float in (0, 1) of the diagonal, got {simplify_error!r}")
         simplify = simplify_error
     if simplify is not None or simplify_mode != "medial":
-        from medialaxis.mesh.qmat import check_simplify
+        from medialaxis.mesh.simplify.qmat import check_simplify
 
         if simplify is None:
             raise InvalidInputError("simplify_mode needs simplify or simplify_error")
@@ -340,7 +340,7 @@ def voronoi_medial_axis(
     }
     result = MedialAxis(points, radii, edges, faces, extras=extras, metadata=metadata, shape=src.mesh)
     if compact:
-        from medialaxis.mesh.compact import COMPACT_TOLERANCE, compact_medial_axis
+        from medialaxis.mesh.medial.compact import COMPACT_TOLERANCE, compact_medial_axis
 
         stage("compact")
         t0 = time.perf_counter()
@@ -359,7 +359,7 @@ def voronoi_medial_axis(
             "sampling is lost or added; raise samples", MedialAxisWarning, stacklevel=2)
     if simplify is None:
         return result
-    from medialaxis.mesh.qmat import simplify_medial_mesh
+    from medialaxis.mesh.simplify.qmat import simplify_medial_mesh
 
     stage("simplify")
     return simplify_medial_mesh(result, simplify, surface=src.mesh, signed=sd, mode=simplify_mode)

@@ -1,0 +1,2 @@
+"""Curve skeletons by the diffusion flow (the contracting mesh, its graph, centring), their re-pruning by branch and
+skeleton-driven deformation."""
