@@ -66,6 +66,15 @@ def test_a_dataclass_keywords_and_a_mapping_give_the_same_axis():
     assert overridden.metadata["tolerance"] == by_keywords.metadata["tolerance"] == 0.01
 
 
+def test_another_methods_options_give_what_they_set():
+    plate = np.zeros((16, 24, 24), bool)
+    plate[6:10, 4:20, 4:20] = True
+    voxel_options = VoxelOptions(lam=2.0)
+    assert mx.medial_axis(plate, method="midsurface", options=voxel_options).metadata["lam"] == 2.0
+    with pytest.raises(InvalidInputError, match="unknown option\\(s\\) 'extend'"):
+        mx.medial_axis(plate, method="voxels", options=MidsurfaceOptions(extend=False))
+
+
 def test_an_unknown_option_names_the_accepted_ones():
     with pytest.raises(InvalidInputError, match=r"unknown option\(s\) 'tolerence'.* tolerance"):
         planar_axis(box(0, 0, 4, 2), tolerence=0.1)

@@ -139,9 +139,15 @@ def parameter_docs(cls: type) -> str:
 
 
 def make_options(cls: type[Options], options: Any, overrides: Mapping[str, Any], where: str) -> Any:
-    """``options`` (an instance of ``cls``, a mapping or None) with ``overrides`` applied, checked."""
-    if isinstance(options, cls):
+    """``options`` (options of ``cls`` or of another method, a mapping or None) with ``overrides`` applied, checked.
+
+    Another method's options give what they set (``VoxelOptions(lam=2)`` to the mid-surface), and are
+    refused where they set an option this one lacks.
+    """
+    if type(options) is cls:
         base = {f.name: getattr(options, f.name) for f in dataclasses.fields(cls)}
+    elif isinstance(options, Options):
+        base = options.changed()
     elif isinstance(options, Mapping):
         base = dict(options)
     elif options is None:
