@@ -36,7 +36,7 @@ from medialaxis.volume.distance import Features, feature_transform
 from medialaxis.volume.files.ome_zarr import is_ome_zarr_out, write_in_memory
 from medialaxis.volume.inputs import VolumeInput, load_volume
 from medialaxis.volume.medial import DEFAULT_LAM_RATIO, MedialVoxels, medial_voxels
-from medialaxis.volume.options import MidsurfaceOptions
+from medialaxis.volume.options import MidsurfaceOptions, VoxelOptions
 from medialaxis.volume.plates import PlateThickness, plate_thickness
 from medialaxis.volume.sheet.polygonize import Polygonization
 from medialaxis.volume.sheet.stages import (
@@ -51,7 +51,8 @@ from medialaxis.volume.sheet.stages import (
 )
 from medialaxis.volume.shell import isosurface_shell
 
-__all__ = ["midsurface_medial_axis", "volume_stages", "VolumeStages", "iso_of", "thickness_and_lam", "STAGES"]
+__all__ = ["midsurface_medial_axis", "volume_stages", "VolumeStages", "iso_of", "thickness_and_lam", "medial_stages",
+           "block_options", "STAGES"]
 
 #: The stages the callback hears of, in order (the whole volume in memory).
 STAGES = ("binarize", "distance", "medial voxels", "polygonize", "dents", "extension")
@@ -97,6 +98,31 @@ def iso_of(iso: Any, threshold: Any) -> Any:
     if iso is not None and threshold is not None and float(iso) != float(threshold):
         raise InvalidInputError(f"iso={iso!r} and threshold={threshold!r} disagree; give one")
     return iso if iso is not None else threshold
+
+
+def block_options(opts: VoxelOptions) -> dict[str, Any]:
+    """The keywords of the chunked route for ``opts``: ``iso`` from ``iso`` or ``threshold``, the rest as given
+    (the block size is decided apart, by :func:`~medialaxis.volume.blockwise.chunked.use_chunks`)."""
+    given = {k: v for k, v in vars(opts).items() if k not in ("iso", "threshold", "chunks")}
+    return dict(given, iso=iso_of(opts.iso, opts.threshold))
+
+
+def medial_stages(volume: Any, opts: VoxelOptions, clock: StageClock) -> tuple[VolumeInput, MedialStage, Any]:
+    """The stages both volume methods share, whole in memory: binarize, distance, medial voxels.
+
+    Returns the loaded volume, its medial voxels with their grid, plates and
+    lambda, and what the medial test left out (:func:`dropped_report`).
+    """
+    with clock("binarize"):
+        src = load_volume(volume, iso=iso_of(opts.iso, opts.threshold), spacing=opts.spacing, raw_shape=opts.raw_shape,
+                          raw_dtype=opts.raw_dtype)
+    with clock("distance"):
+        features = feature_transform(src)
+        plates, lam = thickness_and_lam(features, opts.thickness, opts.lam)
+    with clock("medial voxels"):
+        medial = medial_voxels(features, lam, plates)
+        dropped = dropped_report(medial, plates, lam)
+    return src, MedialStage(medial, features, plates, lam), dropped
 
 
 def thickness_and_lam(features: Features, thickness: Any, lam: Any) -> tuple[PlateThickness, float | None]:
@@ -152,16 +178,7 @@ def volume_stages(
         raise InvalidInputError(f"the stages are kept whole in memory: {', '.join(chunked)} do not apply")
     density = check_number(opts.density, "density", positive=True)
     clock = StageClock("midsurface", STAGES, callback, opts.show_progress, desc="mid-surface")
-    with clock("binarize"):
-        src = load_volume(volume, iso=iso_of(opts.iso, opts.threshold), spacing=opts.spacing, raw_shape=opts.raw_shape,
-                          raw_dtype=opts.raw_dtype)
-    with clock("distance"):
-        features = feature_transform(src)
-        plates, lam = thickness_and_lam(features, opts.thickness, opts.lam)
-    with clock("medial voxels"):
-        medial = medial_voxels(features, lam, plates)
-        dropped = dropped_report(medial, plates, lam)
-    stage = MedialStage(medial, features, plates, lam)
+    src, stage, dropped = medial_stages(volume, opts, clock)
     with clock("polygonize"):
         sheet = polygonize_stage(stage, density, opts.rng)
     with clock("dents"):
@@ -169,7 +186,7 @@ def volume_stages(
     with clock("extension"):
         if opts.extend:
             sheet = extension_stage(stage, sheet, src.grey, src.iso, src.spacing, density)
-    metadata = stage_metadata("midsurface", src.iso, plates, lam, dropped, src.spacing, src.mask.shape,
+    metadata = stage_metadata("midsurface", src.iso, stage.plates, stage.lam, dropped, src.spacing, src.mask.shape,
                               threshold_method=src.threshold_method)
     metadata.update({"extend": bool(opts.extend), "remove_dents": bool(opts.remove_dents), "density": density})
     timings = clock.timings
@@ -178,7 +195,7 @@ def volume_stages(
     timings["shell"] = time.perf_counter() - t0
     metadata["timings"] = timings
     result, steps = assemble(stage, sheet, metadata, shell)
-    return VolumeStages(src, features, stage.thickness, lam, medial, sheet.mesh, result, timings, steps)
+    return VolumeStages(src, stage.grid, stage.thickness, stage.lam, stage.medial, sheet.mesh, result, timings, steps)
 
 
 @takes_options(MidsurfaceOptions)
@@ -255,9 +272,7 @@ def midsurface_medial_axis(
     opts = make_options(MidsurfaceOptions, options, kwargs, "midsurface_medial_axis")
     sizes = use_chunks(volume, opts.chunks, opts.scheduler, opts.raw_shape, opts.raw_dtype)
     if sizes is not None:
-        given = {k: v for k, v in vars(opts).items() if k not in ("iso", "threshold", "chunks")}
-        return chunked_midsurface(volume, chunks=sizes, iso=iso_of(opts.iso, opts.threshold), callback=callback,
-                                  **given)
+        return chunked_midsurface(volume, chunks=sizes, callback=callback, **block_options(opts))
     check_out(opts.out)
     stages = volume_stages(volume, dataclasses.replace(opts, out=None, spill=None, chunks=None, scheduler=None,
                                                        n_jobs=None), callback=callback)

@@ -12,13 +12,10 @@ from medialaxis._progress import Progress, StageClock
 from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.volume.blockwise.chunked import chunked_voxels, use_chunks
-from medialaxis.volume.distance import feature_transform
-from medialaxis.volume.inputs import load_volume
-from medialaxis.volume.medial import medial_voxels
 from medialaxis.volume.options import VoxelOptions
-from medialaxis.volume.pipeline import iso_of, thickness_and_lam
+from medialaxis.volume.pipeline import block_options, medial_stages
 from medialaxis.volume.regions import VOXEL_KINDS, classify_voxels
-from medialaxis.volume.sheet.stages import dropped_report, stage_metadata
+from medialaxis.volume.sheet.stages import stage_metadata
 from medialaxis.volume.shell import isosurface_shell
 from medialaxis.volume.voxel_table import voxel_table
 
@@ -67,22 +64,14 @@ def medial_voxel_axis(
     opts = make_options(VoxelOptions, options, kwargs, "medial_voxel_axis")
     sizes = use_chunks(volume, opts.chunks, opts.scheduler, opts.raw_shape, opts.raw_dtype)
     if sizes is not None:
-        given = {k: v for k, v in vars(opts).items() if k not in ("iso", "threshold", "chunks")}
-        return chunked_voxels(volume, chunks=sizes, iso=iso_of(opts.iso, opts.threshold), callback=callback, **given)
+        return chunked_voxels(volume, chunks=sizes, callback=callback, **block_options(opts))
     started = time.perf_counter()
     clock = StageClock("voxels", STAGES, callback, opts.show_progress)
-    with clock("binarize"):
-        src = load_volume(volume, iso=iso_of(opts.iso, opts.threshold), spacing=opts.spacing, raw_shape=opts.raw_shape,
-                          raw_dtype=opts.raw_dtype)
-    with clock("distance"):
-        features = feature_transform(src)
-        plates, lam_value = thickness_and_lam(features, opts.thickness, opts.lam)
-    with clock("medial voxels"):
-        medial = medial_voxels(features, lam_value, plates)
-        dropped = dropped_report(medial, plates, lam_value)
+    src, stage, dropped = medial_stages(volume, opts, clock)
+    medial, features = stage.medial, stage.grid
     with clock("classify"):
         kind = classify_voxels(voxel_table(medial.voxels, features.index.shape), medial.voxels)
-    metadata = stage_metadata("voxels", src.iso, plates, lam_value, dropped, src.spacing, src.mask.shape,
+    metadata = stage_metadata("voxels", src.iso, stage.plates, stage.lam, dropped, src.spacing, src.mask.shape,
                               threshold_method=src.threshold_method)
     metadata.update(voxel_kinds=VOXEL_KINDS, timings=dict(clock.timings, total=time.perf_counter() - started))
     return MedialAxis(
