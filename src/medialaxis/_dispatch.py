@@ -65,6 +65,17 @@ REPRUNERS: dict[tuple[str, str], str] = {
     ("mesh", "flow"): "medialaxis.mesh.skeleton.branch_prune:reprune",
 }
 
+#: A compiled kernel that every call of each method runs, keyed by (domain, method): while it is not compiled
+#: yet (the first call after an install, unless ``medialaxis warmup`` ran), the call says on a terminal that it
+#: compiles (:func:`medialaxis._jit.announce_compiling`).
+FIRST_KERNELS: dict[tuple[str, str], str] = {
+    ("planar", "voronoi"): "medialaxis.planar.boundary._rounds_kernels:incremental_rounds",
+    ("mesh", "voronoi"): "medialaxis.mesh.sample._delaunay_kernels:_insert",
+    ("mesh", "flow"): "medialaxis.mesh.solid._intersect_kernels:near_pairs",
+    ("volume", "midsurface"): "medialaxis.volume._kernels:adjacent_gaps",
+    ("volume", "voxels"): "medialaxis.volume._kernels:adjacent_gaps",
+}
+
 #: The default colour axis of a 3D array (scikit-image's ``channel_axis``).
 CHANNEL_AXIS = -1
 
@@ -180,6 +191,13 @@ def resolve(domain: str, method: str | None) -> tuple[str, Callable[..., Any]]:
         known = ", ".join(sorted(available)) or "none yet"
         raise InvalidInputError(f"method {name!r} does not apply to {domain} input (available: {known})")
     return name, _load(available[name])
+
+
+def announce_compiling(domain: str, method: str) -> bool:
+    """Say on a terminal that this call compiles the method's kernels, when it will (see :data:`FIRST_KERNELS`)."""
+    from medialaxis import _jit
+
+    return _jit.announce_compiling(_load(FIRST_KERNELS[domain, method]), f"{domain} {method}")
 
 
 @functools.lru_cache(maxsize=64)

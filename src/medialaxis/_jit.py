@@ -8,6 +8,10 @@ the kernels are cached in a private folder under the system's temporary
 directory, and if even that cannot be written they are compiled in memory
 on first use (slower start, same results).
 
+:func:`announce_compiling` says so on a terminal when a method is about to
+compile its kernels (the first call after an install, unless
+``medialaxis warmup`` ran).
+
 :class:`Beside` runs a function on a second thread while the caller runs a
 serial kernel, where numba's threading layer lets two threads launch
 parallel kernels at once; its errors reach the caller as raised (running
@@ -17,6 +21,7 @@ out of memory as a :class:`~medialaxis.errors.ResourceLimitError`).
 from __future__ import annotations
 
 import os
+import sys
 import tempfile
 import threading
 from collections.abc import Callable
@@ -27,7 +32,7 @@ import numpy as np
 
 from medialaxis.errors import ResourceLimitError
 
-__all__ = ["njit", "prange", "Beside", "concurrent_kernels"]
+__all__ = ["njit", "prange", "Beside", "concurrent_kernels", "is_compiled", "announce_compiling"]
 
 prange = numba.prange
 
@@ -69,6 +74,38 @@ def njit(*args: Any, **options: Any) -> Any:
         return numba.njit(*args, **{**options, "cache": False})(fn)
 
     return decorate
+
+
+#: Set by ``medialaxis warmup``, which compiles on purpose and says so itself.
+QUIET = False
+
+
+def is_compiled(kernel: Any) -> bool:
+    """Whether numba has machine code for ``kernel`` in this process or in its disk cache.
+
+    Uses numba's cache index file (``<module>.<function>-<line>.py311.nbi``):
+    False also where no index can be found (a kernel compiled in memory only).
+    """
+    if getattr(kernel, "signatures", None):
+        return True
+    index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
+    return isinstance(index, str) and os.path.exists(index)
+
+
+def announce_compiling(kernel: Any, what: str, stream: Any = None) -> bool:
+    """One line on ``stream`` (stderr), when it is a terminal, if ``kernel`` is not compiled yet; whether it was said.
+
+    ``kernel`` is one that every call of the method compiles, so that the
+    user learns why the first call after an install is slow (numba compiles
+    on first use; about a minute for a mesh method on two cores).
+    """
+    stream = sys.stderr if stream is None else stream
+    if QUIET or is_compiled(kernel) or not getattr(stream, "isatty", lambda: False)():
+        return False
+    stream.write(f"medialaxis: compiling the {what} kernels on this first call (once: they are cached on disk; "
+                 "`medialaxis warmup` compiles every method's ahead)\n")
+    stream.flush()
+    return True
 
 
 @njit(parallel=True, cache=True)

@@ -88,4 +88,5 @@ def medial_axis(
     if domain == _dispatch.RESULT:
         return _dispatch.load_result(shape, method, kwargs)
     name, fn = _dispatch.resolve(domain, method)
+    _dispatch.announce_compiling(domain, name)
     return _dispatch.call_checked(fn, shape, kwargs)
