@@ -70,7 +70,9 @@ def contact_arcs(contact, arc, ring, ring_length):  # type: ignore[no-untyped-de
 @njit(cache=True, nogil=True)
 def _means(pos, cluster):  # type: ignore[no-untyped-def]
     """``(points, count)``: each cluster's mean point (``np.bincount``'s sums, in index order) and size."""
-    n = cluster.max() + 1 if len(cluster) else 0
+    n = 0
+    for i in range(len(cluster)):  # cluster.max() + 1: NumPy's max compiles an iterator and a take
+        n = max(n, cluster[i] + 1)
     count = np.zeros(n, np.int64)
     sums = np.zeros((n, 2))
     for i in range(len(pos)):

@@ -57,7 +57,7 @@ def _in_circle(x, y, a, b, c, p):  # type: ignore[no-untyped-def]
             + (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _hilbert_key(x, y, bits):  # type: ignore[no-untyped-def]
     """Position of the point ``(x, y)`` of ``[0, 1]^2`` along a Hilbert curve on a ``2**bits`` grid."""
     side = (1 << bits) - 1
@@ -78,7 +78,7 @@ def _hilbert_key(x, y, bits):  # type: ignore[no-untyped-def]
     return d
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _stable_sort_by_key(values, key, lo, hi):  # type: ignore[no-untyped-def]
     """Sort ``values[lo:hi]`` by ``key[lo:hi]`` (both reordered), ties in their order: a bottom-up merge sort."""
     n = hi - lo

@@ -174,7 +174,7 @@ def _sure_distance(near, k, points, nxt, prv, qx, qy):  # type: ignore[no-untype
     return np.sqrt(least)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def grid_distance(query, points, nxt, prv, k, x0, y0, cell, g, start, members):  # type: ignore[no-untyped-def]
     """:func:`boundary_distance_kernel` in the grid of :func:`sample_grid` made already."""
     near, sure = nearest_in_grid(query, points, k, x0, y0, cell, g, start, members)

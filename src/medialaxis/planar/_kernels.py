@@ -71,8 +71,8 @@ def triangle_centroids(points, simplices, sliver):  # type: ignore[no-untyped-de
             cy[m] = (points[a, 1] + points[b, 1] + points[c, 1]) / 3.0
             m += 1
     out = np.empty((m, 2))
-    out[:, 0] = cx[:m]
-    out[:, 1] = cy[:m]
+    for i in range(m):  # element by element: a slice assignment compiles its shape error's string formatting
+        out[i, 0], out[i, 1] = cx[i], cy[i]
     return proper, out
 
 

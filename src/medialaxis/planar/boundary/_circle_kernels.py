@@ -43,7 +43,7 @@ def _whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-d
     return out
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def whole_circles(corner, inside, centres, radii):  # type: ignore[no-untyped-def]
     """:func:`_whole_circles` (its reference) without sorting every inside triangle.
 
@@ -110,7 +110,7 @@ def _bucket(x, low, scale, n):  # type: ignore[no-untyped-def]
     return int(min(max((x - low) * scale, 0.0), n - 1.0))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _bucket_starts(xs, scale):  # type: ignore[no-untyped-def]
     """For each bucket of :func:`_bucket` over the sorted finite ``xs``, the first ``xs`` in it or a later one: every
     one before lies below each ``x`` of that bucket (the bucket never decreases with ``x``), so a search for ``x``

@@ -53,7 +53,7 @@ PROGRESSION = 3.0
 REACH = 4.0 * (1.0 + 1e-6)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def sample_edges(arc, ring, offset, rings_s, rings_start):  # type: ignore[no-untyped-def]
     """The edge of each sample (its first vertex, numbered in its ring) and whether the sample is that vertex."""
     n = len(arc)
@@ -180,7 +180,7 @@ def corner_piece_state_memo(simplices, inside, radii, centres, nxt, arc, ring, o
     return conforming, radius
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex):  # type: ignore[no-untyped-def]
     """Give the mirrored pieces at each convex vertex the smaller radius and the conformity of both."""
     n = len(nxt)
@@ -193,7 +193,7 @@ def _mirror_pairs(conforming, radius, nxt, arc, ring, offset, edge, at_vertex, r
                                rings_start, convex)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _mirror_pass(conforming, radius, nxt, prev, arc, ring, offset, edge, at_vertex, rings_s, rings_start, convex):  # type: ignore[no-untyped-def]
     """One pass of :func:`_mirror_pairs` over the convex vertices; whether it changed anything."""
     n = len(nxt)

@@ -73,7 +73,7 @@ def touching_vertices(xy, start):  # type: ignore[no-untyped-def]
     return out
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def pinched_radius(simplices, counted, radii, nxt, radius, ring, edge, at_vertex, rings_start, touching):  # type: ignore[no-untyped-def]
     """Lower ``radius`` (each piece ``(i, nxt[i])``'s, in place) by the triangles at a pinch (see the module docstring).
 

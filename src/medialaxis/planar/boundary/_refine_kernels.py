@@ -33,7 +33,7 @@ __all__ = ["CORNERS", "insert_batch", "fresh_triangles", "split_linked", "interp
 CORNERS = 4
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def insert_batch(x, y, tv, tn, count, order, hint, near):  # type: ignore[no-untyped-def]
     """Insert the vertices ``order`` into the triangulation, each walking from ``near[hint[m]]``.
 
@@ -90,7 +90,7 @@ def fresh_triangles(points, tv, count, fresh, centre, radius, where, sliver, seg
     return slot[:n_unsure], gx[:n_unsure], gy[:n_unsure]
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, n, tolerance, min_length, ratio,  # type: ignore[no-untyped-def]
                  over_split=OVER_SPLIT):
     """Split the pieces ``(i, nxt[i])`` of the vertices ``CORNERS .. n - 1`` that are too long.
@@ -111,7 +111,8 @@ def split_linked(arc, nxt, ring, points, ring_length, piece_radius, conforming, 
     new_ring = np.empty(total, np.int64)
     piece = np.empty(total, np.int64)
     out = np.full(n + total, -1, np.int64)
-    out[:n] = nxt[:n]
+    for i in range(n):
+        out[i] = nxt[i]
     m = 0
     for i in range(CORNERS, n):
         k = count[i]
@@ -162,7 +163,7 @@ def interp(x, xp, fp, j):  # type: ignore[no-untyped-def]
     return out, j
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def insert_round(x, y, tv, tn, count, order, hint, near, points, centre, radius, where, sliver, segments, start,
                  members, y0, height):  # type: ignore[no-untyped-def]
     """:func:`insert_batch`, then :func:`fresh_triangles`: ``(count, ok, unsure, gx, gy)``."""
@@ -174,7 +175,7 @@ def insert_round(x, y, tv, tn, count, order, hint, near, points, centre, radius,
     return count, True, unsure, gx, gy
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points, x, y, near, rings_s, rings_xy, rings_start,  # type: ignore[no-untyped-def]
                  convex, touching, ring_length, lo, extent, jitter, tolerance, min_length, ratio, settled_share,
                  over_split=OVER_SPLIT):
@@ -209,19 +210,16 @@ def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points,
     if m == 0 or n - CORNERS + m > len(jitter):
         return (m if m == 0 else -1), settled, points, arc, ring, nxt, x, y, near, empty, empty
     points_out = np.empty((n + m, 2))
-    points_out[:n] = points
     arc_out = np.empty(n + m)
-    arc_out[:n] = arc
-    arc_out[n:] = new_arc
     ring_out = np.empty(n + m, np.int64)
-    ring_out[:n] = ring
-    ring_out[n:] = new_ring
     x_out = np.empty(n + m)
-    x_out[:n] = x
     y_out = np.empty(n + m)
-    y_out[:n] = y
     near_out = np.zeros(n + m, np.int64)
-    near_out[:n] = near
+    for i in range(n):  # element by element: a slice assignment compiles its shape error's string formatting
+        points_out[i, 0], points_out[i, 1] = points[i, 0], points[i, 1]
+        arc_out[i], ring_out[i], x_out[i], y_out[i], near_out[i] = arc[i], ring[i], x[i], y[i], near[i]
+    for i in range(m):
+        arc_out[n + i], ring_out[n + i] = new_arc[i], new_ring[i]
     for i in range(m):
         r = new_ring[i]
         s = rings_s[rings_start[r] : rings_start[r + 1]]
@@ -233,6 +231,20 @@ def refine_round(tv, count, where, centre, radius, memo, nxt, arc, ring, points,
         y_out[n + i] = (points_out[n + i, 1] - lo[1]) / extent + jitter[n - CORNERS + i, 1]
     order = insertion_order(x_out[n:], y_out[n:])
     return m, settled, points_out, arc_out, ring_out, nxt_out, x_out, y_out, near_out, order + n, piece[order]
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _unique(values):  # type: ignore[no-untyped-def]
+    """``np.unique(values)`` of a float array, sorted by the stable sort :func:`assembled` compiles already
+    (equal values are equal whichever sort orders them; NaNs are one, as in numba's ``np.unique``)."""
+    b = values[np.argsort(values, kind="mergesort")]
+    out = np.empty(len(b))
+    m = 0
+    for i in range(len(b)):
+        if i == 0 or (b[i - 1] != b[i] and not (b[i - 1] != b[i - 1] and b[i] != b[i])):
+            out[m] = b[i]
+            m += 1
+    return out[:m]
 
 
 @njit(cache=True, nogil=True)
@@ -255,7 +267,10 @@ def first_sample(rings_xy, rings_s, rings_start, max_length, tolerance, min_leng
         count = np.empty(len(s) - 1, np.int64)
         for j in range(len(s) - 1):
             count[j] = np.int64(max(1.0, np.ceil((s[j + 1] - s[j]) / max_length)))
-        a = np.empty(count.sum())
+        size = 0
+        for j in range(len(count)):  # count.sum(): its axis check compiles string formatting
+            size += count[j]
+        a = np.empty(size)
         m = 0
         for j in range(len(s) - 1):
             seg = s[j + 1] - s[j]
@@ -264,7 +279,7 @@ def first_sample(rings_xy, rings_s, rings_start, max_length, tolerance, min_leng
                 m += 1
         twins = corner_twins(a, s, rings_xy[rings_start[r] : rings_start[r + 1]], tolerance, min_length, ratio)
         if len(twins):
-            a = np.unique(np.concatenate((a, twins)))
+            a = _unique(np.concatenate((a, twins)))
         arcs.append(a)
         total += len(a)
     points = np.empty((total, 2))

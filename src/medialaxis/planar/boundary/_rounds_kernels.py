@@ -86,7 +86,7 @@ def sample_box(points):  # type: ignore[no-untyped-def]
     return lo, extent
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def grown(array, rows, keep, fill):  # type: ignore[no-untyped-def]
     """``array`` (2-D) with at least ``rows`` rows (twice as many when it grows), its first ``keep`` rows kept.
 
@@ -95,18 +95,21 @@ def grown(array, rows, keep, fill):  # type: ignore[no-untyped-def]
     if len(array) >= rows:
         return array
     out = np.empty((max(rows, 2 * len(array)), array.shape[1]), array.dtype)
-    out[:keep] = array[:keep]
+    for i in range(keep):  # element by element: a slice assignment compiles its shape error's string formatting
+        for j in range(array.shape[1]):
+            out[i, j] = array[i, j]
     out[keep:] = fill
     return out
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _grown_rows(array, rows, keep):  # type: ignore[no-untyped-def]
     """:func:`grown` of a 1-D array, the new rows not filled."""
     if len(array) >= rows:
         return array
     out = np.empty(max(rows, 2 * len(array)), array.dtype)
-    out[:keep] = array[:keep]
+    for i in range(keep):
+        out[i] = array[i]
     return out
 
 
