@@ -50,6 +50,7 @@ from medialaxis.mesh.medial._ring_kernels import (
 )
 from medialaxis.mesh.medial._voronoi_kernels import minor_star_groups, small_cavities
 from medialaxis.mesh.medial.voronoi_diagram import Tetrahedralisation, edge_rings
+from medialaxis.mesh.sample._rows import radix_argsort
 
 __all__ = ["MedialComplex", "medial_complex", "fan_triangles", "unpinch", "open_cells", "euler_characteristic", "TOPOLOGY_MODES"]
 
@@ -141,7 +142,7 @@ def _select(ring_ptr: np.ndarray, ring_tets: np.ndarray, keep: np.ndarray) -> tu
     return gather_rings(ring_ptr, ring_tets, np.flatnonzero(keep))
 
 
-def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray, inner: np.ndarray) -> np.ndarray:
+def unpinch(dt: Tetrahedralisation, inner: np.ndarray) -> np.ndarray:
     """Inner tetrahedra whose union is not pinched at a sample point.
 
     Around a sample point on the surface, flat tetrahedra whose centroids
@@ -167,8 +168,6 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
     Parameters
     ----------
     dt : Tetrahedralisation
-    ring_ptr, ring_tets : ndarray
-        Rings of all Delaunay edges (:func:`~medialaxis.mesh.medial.voronoi_diagram.edge_rings`).
     inner : (t,) bool ndarray
 
     Returns
@@ -177,8 +176,6 @@ def unpinch(dt: Tetrahedralisation, ring_ptr: np.ndarray, ring_tets: np.ndarray,
         A corrected copy.
     """
     inner = np.array(inner, dtype=bool, copy=True)
-    if len(ring_tets) == 0:
-        return inner
     volume = dt.volume
     # A point's groups depend on its star alone: a call needs to look only at the points with a
     # tetrahedron written since the same call last ran (a flag set back counts: pockets filled
@@ -356,9 +353,10 @@ def medial_complex(
         tets = np.flatnonzero(dt.longest >= lam)
         medial[tets] = centre_inside(tets)
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, tets, lam)
-    else:
+    else:  # the serial unpinching runs beside the parallel ring walks, which need none of it (0.3 s on the uv ellipsoid)
+        unpinched = Beside(unpinch, dt, inner)
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
-        inner = unpinch(dt, ring_ptr, ring_tets, inner)
+        inner = unpinched.result() if len(ring_tets) else inner  # no inner edge: nothing to unpinch
     member = medial if topology == "lambda" else inner
     keep = ring_all(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
     if topology != "lambda":
@@ -384,7 +382,7 @@ def medial_complex(
         n_sides = len(side_ends)
         # facets numbered by collapse order (length, then index): the collapse then reads them
         # nearly in sequence (1.7 -> 1.1 s on 1.5M facets); the result is the same
-        by_length = np.argsort(length, kind="stable")
+        by_length = radix_argsort(length.view(np.int64))  # stable; lengths >= 0 sort as their bits (0.15 -> 0.07 s)
         fptr, fsides = gather_rings(ring_ptr, facet_sides, by_length)
         sptr, sidx = csr_transpose(fptr, fsides, n_sides)
         medial[tets] = asked.result()

@@ -247,6 +247,7 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
             # ---- cavity: tetrahedra strictly in conflict, grown from root
             cav[0] = root
             nc = 1
+            tie = False
             mark[root] = s_in
             head = 0
             full = False
@@ -266,6 +267,7 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
                         cav[nc] = u
                         nc += 1
                     else:
+                        tie |= c == 0
                         mark[u] = s_out
                 if full:
                     break
@@ -273,10 +275,15 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
                 why = _GROW_BUFFERS
                 break
 
-            # ---- every boundary face must be strictly visible from p. Checked for every face: a tie
-            # (p on a hull face's plane) or an earlier repair can break what exact Delaunay promises.
+            # ---- every boundary face must be strictly visible from p. Exact Delaunay promises it when the
+            # triangulation is Delaunay (no point moved further, no cavity shrunk so far) and no boundary
+            # neighbour is tied (p on its circumsphere or its hull plane): a tetrahedron whose circumsphere
+            # holds p strictly, across a locally Delaunay face from one whose sphere leaves it strictly out,
+            # sees p strictly on its side of that face (the two balls differ only there). Otherwise every
+            # face is checked: a tie or an earlier repair can break that promise. (Checking always cost 13%
+            # of the insertion on the uv ellipsoid's 221k samples, and never failed there.)
             ok = True
-            changed = True
+            changed = tie or stats[_MOVED] > 0 or stats[_SHRUNK] > 0
             while changed and ok:
                 changed = False
                 for i in range(nc):
@@ -397,5 +404,3 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
     state[_STAMP] = stamp
     state[_HSTAMP] = hst
     return ii, why
-
-
