@@ -141,6 +141,7 @@ def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: n
     from medialaxis.mesh.solid.arrangement import solid_surface
     from medialaxis.mesh.solid.crossings import crossing_pairs, nested_shell
     from medialaxis.mesh.solid.degenerate import coordinate_accuracy
+    from medialaxis.mesh.solid.pinches import carve_pinches
 
     pairs = crossing_pairs(work) if pairs is None else pairs
     nested = nested_shell(work) if not len(pairs) else None
@@ -157,17 +158,19 @@ def resolve_solid(work: Any, repairs: list[str], found: dict[str, int], pairs: n
     solid = type(work)(surface.vertices, surface.faces, process=False)
     if not _closed(solid) or not solid.is_winding_consistent:
         crowded, open_edges = _edge_defects(solid)
-        return contoured(work, f"the surface passes through itself ({len(pairs)} pairs of crossing faces) and the "
-                         f"surface of the solid its winding number defines is not a closed manifold ({open_edges} open "
-                         f"edges, {crowded} edges of more than two faces: sheets within the accuracy of the "
-                         "coordinates)", repairs, found)
+        return contoured(work, f"the surface passes through itself ({len(pairs)} pairs of crossing faces) and the surface "
+                         f"of the solid its winding number defines is not a closed manifold ({open_edges} open edges, "
+                         f"{crowded} edges of more than two faces: sheets within the accuracy of the coordinates)", repairs, found)
     what = (f"the surface passes through itself ({len(pairs)} pairs of faces cross)" if len(pairs)
             else f"shell {nested} lies inside another shell's solid (nested or overlapping shells)" if nested is not None
             else "the surface passes through itself (where faces meet at a vertex or an edge)")
-    done = (f"{surface.cut_faces} faces cut where others cross them, {surface.dropped_faces} left out inside or "
-            f"outside the solid" + (f", {surface.flipped_faces} turned over" if surface.flipped_faces else ""))
+    solid, pinches = carve_pinches(solid)  # the interior's topology where the solid touches itself at a point
+    done = (f"{surface.cut_faces} faces cut where others cross them, {surface.dropped_faces} left out inside or outside "
+            f"the solid" + (f", {surface.flipped_faces} turned over" if surface.flipped_faces else "")
+            + (f", {pinches} points where it touches itself opened by a small ball" if pinches else ""))
     found.update(crossing_face_pairs=int(len(pairs)), nested_shells=int(nested is not None),
                  cut_faces=surface.cut_faces, dropped_faces=surface.dropped_faces)
+    found.update({"pinches_opened": pinches} if pinches else {})
     repairs.append(f"solid by winding number: {done}")
     warnings.warn(f"{what}: the medial axis is that of the solid where its winding number is at least 1/2 "
                   f"({done})", MedialAxisWarning, stacklevel=4)
@@ -205,9 +208,7 @@ def _drop_bad_faces(vertices: np.ndarray, faces: np.ndarray, repairs: list[str],
         area2 = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
         scale = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
         keep &= area2 > (1e-14 * scale) ** 2
-    _, first = np.unique(np.sort(faces, axis=1), axis=0, return_index=True)
-    unique = np.zeros(len(faces), bool)
-    unique[first] = True
+    unique = np.isin(np.arange(len(faces)), np.unique(np.sort(faces, axis=1), axis=0, return_index=True)[1])
     degenerate = int((~keep).sum())
     duplicate = int((keep & ~unique).sum())
     if degenerate:
