@@ -16,10 +16,10 @@ no other part of the surface: near ``p`` the solid is a cone from ``p``
 over the part ``L`` of the sphere around ``p`` that it holds, the interior
 near ``p`` is ``L`` times an interval, and the solid minus ``B`` keeps
 ``L`` times an interval too, with ``p`` gone. So :func:`carve_pinches` takes
-out, at each such point, a ball of about the spacing of the default sample
-(so that the sample resolves it), halved until the surface in the ball
-is one disk around each of the point's fans (the ball reaches no other
-sheet and cuts through no bar: either would change more than the pinch).
+out, at each such point, a ball of the spacing of the default sample (so
+that the sample resolves it) where the surface in the ball is one disk
+around each of the point's fans (the ball reaches no other sheet and cuts
+through no bar: either would change more than the pinch).
 
 References
 ----------
@@ -35,13 +35,14 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import csgraph
 
-__all__ = ["pinch_points", "carve_pinches", "CARVE_SPACINGS", "CARVE_HALVINGS"]
+__all__ = ["pinch_points", "carve_pinches", "CARVE_SPACINGS"]
 
 #: Radius of the ball taken out at a pinch, in spacings of the default sample
-#: (``sampling.MIN_SAMPLES`` samples, or one per vertex, spread evenly).
+#: (``sampling.MIN_SAMPLES`` samples, or one per vertex, spread evenly). A
+#: smaller ball is not resolved by the sample: a scanned seahorse, whose
+#: pinch lies among bars thinner than that, lost a handle more with a ball of
+#: half a spacing; where this one does not fit the pinch is left.
 CARVE_SPACINGS = 1.0
-#: Times the radius is halved at most when the ball reaches another sheet; then the pinch is left.
-CARVE_HALVINGS = 3
 #: Samples of the default sample at least (``medialaxis.mesh.sample.sampling.MIN_SAMPLES``).
 _DEFAULT_SAMPLES = 20_000
 
@@ -103,10 +104,9 @@ def carve_pinches(mesh: Any) -> tuple[Any, int]:
 
     ``mesh``: a closed, outward-oriented surface (a cut solid's, pinches kept
     as two vertex ids at one position). The ball's radius is
-    ``CARVE_SPACINGS`` spacings of the default sample, halved (at most
-    ``CARVE_HALVINGS`` times) while the faces within it are not one disk
-    around each of the pinch's fans (:func:`_cones_only`); a pinch where
-    none fits is left. The
+    ``CARVE_SPACINGS`` spacings of the default sample; a pinch where the
+    faces within it are not one disk around each of its fans
+    (:func:`_cones_only`) is left. The
     difference is the solid where the winding number of the surface and of
     the balls turned inward is at least 1/2
     (:func:`~medialaxis.mesh.solid.arrangement.solid_surface`).
@@ -137,14 +137,8 @@ def carve_pinches(mesh: Any) -> tuple[Any, int]:
         return mesh, 0
     tri = v[f]
     spacing = float(np.sqrt(2.0 / np.sqrt(3.0) * mesh.area / max(_DEFAULT_SAMPLES, len(v))))
-    balls = []
-    for p in points:
-        r = CARVE_SPACINGS * spacing
-        for _ in range(CARVE_HALVINGS + 1):
-            if _cones_only(f, tri, p, r):
-                balls.append((p, r))
-                break
-            r /= 2.0
+    r = CARVE_SPACINGS * spacing
+    balls = [(p, r) for p in points if _cones_only(f, tri, p, r)]
     if not balls:
         return mesh, 0
     import trimesh
