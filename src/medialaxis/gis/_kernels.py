@@ -94,8 +94,8 @@ def axis_widths_kernel(points, radii, edges):  # type: ignore[no-untyped-def]
     lo, hi = radii[0], radii[0]
     for i in range(n):
         lo, hi = min(lo, radii[i]), max(hi, radii[i])
-    if m == 0:
-        return 2 * lo, 2 * (pairwise_sum(radii, 0, n) / n), 2 * hi
+    if m == 0:  # summed from a copy: the caller's read-only radii would compile pairwise_sum a second time
+        return 2 * lo, 2 * (pairwise_sum(radii.copy(), 0, n) / n), 2 * hi
     length = np.empty(m)
     weighted = np.empty(m)
     for e in range(m):

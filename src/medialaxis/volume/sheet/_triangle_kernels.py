@@ -38,7 +38,9 @@ def _emit(out: np.ndarray, count: int, labs: np.ndarray) -> tuple[np.ndarray, in
         return out, count
     if count == out.shape[0]:
         bigger = np.full((2 * out.shape[0], 8), -1, np.int64)
-        bigger[:count] = out[:count]
+        for i in range(count):  # element by element: a slice assignment compiles its shape error's string formatting
+            for k in range(8):
+                bigger[i, k] = out[i, k]
         out = bigger
     pos = 8 - distinct
     for k in range(8):
@@ -62,7 +64,7 @@ def block_labels(neighbours: np.ndarray, shape: np.ndarray, voxels: np.ndarray, 
     """
     n = voxels.shape[0]
     out = np.full((max(16, n // 8), 8), -1, np.int64)
-    count = 0
+    count = np.int64(0)  # not the literal 0: _emit typed with it would compile twice
     rows = np.empty(8, np.int64)
     labs = np.empty(8, np.int64)
     for i in range(n):
