@@ -92,3 +92,46 @@ def test_the_spheroids_poles_take_medial_balls_not_patches(spheroid):
     assert _touches_two_sides(mesh, s.points, s.radii).all()
     assert (trimesh.proximity.signed_distance(mesh, s.points) >= 0.98 * s.radii).all()
     assert s.metadata["hausdorff"] / s.metadata["diagonal"] <= 0.0013
+
+
+@pytest.mark.parametrize("shape", ["spheroid", "torus"])
+def test_shrinking_balls_from_the_tangent_bound_are_the_largest_empty_tangent_balls(shape):
+    """The largest ball tangent at ``p`` (outward normal ``n``) holding no sample is, by brute force over the
+    samples ``q`` with ``(p - q).n > 0``, the least ``|p - q|^2 / (2 (p - q).n)`` (the ball through ``q``; the
+    larger ones hold it). The shrinking balls started from the bound of the nearest samples reach it, and
+    the bound is never below it. Exact normals: the spheroid's gradient, the torus's from its core circle."""
+    from medialaxis.mesh.simplify.medial_candidates import shrinking_balls, tangent_bound
+
+    if shape == "spheroid":
+        p = np.asarray(trimesh.creation.icosphere(subdivisions=3).vertices) * [A, B, B]
+        n = p / [A * A, B * B, B * B]
+    else:  # R = 3, r = 1: every medial ball has radius 1 (the core circle)
+        p = np.asarray(trimesh.creation.torus(3.0, 1.0, major_sections=48, minor_sections=24).vertices)
+        core = p * [1.0, 1.0, 0.0]
+        core *= 3.0 / np.linalg.norm(core, axis=1)[:, None]
+        n = p - core
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    v = p[:, None, :] - p[None, :, :]
+    cos = np.einsum("ijk,ik->ij", v, n)
+    truth = np.where(cos > 1e-9, (v * v).sum(axis=2) / (2.0 * np.where(cos > 1e-9, cos, 1.0)), np.inf).min(axis=1)
+    tree = cKDTree(p)
+    bound = tangent_bound(p, n, p, tree)
+    assert np.all(bound >= truth * (1.0 - 1e-12))
+    _, radii, _ = shrinking_balls(p, n, 100.0, p, tree)
+    np.testing.assert_allclose(radii, truth, rtol=1e-6)
+    if shape == "torus":
+        np.testing.assert_allclose(radii, 1.0, rtol=1e-6)
+
+
+def test_the_cover_repairs_gaps_are_the_envelope_gaps_of_its_result(spheroid):
+    """The cover repair keeps the gaps of the mesh it grows up to date (cones added, splits); the
+    simplification's error from the surface to the medial mesh is taken from them. Truth: ``envelope_gap``
+    of the returned mesh from scratch at the same surface points."""
+    from medialaxis.mesh.simplify.envelope import envelope_gap
+
+    mesh, ma = spheroid
+    s = simplify_medial_mesh(ma, 30)
+    sample = surface_sample(mesh)
+    faces = np.asarray(s.faces, np.int64).reshape(-1, 3)
+    want = envelope_gap(sample.points, s.points, s.radii, s.edges, faces)
+    assert s.metadata["hausdorff_surface_to_mat"] == float(np.abs(want).max())

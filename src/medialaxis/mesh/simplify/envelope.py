@@ -272,6 +272,7 @@ def two_sided_distance(
     sample: Any = None,
     budget: int = 100_000,
     signed: Any = None,
+    gaps: np.ndarray | None = None,
 ) -> tuple[float, float]:
     """Hausdorff distance both ways between ``surface`` and the boundary of the interpolated spheres.
 
@@ -290,6 +291,9 @@ def two_sided_distance(
     signed : SignedDistance, optional
         Of ``surface`` (made here when not given; pass one to measure many
         medial meshes against the same surface).
+    gaps : ndarray, optional
+        :func:`envelope_gap` of the medial mesh at ``sample``'s points, when
+        the caller has it (the cover repair keeps it up to date).
 
     Returns
     -------
@@ -309,7 +313,9 @@ def two_sided_distance(
     spheres = np.ascontiguousarray(np.c_[centres, radii], np.float64)
     prims = primitives(len(spheres), edges, faces)
     centre, reach = _bounds(spheres, prims)
-    surface_to_mat = float(np.abs(_gaps(x, spheres, prims, centre, reach, -np.inf)).max()) if len(x) else 0.0
+    if gaps is None:
+        gaps = _gaps(x, spheres, prims, centre, reach, -np.inf) if len(x) else np.zeros(0)
+    surface_to_mat = float(np.abs(gaps).max()) if len(x) else 0.0
     y = np.ascontiguousarray(envelope_samples(spheres, prims, budget))
     diag = float(np.linalg.norm(np.ptp(np.asarray(surface.vertices), axis=0)))
     # the samples' own spacing: median distance to the nearest other sample

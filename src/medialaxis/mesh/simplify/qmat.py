@@ -184,13 +184,13 @@ def simplify_medial_mesh(
         signed = SignedDistance(surface)  # one for every count tried
     medial = MedialCandidates(ma, sample, signed) if mode == "medial" else None
     if isinstance(simplify, (int, np.integer)):
-        parts = _reduce(ma, int(simplify), None, sample, medial)
-        errors = two_sided_distance(*parts, surface, sample, signed=signed) if measured else None
+        parts, gaps = _reduce(ma, int(simplify), None, sample, medial)
+        errors = two_sided_distance(*parts, surface, sample, signed=signed, gaps=gaps) if measured else None
     elif measured:
         parts, errors = _fewest(ma, float(simplify) * diag, surface, sample, signed, medial)
         metadata["target_met"] = max(errors) <= float(simplify) * diag
     else:
-        parts, errors = _reduce(ma, 1, float(simplify) * diag, None), None
+        parts, errors = _reduce(ma, 1, float(simplify) * diag, None)[0], None
     centres, radii, curve, out_faces = parts
     if errors is not None:
         h_sm, h_ms = errors
@@ -215,8 +215,8 @@ def _fewest(
 
     def error(k: int) -> float:
         if k not in tried:
-            parts = _reduce(ma, k, None, sample, medial)
-            tried[k] = (parts, two_sided_distance(*parts, surface, sample, signed=signed))
+            parts, gaps = _reduce(ma, k, None, sample, medial)
+            tried[k] = (parts, two_sided_distance(*parts, surface, sample, signed=signed, gaps=gaps))
         return max(tried[k][1])
 
     cap = 2 * len(ma.points) + MIN_SEARCH
@@ -235,7 +235,8 @@ def _fewest(
 
 
 def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any, medial: Any = None) -> tuple:
-    """``(centres, radii, edges, faces)`` of ``ma`` collapsed to ``count`` spheres, or until the root quadric error passes ``bound``.
+    """``(centres, radii, edges, faces)`` of ``ma`` collapsed to ``count`` spheres, or until the root quadric error passes ``bound``,
+    and the envelope gap at the ``sample``'s points when the cover repair has it (else ``None``).
 
     With a surface ``sample``, ``REPAIR_SHARE`` of the ``count`` spheres (or all
     that ``ma`` lacks) are placed last by :func:`~medialaxis.mesh.simplify.simplify_cover.cover_repair`.
@@ -264,9 +265,10 @@ def _reduce(ma: MedialAxis, count: int, bound: float | None, sample: Any, medial
             break
     spheres, keep, out_faces, curve = out, *_collapsed_mesh(into, ma.faces, edges)
     centres, radii = spheres[keep, :3], np.maximum(spheres[keep, 3], 0.0)
+    gaps = None
     if repair:
-        centres, radii, curve, out_faces = cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
-    return centres, radii, curve, out_faces
+        centres, radii, curve, out_faces, gaps = cover_repair(centres, radii, curve, out_faces, sample, repair, medial)
+    return (centres, radii, curve, out_faces), gaps
 
 
 _NO_SPHERES, _NO_STATE = np.zeros((0, 4)), np.zeros(0, np.int8)

@@ -24,6 +24,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from medialaxis.mesh.simplify.envelope import envelope_gap
+from medialaxis.mesh.simplify.medial_candidates import tangent_bound
 from medialaxis.mesh.simplify.simplify_split import split_at
 
 __all__ = ["cover_repair", "PATCH_GAP", "PATCH_SHARE", "SPLIT_GAIN", "TIP_DISC", "TIP_REACH"]
@@ -54,8 +55,11 @@ _ONE_EDGE, _NO_FACES = np.array([[0, 1]], np.int64), np.zeros((0, 3), np.int64)
 
 
 def _medial_ball(p: np.ndarray, n: np.ndarray, tree: cKDTree, samples: np.ndarray, start: float) -> tuple[np.ndarray, float]:
-    """The largest ball inside touching the surface at ``p`` (normal ``n``): shrinking ball (Ma et al. 2012)."""
-    r = start
+    """The largest ball inside touching the surface at ``p`` (normal ``n``): shrinking ball (Ma et al. 2012).
+
+    Started no larger than :func:`~medialaxis.mesh.simplify.medial_candidates.tangent_bound`.
+    """
+    r = min(start, float(tangent_bound(p[None], n[None], samples, tree)[0]))
     for _ in range(60):
         c = p - r * n
         d, q = tree.query(c, k=2)
@@ -102,7 +106,7 @@ def _inscribed(p: np.ndarray, n: np.ndarray, r: float, signed: Any) -> tuple[np.
 def cover_repair(
     centres: np.ndarray, radii: np.ndarray, curve: np.ndarray, faces: np.ndarray, sample: Any, extra: int,
     medial: Any = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Add ``extra`` spheres where the surface is farthest outside the interpolated spheres, or deepest inside.
 
     Each step takes the worse of the two errors at the surface samples. Outside:
@@ -115,7 +119,8 @@ def cover_repair(
     deepest surface point is split there by an inscribed sphere
     (:func:`~medialaxis.mesh.simplify.simplify_split.split_at`). The gaps are exact
     (:func:`medialaxis.mesh.simplify.envelope.envelope_gap`). Returns ``(centres,
-    radii, curve, faces)``.
+    radii, curve, faces, gaps)``: ``gaps`` is the envelope gap of the result at the samples, kept up to
+    date exactly (the ``gaps`` of :func:`~medialaxis.mesh.simplify.envelope.two_sided_distance`).
 
     References
     ----------
@@ -130,7 +135,8 @@ def cover_repair(
     signed = None if medial is None else medial.signed
     spheres = np.c_[centres, radii]
     curve, faces = np.asarray(curve, np.int64).reshape(-1, 2), np.asarray(faces, np.int64).reshape(-1, 3)
-    gap = envelope_gap(x, centres, radii, curve, faces)
+    exact = envelope_gap(x, centres, radii, curve, faces)  # the mesh's gap; ``gap``: 0 where settled
+    gap = exact.copy()
     settled = np.zeros(len(x), bool)  # passed over: no sphere or split helps there
     goal = len(spheres) + extra
     patches = passed = 0
@@ -139,7 +145,7 @@ def cover_repair(
         w, d = int(np.argmax(gap)), int(np.argmin(gap))
         if signed is not None and -gap[d] > max(gap[w], 0.0):
             split = split_at(x[d], spheres, curve, faces, signed, medial)
-            trial = None if split is None else _gap_after(x, gap, spheres, curve, faces, *split)
+            trial = None if split is None else _gap_after(x, exact, spheres, curve, faces, *split)
             if trial is None or -trial[d] > SPLIT_GAIN * -gap[d]:  # no split lowers it: passed over
                 settled[sample_tree.query(x[d], k=min(16, len(x)))[1]] = True
                 gap[settled] = 0.0
@@ -148,6 +154,7 @@ def cover_repair(
                     break
                 continue
             spheres, curve, faces = split
+            exact = trial
             gap = np.where(settled, 0.0, trial)
             continue
         if gap[w] <= 0:
@@ -179,8 +186,9 @@ def cover_repair(
         spheres = np.r_[spheres, [np.r_[c, r]]]
         curve = np.r_[curve, [[link, len(spheres) - 1]]]
         cone = envelope_gap(x, spheres[[link, -1], :3], spheres[[link, -1], 3], _ONE_EDGE, _NO_FACES)
-        gap = np.where(settled, 0.0, np.minimum(gap, cone))
-    return spheres[:, :3], spheres[:, 3], curve, faces
+        exact = np.minimum(exact, cone)
+        gap = np.where(settled, 0.0, exact)
+    return spheres[:, :3], spheres[:, 3], curve, faces, exact
 
 
 def _rows_not_in(a: np.ndarray, b: np.ndarray) -> np.ndarray:
