@@ -5,9 +5,9 @@ can touch itself at a point: two vertex ids at one position, each with its
 fan of faces. The medial axis has the homotopy type of the solid's open
 interior (Lieutier 2004), which differs there from the closed solid's: two
 solids touching at a point are apart in the interior, and two slits of air
-meeting tip to tip join in it (a scanned cow's horn touches its head at a
-point between two such slits; the interior has a handle there that the
-closed solid lacks). A sample cannot see a point: its Delaunay tetrahedra
+meeting tip to tip join in it (on a scanned cow, a knob 0.26 across
+touches the body at a point between two such slits; the interior has a
+handle there that the closed solid lacks). A sample cannot see a point: its Delaunay tetrahedra
 close the pinch as the closed solid does.
 
 Taking out a ball ``B`` of radius ``r`` around such a point ``p`` gives a
