@@ -130,20 +130,24 @@ def main() -> None:
         parser.error(f"unknown methods {sorted(unknown)}")
     with tempfile.TemporaryDirectory(prefix="medialaxis-snapshot-") as folder:
         src = snapshot(args.rev, folder)
-        load = os.getloadavg()[0]
+        loads = [os.getloadavg()[0]]  # the machine's 1-minute load before and after each run
         rows = []
         for name in names:
             r = run_method(name, src, args.threads)
             rows.append((name, r))
+            loads.append(os.getloadavg()[0])
             print(f"{name}: first {r['first_cpu']:.1f} s CPU", file=sys.stderr, flush=True)
         warm = None if args.no_warmup else run_warmup(src, args.threads)
-        load = max(load, os.getloadavg()[0])
-    print(f"\nFirst call after a fresh install ({args.rev}, {args.threads} thread(s), load up to {load:.1f}; seconds)")
+        loads.append(os.getloadavg()[0])
+    print(
+        f"\nFirst call after a fresh install ({args.rev}, {args.threads} thread(s), "
+        f"load {min(loads):.1f} to {max(loads):.1f}; seconds)"
+    )
     print(f"{'method':<16}{'first CPU':>11}{'first wall':>12}{'second CPU':>12}{'second wall':>13}{'import CPU':>12}")
     for name, r in rows:
         print(
-            f"{name:<16}{r['first_cpu']:>11.1f}{r['first_wall']:>12.1f}{r['second_cpu']:>12.2f}"
-            f"{r['second_wall']:>13.2f}{r['import_cpu']:>12.1f}"
+            f"{name:<16}{r['first_cpu']:>11.1f}{r['first_wall']:>12.1f}{r['second_cpu']:>12.3f}"
+            f"{r['second_wall']:>13.3f}{r['import_cpu']:>12.1f}"
         )
     if warm is not None:
         print(f"{'warmup (all)':<16}{warm[0]:>11.1f}{warm[1]:>12.1f}")
