@@ -168,7 +168,8 @@ class SignedDistance:
         joined = (np.empty(n), np.empty((n, 3)), np.empty(n, np.int64), np.empty(n, np.int64))  # dist, closest, face, region
         for lo in range(0, n, max(int(budget), 1)):  # (budget, k) neighbour arrays at most
             part = points[lo : lo + budget]
-            centroid_dist, near = self._centroid_tree.query(part, k, workers=-1)
+            workers = -1 if len(part) >= 4096 else 1  # starting threads costs more than a small query (1,100 calls)
+            centroid_dist, near = self._centroid_tree.query(part, k, workers=workers)
             centroid_dist, near = centroid_dist.reshape(len(part), k), near.reshape(len(part), k)
             found = self._closest(part, near, rings=False)
             todo = np.flatnonzero((centroid_dist[:, -1] - self._reach < found[0]) & (k < len(self.faces)))
