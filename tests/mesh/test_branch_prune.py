@@ -48,3 +48,26 @@ def test_pruning_keeps_components_and_starts_from_the_unpruned_skeleton(t_skelet
     assert len(again.points) == len(sk.points)
     with pytest.raises(mx.InvalidInputError, match="by lam only"):
         sk.prune(lam=1.0, detour=0.1)
+
+
+def test_the_inner_balls_are_measured_once_per_mesh(t_skeleton, monkeypatch):
+    """Trying one lambda after another re-prunes only: the shrinking balls ran once, and the answer is the same."""
+    from collections import OrderedDict
+
+    from medialaxis.mesh.skeleton import _flow_operators, branch_prune
+
+    monkeypatch.setattr(branch_prune, "_inner", OrderedDict())
+    calls = []
+    real = _flow_operators.pole_targets
+    monkeypatch.setattr(_flow_operators, "pole_targets", lambda *a, **k: calls.append(1) or real(*a, **k))
+    first = branch_prune.contact_widths(t_skeleton)
+    again = [t_skeleton.prune(lam=lam) for lam in (0.3, 1.0, 0.3)]
+    assert len(calls) == 1
+    assert np.array_equal(branch_prune.contact_widths(t_skeleton), first)
+    assert np.array_equal(again[0].points, again[2].points) and again[1].metadata["pruned_branches"] == 1
+    moved = t_skeleton.shape.copy()  # another mesh object, and then changed in place: measured again each time
+    before = branch_prune.inner_radii(moved).copy()
+    moved.vertices = moved.vertices * 2.0
+    assert len(calls) == 2
+    assert np.allclose(branch_prune.inner_radii(moved), 2.0 * before)  # twice the mesh, twice its inner balls
+    assert len(calls) == 3

@@ -11,10 +11,16 @@ nodes are narrower than ``lam``: thin limbs go, as in the lambda-medial axis,
 while the skeleton keeps its components and cycles (a branch that is a whole
 component, or part of a cycle, is never removed), as the planar route's leaf
 peeling does.
+
+The inner balls are computed once per input mesh and kept for later calls
+(:func:`inner_radii`), so that trying one lambda after another costs the
+pruning only.
 """
 
 from __future__ import annotations
 
+import weakref
+from collections import OrderedDict
 from typing import Any
 
 import numpy as np
@@ -24,7 +30,39 @@ from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
 from medialaxis.errors import InvalidInputError
 
-__all__ = ["contact_widths", "reprune"]
+__all__ = ["contact_widths", "inner_radii", "reprune"]
+
+#: Meshes whose inner-ball radii are kept, most recent last (each entry holds a copy of its vertices).
+_KEPT = 4
+_inner: OrderedDict[int, tuple[Any, np.ndarray, np.ndarray]] = OrderedDict()
+
+
+def inner_radii(mesh: Any) -> np.ndarray:
+    """The inner-ball radius of each vertex of ``mesh`` (shrinking balls), kept for the next call on it.
+
+    An entry is used only for the same mesh object with the same vertices
+    (a mesh changed in place is measured again).
+    """
+    from medialaxis.mesh.skeleton._flow_operators import pole_targets
+
+    points = np.asarray(mesh.vertices, np.float64)
+    kept = _inner.get(id(mesh))
+    if kept is not None and kept[0]() is mesh and np.array_equal(kept[1], points):
+        _inner.move_to_end(id(mesh))
+        return kept[2]
+    edge = float(np.median(np.asarray(mesh.edges_unique_length))) if len(mesh.faces) else 0.0
+    diagonal = float(np.linalg.norm(np.ptp(points, axis=0)))
+    _, inner = pole_targets(points, np.asarray(mesh.vertex_normals, np.float64), max_radius=0.5 * diagonal,
+                            ignore=edge)
+    inner.setflags(write=False)
+    try:
+        ref = weakref.ref(mesh)
+    except TypeError:  # not weakly referable: not kept
+        return inner
+    _inner[id(mesh)] = (ref, points.copy(), inner)
+    while len(_inner) > _KEPT:
+        _inner.popitem(last=False)
+    return inner
 
 
 def contact_widths(ma: MedialAxis) -> np.ndarray:
@@ -37,17 +75,11 @@ def contact_widths(ma: MedialAxis) -> np.ndarray:
     node. A node without vertices (or a result without its input mesh) takes
     twice its own radius.
     """
-    from medialaxis.mesh.skeleton._flow_operators import pole_targets
-
     widths = 2.0 * np.asarray(ma.radii, np.float64)
     mesh, node_of = ma.shape, ma.extras.get("correspondence")
     if node_of is None or not hasattr(mesh, "vertex_normals") or len(node_of) != len(mesh.vertices):
         return widths
-    points = np.asarray(mesh.vertices, np.float64)
-    edge = float(np.median(np.asarray(mesh.edges_unique_length))) if len(mesh.faces) else 0.0
-    diagonal = float(np.linalg.norm(np.ptp(points, axis=0)))
-    _, inner = pole_targets(points, np.asarray(mesh.vertex_normals, np.float64), max_radius=0.5 * diagonal,
-                            ignore=edge)
+    inner = inner_radii(mesh)
     node_of = np.asarray(node_of, np.int64)
     order = np.argsort(node_of, kind="stable")
     nodes, starts = np.unique(node_of[order], return_index=True)
