@@ -38,13 +38,11 @@ from scipy.sparse import csgraph
 __all__ = ["pinch_points", "carve_pinches", "CARVE_SPACINGS"]
 
 #: Radius of the ball taken out at a pinch, in spacings of the default sample
-#: (``sampling.MIN_SAMPLES`` samples, or one per vertex, spread evenly). A
+#: (``sampling.sample_count``'s default count, spread evenly). A
 #: smaller ball is not resolved by the sample: a scanned seahorse, whose
 #: pinch lies among bars thinner than that, lost a handle more with a ball of
 #: half a spacing; where this one does not fit the pinch is left.
 CARVE_SPACINGS = 1.0
-#: Samples of the default sample at least (``medialaxis.mesh.sample.sampling.MIN_SAMPLES``).
-_DEFAULT_SAMPLES = 20_000
 
 
 def pinch_points(vertices: np.ndarray) -> np.ndarray:
@@ -127,6 +125,7 @@ def carve_pinches(mesh: Any) -> tuple[Any, int]:
     >>> n, len(pinch_points(carved.vertices)), bool(carved.volume < 2.0)
     (1, 0, True)
     """
+    from medialaxis.mesh.sample.sampling import sample_count  # here: sampling imports this package
     from medialaxis.mesh.solid.arrangement import solid_surface
     from medialaxis.mesh.solid.degenerate import coordinate_accuracy
 
@@ -136,7 +135,7 @@ def carve_pinches(mesh: Any) -> tuple[Any, int]:
     if not len(points):
         return mesh, 0
     tri = v[f]
-    spacing = float(np.sqrt(2.0 / np.sqrt(3.0) * mesh.area / max(_DEFAULT_SAMPLES, len(v))))
+    spacing = float(np.sqrt(2.0 / np.sqrt(3.0) * mesh.area / sample_count(None, len(v))))
     r = CARVE_SPACINGS * spacing
     balls = [(p, r) for p in points if _cones_only(f, tri, p, r)]
     if not balls:
