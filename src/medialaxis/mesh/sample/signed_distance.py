@@ -11,6 +11,7 @@ from scipy.spatial import cKDTree
 from medialaxis.mesh.sample._closest_kernels import (
     closest_in_tree,
     closest_on_candidates,
+    face_data,
     face_spheres,
     face_tree,
     pseudo_normal_sign,
@@ -41,9 +42,7 @@ class SignedDistance:
         tri = self.vertices[self.faces]
         self.corners = tuple(np.ascontiguousarray(tri[:, k]) for k in range(3))
         self.spheres = face_spheres(*self.corners)
-        # what the kernels read of a face, packed: corners (f, 3, 3) and bounding sphere (f, 4)
-        self._tri = np.ascontiguousarray(tri)
-        self._sphere = np.ascontiguousarray(np.c_[self.spheres[0], self.spheres[1]])
+        self._face_data = face_data(*self.corners, self.spheres)  # what the kernels read of a face, one row each
         nf, nv = len(self.faces), len(self.vertices)
         incidence = sparse.csr_matrix(
             (np.ones(3 * nf), (np.repeat(np.arange(nf), 3), self.faces.ravel())), shape=(nf, nv)
@@ -108,8 +107,7 @@ class SignedDistance:
         """Distance, closest point, face and region (:func:`closest_on_candidates`) of each point."""
         return closest_on_candidates(  # type: ignore[no-any-return]
             points,
-            self._tri,
-            self._sphere,
+            self._face_data,
             np.ascontiguousarray(near_faces, np.int64),
             *((self.ring_ptr, self.ring_idx) if rings else (self._own_ptr, self._own_idx)),
         )
@@ -177,7 +175,7 @@ class SignedDistance:
                 self.prepare_exact(tree=True)
                 sub = [np.ascontiguousarray(a[todo]) for a in found]
                 tested[lo + todo] = closest_in_tree(
-                    np.ascontiguousarray(part[todo]), self._tri, self._sphere, self._face_tree, *sub
+                    np.ascontiguousarray(part[todo]), self._face_data, self._face_tree, *sub
                 )
                 for a, b in zip(found, sub):
                     a[todo] = b
