@@ -135,6 +135,15 @@ def _face_points(tri: np.ndarray, spacing: np.ndarray) -> tuple[np.ndarray, np.n
     The points of a face follow the R2 low-discrepancy sequence (Roberts
     2018) folded into the triangle, so they spread evenly whatever the
     triangle's shape.
+
+    Every face starts the sequence at the same point, and edges are split
+    into equal parts, on purpose: the sample of a symmetric mesh is then
+    symmetric too, and the errors of its Voronoi vertices cancel about the
+    axis. A start and an edge shift that differ from face to face (tried on
+    2026-11-28) broke up the uv ellipsoid's cospherical rings (2.06M -> 1.67M
+    tetrahedra, 15% faster) but scattered the vertices: a capsule's axis
+    2.7% of its radius off its segment (1.5% allowed), a sphere's compact
+    points 0.19 from its centre.
     """
     area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
     counts = np.floor(_LATTICE * area / spacing**2).astype(np.int64)
