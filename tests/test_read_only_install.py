@@ -50,8 +50,10 @@ def _launch(tmp_path: Path, writable_tmp: bool) -> tuple[subprocess.Popen, dict[
     folders["home"].chmod(0o555)
     if not writable_tmp:
         folders["tmp"].chmod(0o555)
+    # NUMBA_OPT=0: LLVM does not optimise the kernels it compiles (a fifth less CPU). Where numba may cache
+    # them (the fallback of medialaxis._jit, at import) and which kernels compile are the same.
     env = {"HOME": str(folders["home"]), "TMPDIR": str(folders["tmp"]), "PYTHONPATH": str(folders["site"]),
-           "PATH": os.environ.get("PATH", "/usr/bin")}
+           "PATH": os.environ.get("PATH", "/usr/bin"), "NUMBA_OPT": "0"}
     command = [*_unprivileged(), sys.executable, "-m", "medialaxis", "compute", str(SHAPE), "-o",
                str(folders["out"] / "a.json")]
     child = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -59,7 +61,7 @@ def _launch(tmp_path: Path, writable_tmp: bool) -> tuple[subprocess.Popen, dict[
 
 
 def test_cli_runs_from_a_read_only_install_without_a_home(tmp_path):
-    # Both cases compile every kernel of the image route from scratch (about 40 s each): they run side by side.
+    # Both cases compile every kernel of the image route from scratch (about 30 s each): they run side by side.
     runs = {writable: _launch(tmp_path, writable) for writable in (True, False)}
     try:
         done = {writable: child.communicate(timeout=600) for writable, (child, _) in runs.items()}
