@@ -200,11 +200,12 @@ def test_console_script_runs_as_module(png):
     assert "endpoints=4" in proc.stdout
 
 
-def test_demo_writes_results_and_plots(tmp_path, capsys):
-    assert main(["demo", str(tmp_path / "demo")]) == 0
-    out = capsys.readouterr().out
+def test_demo_writes_results_and_plots(demo_run):
+    code, lines, folder = demo_run  # main(["demo", folder]), run once for the tests of its cases too (conftest.py)
+    assert code == 0
+    out = "\n".join(lines)
     assert "kimia_class1_01" in out and "IoU" in out
-    files = {p.name for p in (tmp_path / "demo").iterdir()}
+    files = {p.name for p in folder.iterdir()}
     assert {"kimia_class1_01.json", "kimia_class1_01.png", "kimia_class1_01.svg", "kimia_class1_01_steps.png"} <= files
     assert "bracket_two_holes.json" in files
 

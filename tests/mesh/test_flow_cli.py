@@ -10,7 +10,7 @@ import trimesh
 
 from medialaxis import _dispatch
 from medialaxis.cli import main
-from medialaxis.cli.demo import tripod_flow_case
+from medialaxis.cli.demo import DEMO_CASES, tripod_flow_case
 from medialaxis.datasets import capsules_mesh
 
 
@@ -51,8 +51,11 @@ def test_flow_is_registered():
     assert _dispatch.METHODS["mesh"]["flow"] == "medialaxis.mesh.flow:flow_skeleton"
 
 
-def test_demo_case(tmp_path):
-    line = tripod_flow_case(tmp_path)
+def test_demo_case(demo_run):
+    # the line and files of this case in the run of ``medialaxis demo`` (conftest.py), not computed again
+    assert ("tripod_flow", tripod_flow_case) in DEMO_CASES
+    _, lines, folder = demo_run
+    (line,) = [line for line in lines if line.startswith("tripod (flow):")]
     assert "3 endpoints, 1 junctions" in line
     for name in ("tripod.ply", "tripod_flow.json", "tripod_flow.ply", "tripod_bent.ply"):
-        assert (tmp_path / name).is_file()
+        assert (folder / name).is_file()
