@@ -10,7 +10,12 @@ from mesh_balls import interpolated_balls
 import medialaxis as mx
 from medialaxis.errors import EmptyShapeError, InvalidInputError, MedialAxisWarning
 from medialaxis.mesh.medial._collapse_kernels import collapse_facets, collapse_free_sides
-from medialaxis.mesh.sample._closest_kernels import closest_on_candidates, closest_point_reference, face_data
+from medialaxis.mesh.sample._closest_kernels import (
+    closest_on_candidates,
+    closest_point_reference,
+    face_data,
+    face_scale,
+)
 from medialaxis.mesh.voronoi import euler_characteristic, voronoi_medial_axis
 
 
@@ -264,7 +269,8 @@ def test_closest_point_kernel_matches_brute_force():
     ring_ptr = np.r_[0, np.cumsum(shares.sum(axis=1))].astype(np.int64)
     ring_idx = np.nonzero(shares)[1].astype(np.int64)
     near = np.zeros((len(q), 1), np.int64)
-    dist, point, face, _ = closest_on_candidates(q, face_data(*corners), near, ring_ptr, ring_idx)
+    fd = face_data(*corners)
+    dist, point, face, _ = closest_on_candidates(q, fd, near, ring_ptr, ring_idx, face_scale(fd))
     assert nf == 80
     assert np.allclose(dist, closest_point_reference(q, tri), atol=1e-12)
     assert np.allclose(np.linalg.norm(q - point, axis=1), dist)

@@ -5,8 +5,8 @@ among a per-query list of candidate triangles (a CSR list), with the Voronoi
 region of the triangle it falls in (a vertex, an edge or the face), so the
 caller can sign the distance with the angle-weighted pseudo-normal
 (Baerentzen and Aanaes 2005; :func:`pseudo_normal_sign`). A candidate whose bounding sphere
-(:func:`face_spheres`) lies farther than the best distance found is skipped
-unread. :func:`face_tree` and :func:`closest_in_tree` search every face
+(:func:`face_spheres`) or plane lies farther than the best distance found is
+skipped. :func:`face_tree` and :func:`closest_in_tree` search every face
 that may be nearer than a distance found, through a bounding volume
 hierarchy: memory bounded by the mesh, whatever the number of nearly
 equidistant faces. :func:`closest_point_reference` is a
@@ -20,9 +20,8 @@ import numpy as np
 from medialaxis._jit import njit, prange
 
 __all__ = [
-    "box_distance2", "closest_on_candidates", "closest_in_tree", "closest_point_reference", "face_data", "face_spheres",
-    "face_tree",
-    "pseudo_normal_sign", "REGION_FACE",
+    "box_distance2", "closest_on_candidates", "closest_in_tree", "closest_point_reference", "face_data", "face_scale",
+    "face_spheres", "face_tree", "pseudo_normal_sign", "REGION_FACE",
 ]
 
 #: Region codes: 0, 1, 2 = vertex a, b, c; 3, 4, 5 = edge ab, bc, ca; 6 = face.
@@ -31,6 +30,10 @@ REGION_FACE = 6
 MAX_WALK = 16
 #: Most faces in a leaf of :func:`face_tree`.
 LEAF_FACES = 8
+#: Smallest sine of a triangle's angle at its first corner for its normal to bound distances (:func:`face_data`).
+MIN_SINE = 1e-3
+#: Margin of the plane bound (:func:`_farther`), relative to the coordinates' scale plus the distance.
+PLANE_SLACK = 1e-9
 
 
 def face_spheres(tri_a: np.ndarray, tri_b: np.ndarray, tri_c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -53,7 +56,9 @@ def face_data(
     """What the kernels read of each triangle, one row of 16 (two cache lines) per face.
 
     Columns 0-3: its bounding sphere (``spheres``, else :func:`face_spheres`:
-    centre, then radius); 4-6, 7-9, 10-12: corners a, b, c; 13-15: padding.
+    centre, then radius); 4-6, 7-9, 10-12: corners a, b, c; 13-15: its unit
+    normal, or 0 where the triangle is too thin for the normal to be known
+    to ``1e-12`` (an angle under ``MIN_SINE``: its plane then bounds nothing).
 
     Returns
     -------
@@ -64,7 +69,35 @@ def face_data(
     out[:, :3], out[:, 3] = centre, reach
     for k, corner in enumerate((tri_a, tri_b, tri_c)):
         out[:, 4 + 3 * k : 7 + 3 * k] = corner
+    ab, ac = tri_b - tri_a, tri_c - tri_a
+    normal = np.cross(ab, ac)
+    size = np.linalg.norm(normal, axis=1)
+    known = size > MIN_SINE * np.linalg.norm(ab, axis=1) * np.linalg.norm(ac, axis=1)
+    out[known, 13:16] = normal[known] / size[known, None]
     return out
+
+
+def face_scale(fd: np.ndarray) -> float:
+    """Largest coordinate magnitude of the triangles of :func:`face_data`, plus their largest bounding radius."""
+    return float(np.abs(fd[:, 4:13]).max() + fd[:, 3].max()) if len(fd) else 0.0
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _farther(px, py, pz, fd, f, best_dist, scale):  # type: ignore[no-untyped-def]
+    """True when triangle ``f`` is certainly no nearer ``p`` than ``best_dist``: by its bounding sphere, or its plane.
+
+    With the sphere alone, 72 triangles were tested per circumcentre of the uv
+    ellipsoid; with the plane, 12 (0.55 -> 0.30 s of CPU for 385k; the same
+    answers). The plane must be farther by ``PLANE_SLACK`` of ``scale +
+    best_dist``, far above the rounding of both distances (normals known to
+    1e-12, :func:`face_data`): a triangle skipped would not have been taken.
+    """
+    e0, e1, e2 = px - fd[f, 0], py - fd[f, 1], pz - fd[f, 2]
+    bound = best_dist + fd[f, 3]
+    if e0 * e0 + e1 * e1 + e2 * e2 >= bound * bound:
+        return True
+    plane = (px - fd[f, 4]) * fd[f, 13] + (py - fd[f, 5]) * fd[f, 14] + (pz - fd[f, 6]) * fd[f, 15]
+    return abs(plane) > best_dist + PLANE_SLACK * (scale + best_dist)
 
 
 @njit(cache=True, nogil=True)
@@ -118,7 +151,7 @@ def _point_on_face(px, py, pz, fd, f):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def closest_on_candidates(query, fd, near, ring_ptr, ring_idx):  # type: ignore[no-untyped-def]
+def closest_on_candidates(query, fd, near, ring_ptr, ring_idx, scale):  # type: ignore[no-untyped-def]
     """Closest point among the faces around a few given faces, per query.
 
     Parameters
@@ -140,6 +173,8 @@ def closest_on_candidates(query, fd, near, ring_ptr, ring_idx):  # type: ignore[
     ring_idx : (c,) int64 ndarray
         Ring of face ``f`` (faces sharing a vertex with it, itself included):
         ``ring_idx[ring_ptr[f]:ring_ptr[f + 1]]``.
+    scale : float
+        :func:`face_scale` of ``fd`` (the margin of the plane bound, :func:`_farther`).
 
     Returns
     -------
@@ -161,12 +196,12 @@ def closest_on_candidates(query, fd, near, ring_ptr, ring_idx):  # type: ignore[
     for block in prange(n_blocks):
         stamp = np.full(fd.shape[0], -1, np.int32)  # query numbers (< 2**31): half the cache of int64
         for i in range(block * nq // n_blocks, (block + 1) * nq // n_blocks):
-            _closest_one(i, query, fd, near, ring_ptr, ring_idx, stamp, point, face, region, dist)
+            _closest_one(i, query, fd, near, ring_ptr, ring_idx, scale, stamp, point, face, region, dist)
     return dist, point, face, region
 
 
 @njit(cache=True, nogil=True)
-def _closest_one(i, query, fd, near, ring_ptr, ring_idx, stamp, point, face, region, dist):  # type: ignore[no-untyped-def]
+def _closest_one(i, query, fd, near, ring_ptr, ring_idx, scale, stamp, point, face, region, dist):  # type: ignore[no-untyped-def]
     """One query of :func:`closest_on_candidates` (faces with ``stamp == i`` are skipped, then stamped).
 
     The best face so far is kept in registers and written once.
@@ -193,10 +228,8 @@ def _closest_one(i, query, fd, near, ring_ptr, ring_idx, stamp, point, face, reg
                 continue
             stamp[f] = i
             # no point of the triangle is nearer than its bounding sphere (1.94 -> 1.43 s for
-            # the 2M tetrahedron centroids of the uv ellipsoid; same answers)
-            e0, e1, e2 = px - fd[f, 0], py - fd[f, 1], pz - fd[f, 2]
-            bound = best_dist + fd[f, 3]
-            if e0 * e0 + e1 * e1 + e2 * e2 >= bound * bound:
+            # the 2M tetrahedron centroids of the uv ellipsoid; same answers), or its plane
+            if _farther(px, py, pz, fd, f, best_dist, scale):
                 continue
             d2, x0, x1, x2, r = _point_on_face(px, py, pz, fd, f)
             if d2 < best:
@@ -280,10 +313,10 @@ def box_distance2(p, low, high, n):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def closest_in_tree(query, fd, tree, dist, point, face, region):  # type: ignore[no-untyped-def]
+def closest_in_tree(query, fd, scale, tree, dist, point, face, region):  # type: ignore[no-untyped-def]
     """Improve, in place, the closest points found for each query to the nearest face of the whole mesh.
 
-    ``fd`` as :func:`closest_on_candidates` takes it;
+    ``fd`` and ``scale`` as :func:`closest_on_candidates` takes them;
     ``dist``, ``point``, ``face``, ``region`` (as it returns them) hold a face found for each query; every node of ``tree``
     (:func:`face_tree`) whose box is nearer is opened, nearer child first,
     and every face in it whose bounding sphere is nearer is tested. Returns
@@ -314,9 +347,7 @@ def closest_in_tree(query, fd, tree, dist, point, face, region):  # type: ignore
                     continue
                 for r in range(start[node], stop[node]):
                     f = order[r]
-                    e0, e1, e2 = p[0] - fd[f, 0], p[1] - fd[f, 1], p[2] - fd[f, 2]
-                    bound = best_dist + fd[f, 3]
-                    if e0 * e0 + e1 * e1 + e2 * e2 >= bound * bound:
+                    if _farther(p[0], p[1], p[2], fd, f, best_dist, scale):
                         continue
                     tested[i] += 1
                     d2, x0, x1, x2, reg = _point_on_face(p[0], p[1], p[2], fd, f)

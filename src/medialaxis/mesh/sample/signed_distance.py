@@ -12,6 +12,7 @@ from medialaxis.mesh.sample._closest_kernels import (
     closest_in_tree,
     closest_on_candidates,
     face_data,
+    face_scale,
     face_spheres,
     face_tree,
     pseudo_normal_sign,
@@ -43,6 +44,7 @@ class SignedDistance:
         self.corners = tuple(np.ascontiguousarray(tri[:, k]) for k in range(3))
         self.spheres = face_spheres(*self.corners)
         self._face_data = face_data(*self.corners, self.spheres)  # what the kernels read of a face, one row each
+        self._scale = face_scale(self._face_data)
         nf, nv = len(self.faces), len(self.vertices)
         incidence = sparse.csr_matrix(
             (np.ones(3 * nf), (np.repeat(np.arange(nf), 3), self.faces.ravel())), shape=(nf, nv)
@@ -110,6 +112,7 @@ class SignedDistance:
             self._face_data,
             np.ascontiguousarray(near_faces, np.int64),
             *((self.ring_ptr, self.ring_idx) if rings else (self._own_ptr, self._own_idx)),
+            self._scale,
         )
 
     def _signed(
@@ -175,7 +178,7 @@ class SignedDistance:
                 self.prepare_exact(tree=True)
                 sub = [np.ascontiguousarray(a[todo]) for a in found]
                 tested[lo + todo] = closest_in_tree(
-                    np.ascontiguousarray(part[todo]), self._face_data, self._face_tree, *sub
+                    np.ascontiguousarray(part[todo]), self._face_data, self._scale, self._face_tree, *sub
                 )
                 for a, b in zip(found, sub):
                     a[todo] = b
