@@ -1,8 +1,8 @@
-"""A fast sample of the fuzz harness (benchmarks/fuzz.py).
+"""Fast samples of the fuzz harness (benchmarks/fuzz.py).
 
-Two small samples over every input format, fixed seeds (100 files on one
-worker, 100 on two workers): no run may crash or hang, every format must have
-been run, and every unmutated seed file must give ``ok`` (so the sample is not
+Two samples of 100 mutated files over every input format, two fixed seeds,
+each on two workers: no run may crash or hang, every format must have been
+run, and every unmutated seed file must give ``ok`` (so the sample is not
 vacuous). Failures print the crash list with the kept inputs and reproduction
 commands. The inputs that found bugs are named regressions
 (``tests/test_fuzz_regressions.py``); the large random budget is
@@ -63,10 +63,11 @@ def keep_dir(tmp_path_factory):
     return tmp_path_factory.mktemp("fuzz-crashes")
 
 
-def test_fuzz_sample(keep_dir):
-    """100 mutated files (5 a format), seed fixed, one worker (about 13 s; ``benchmarks/fuzz.py`` runs thousands)."""
+@pytest.mark.parametrize("seed", [20240611, 7])
+def test_fuzz_sample(keep_dir, seed):
+    """100 mutated files (5 a format) on two workers, the pool's path (about 12 s; ``benchmarks/fuzz.py`` runs thousands)."""
     formats = list(fuzz.FORMATS)
-    summary = fuzz.run_fuzz(100, seed=20240611, jobs=1, timeout=10.0, keep=keep_dir)
+    summary = fuzz.run_fuzz(100, seed=seed, jobs=2, timeout=20.0, keep=keep_dir)
     assert sum(row["files"] for row in summary["formats"].values()) == 100
     # the mutations reach past the parsers: some mutated files still compute, some are refused
     total_ok = sum(row["ok"] for row in summary["formats"].values())
@@ -103,9 +104,3 @@ def test_harness_detects_crash_hang_and_death(tmp_path):
         assert again["status"] == "crash" and worker.starts == 3
     finally:
         worker.stop()
-
-
-def test_fuzz_sample_on_two_workers(keep_dir):
-    """100 mutated files, another seed, on two workers (the pool's path; ``benchmarks/fuzz.py`` runs thousands)."""
-    summary = fuzz.run_fuzz(100, seed=7, jobs=2, timeout=20.0, keep=keep_dir)
-    _check(summary, list(fuzz.FORMATS))
