@@ -28,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis._jit import Beside
 from medialaxis._progress import Progress, check_cancel
 from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
@@ -272,6 +273,7 @@ def voronoi_medial_axis(
         out[bounded] = (signed[ask] < 0) & (dt.radii[ask] + signed[ask] <= EMPTY_BALL_SLACK * eps)
         return out
 
+    solid_numbers_beside = Beside(solid_betti, src.mesh)  # needs the mesh only: beside the serial collapses
     # thin parts narrower than lam keep their sheets
     cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing)
     if len(cx.faces) == 0:
@@ -282,7 +284,7 @@ def voronoi_medial_axis(
     used = cx.tets
     todo = used[~np.isfinite(signed[used])]
     signed[todo], closest[todo] = sd.query(dt.centres[todo], smp.face[dt.simplices[todo]])
-    solid_numbers = solid_betti(src.mesh)
+    solid_numbers = solid_numbers_beside.result()
     faces, edges, n_curve, n_cut = cx.faces, cx.edges, cx.n_curve_edges, 0
     chi = euler_characteristic(len(used), faces, edges)
     if topology == "preserve":  # cycles the solid lacks, run out through flat tetrahedra on the surface
