@@ -100,7 +100,7 @@ def _farther(px, py, pz, fd, f, best_dist, scale):  # type: ignore[no-untyped-de
     return abs(plane) > best_dist + PLANE_SLACK * (scale + best_dist)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _closest_on_triangle(px, py, pz, fd, f):  # type: ignore[no-untyped-def]
     """Barycentric weights (v, w) of the closest point to ``p`` on triangle ``f`` (row ``fd[f]`` of :func:`face_data`) and its region.
 
@@ -140,7 +140,7 @@ def _closest_on_triangle(px, py, pz, fd, f):  # type: ignore[no-untyped-def]
     return vb * denom, vc * denom, 6
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _point_on_face(px, py, pz, fd, f):  # type: ignore[no-untyped-def]
     """Squared distance from ``p`` to triangle ``f`` (row ``fd[f]``), its closest point and region."""
     v, w, r = _closest_on_triangle(px, py, pz, fd, f)
@@ -161,10 +161,10 @@ def closest_on_candidates(query, fd, near, ring_ptr, ring_idx, scale):  # type: 
         Each triangle's bounding sphere and corners in one row
         (:func:`face_data`): the sphere test reads the row's first cache
         line, the closest point its two. Separate arrays of the corners
-        (f, 3, 3) and of the spheres (f, 4) took 2.46 s for the 2M
-        tetrahedron centroids of the uv ellipsoid and 0.89 s for its 385k
-        circumcentres, one thread; packed, 1.54 and 0.49 s, the same answers
-        bit for bit.
+        (f, 3, 3) and of the spheres (f, 4) took 2.44 s for the 2M
+        tetrahedron centroids of the uv ellipsoid and 0.88 s for its 385k
+        circumcentres, one thread; packed, with the plane bound and the
+        triangle code inlined, 1.47 and 0.26 s, the same answers bit for bit.
     near : (q, k) int64 ndarray
         Faces near each query; the candidates are their rings, then the
         rings of the best face found, repeatedly (up to ``MAX_WALK`` steps)
