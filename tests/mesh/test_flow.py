@@ -254,6 +254,46 @@ def test_diverging_flow_stops_with_a_message(capsule, monkeypatch):
         mx.medial_axis(capsule, method="flow")
 
 
+def _singular_from(monkeypatch, nth):
+    """Make the ``nth`` (1-based) sparse factorisation of the flow raise as SuperLU does on a singular matrix."""
+    import medialaxis.mesh.flow as flow_module
+
+    real, calls = flow_module.splinalg.factorized, []
+
+    def factorized(a):
+        calls.append(a.shape)
+        if len(calls) == nth:
+            raise RuntimeError("Factor is exactly singular")
+        return real(a)
+
+    monkeypatch.setattr(flow_module.splinalg, "factorized", factorized)
+    return calls
+
+
+def test_singular_final_collapse_is_skipped(capsule, monkeypatch):
+    """A singular operator in the optional last step: the step is skipped, so the answer is the one with it off.
+
+    No natural input reaches this branch any more (the spiked box of the fuzz regressions once did).
+    """
+    without = mx.medial_axis(capsule, method="flow", final_collapse=0)
+    calls = _singular_from(monkeypatch, 2)
+    skipped = mx.medial_axis(capsule, method="flow")
+    assert len(calls) == 2  # the flow's operator, then the last step's
+    assert skipped.metadata["final_collapse_skipped"] == "its operator is singular"
+    np.testing.assert_array_equal(skipped.points, without.points)
+    np.testing.assert_array_equal(skipped.edges, without.edges)
+    monkeypatch.undo()
+    with_step = mx.medial_axis(capsule, method="flow")
+    assert not np.array_equal(with_step.points, without.points)  # the step does move the nodes
+    assert with_step.metadata["final_collapse_skipped"] is None
+
+
+def test_singular_flow_operator_is_a_computation_error(capsule, monkeypatch):
+    _singular_from(monkeypatch, 1)
+    with pytest.raises(mx.ComputationError, match="operator of this mesh is singular"):
+        mx.medial_axis(capsule, method="flow")
+
+
 # ------------------------------------------------------------ invariants
 def test_input_not_modified_and_result_read_only(capsule):
     vertices, faces = capsule.vertices.copy(), capsule.faces.copy()

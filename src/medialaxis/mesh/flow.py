@@ -247,6 +247,7 @@ def flow_skeleton(
         if frozen.all():
             converged = True
             break
+    final_skipped = None  # why the last step was left out, if it was
     if final_collapse > 0:
         # one mean-curvature step on the contracted surface: its operator has
         # huge weights across the collapsed rings and small ones along the
@@ -261,12 +262,14 @@ def flow_skeleton(
         try:
             solve_c = splinalg.factorized(a_cf)
         except RuntimeError:  # singular on a degenerate contracted surface: skip this refinement
-            solve_c = None
+            solve_c, final_skipped = None, "its operator is singular"
         if solve_c is not None:
             p_c = p.copy()
             p_c[free] = np.column_stack([solve_c(rhs_c[:, d]) for d in range(3)])
             if np.all(np.isfinite(p_c)):
                 p = p_c
+            else:
+                final_skipped = "it gave non-finite points"
     t_flow = time.perf_counter() - t_start
     cell = spacing if spacing is not None else 0.5 * s
     graph = skeleton_graph(p, p0, faces, cell=cell, use=use, fixed=fixed)
@@ -296,6 +299,7 @@ def flow_skeleton(
         "attraction": attraction,
         "collapse": collapse,
         "final_collapse": final_collapse,
+        "final_collapse_skipped": final_skipped,
         "curvature_threshold": threshold,
         "fixed_vertices": [int(v) for v in fixed],
         "region": None if region is None else np.asarray(region, dtype=float).tolist(),
