@@ -168,7 +168,7 @@ def _working_order(points: np.ndarray) -> np.ndarray:
 def _relabelled(edges: np.ndarray, to: np.ndarray, n: int) -> np.ndarray:
     """The edges ``to[edges]`` that keep two ends, sorted and distinct."""
     u, v = to[edges[:, 0]], to[edges[:, 1]]
-    keys = unique_ints(_edge_keys(u, v, n)[u != v])
+    keys = unique_ints(_edge_keys(u, v, n)[u != v], nearly_sorted=True)  # a round merges few: still in order
     return np.c_[keys // n, keys % n]
 
 
