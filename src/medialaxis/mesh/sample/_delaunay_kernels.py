@@ -1,7 +1,8 @@
 """Compiled kernels of the incremental Delaunay tetrahedralisation (:mod:`medialaxis.mesh.sample.delaunay`).
 
-Point location (a stochastic visibility walk) and the insertion of points
-(Bowyer-Watson), on the layout of :mod:`medialaxis.mesh.sample._predicates`.
+The first tetrahedron and the insertion of points (Bowyer-Watson), on the
+layout of :mod:`medialaxis.mesh.sample._predicates`; point location is in
+:mod:`medialaxis.mesh.sample._delaunay_locate`.
 """
 
 from __future__ import annotations
@@ -9,80 +10,12 @@ from __future__ import annotations
 import numpy as np
 
 from medialaxis._jit import njit
-from medialaxis.mesh.sample._predicates import (
-    _FACE_OUT,
-    _GRID,
-    _OTHER,
-    _conflict,
-    _inf_pos,
-    _orient,
-    _orient_sub,
-    _visible,
-)
+from medialaxis.mesh.sample._delaunay_locate import _scan, _walk, prefetch
+from medialaxis.mesh.sample._predicates import _FACE_OUT, _GRID, _OTHER, _conflict, _inf_pos, _orient, _visible
 
 #: Insertions of a point, each moved further at random, before it is given up.
 MAX_ATTEMPTS = 16
-#: Steps of the walk before a scan of all tetrahedra.
-MAX_WALK = 1 << 16
-
 _OK, _COLLINEAR, _COPLANAR = 0, 1, 2
-
-
-# ----------------------------------------------------------------------------
-# point location
-# ----------------------------------------------------------------------------
-
-
-@njit(cache=True, nogil=True)
-def _walk(P, tet, t, p, inf, rng):  # type: ignore[no-untyped-def]
-    """Stochastic visibility walk from the finite tetrahedron ``t`` towards ``p``.
-
-    Returns a finite tetrahedron with ``p`` not strictly beyond any of its
-    faces, an infinite one (entered across its hull face, which ``p`` is
-    then strictly beyond), or -1 after ``MAX_WALK`` steps.
-    """
-    prev = -1
-    for _ in range(MAX_WALK):
-        rng[0] = rng[0] * 6364136223846793005 + 1442695040888963407
-        r = (rng[0] >> 33) & 3
-        moved = False
-        for kk in range(4):
-            k = (kk + r) & 3
-            u = tet[t, 4 + k] >> 2
-            if u == prev:
-                continue
-            if _orient_sub(P, tet, t, k, p) < 0:
-                prev = t
-                t = u
-                moved = True
-                break
-        if not moved:
-            return t
-        if _inf_pos(tet, t, inf) >= 0:
-            return t
-    return -1
-
-
-@njit(cache=True, nogil=True)
-def _scan(P, tet, nt, p, inf):  # type: ignore[no-untyped-def]
-    """Point location by a scan of every tetrahedron (when the walk fails); -1 if none holds ``p``."""
-    for t in range(nt):
-        if tet[t, 0] < 0 or _inf_pos(tet, t, inf) >= 0:
-            continue
-        inside = True
-        for k in range(4):
-            if _orient_sub(P, tet, t, k, p) < 0:
-                inside = False
-                break
-        if inside:
-            return t
-    for t in range(nt):
-        if tet[t, 0] < 0:
-            continue
-        ip = _inf_pos(tet, t, inf)
-        if ip >= 0 and _orient_sub(P, tet, t, ip, p) > 0:
-            return t
-    return -1
 
 
 # ----------------------------------------------------------------------------
@@ -160,7 +93,7 @@ def _initial(P, order, tet, inf):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
-def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, state, stats):  # type: ignore[no-untyped-def]
+def _insert(P, order, start, jog, tet, cap, mark, free, cav, bf, htab, state, stats):  # type: ignore[no-untyped-def]
     """Insert ``P[order[start:]]`` into the triangulation ``tet`` (Bowyer-Watson; see the module docstring).
 
     Every array is given (and grown by the caller): nothing is allocated here.
@@ -174,17 +107,21 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
     start : int
     jog : float
         Joggle size: the first extra move of a point is at most ``2 * jog`` per coordinate.
-    tet : (cap, 8) int32 ndarray
+    tet : (n, 8) int32 ndarray
         Vertices (``tet[t, 0] == -1``: free slot) and neighbours (``4 * tet + face``).
-    mark : (cap,) int32 ndarray
+    cap : int
+        Slots the insertion may use, at most ``n``: it returns ``_GROW_TETS`` when a cavity would need
+        more. The caller doubles ``cap`` (and the arrays only when ``n`` is reached): the point is then
+        walked to again, with the random state moved on, so the results depend on ``cap``, not on ``n``.
+    mark : (n,) int32 ndarray
         Cavity stamps.
-    free : (cap,) int32 ndarray
+    free : (n,) int32 ndarray
         Free slots (a stack).
     cav : (b,) int32 ndarray
     bf : (b, 6) int32 ndarray
         Cavity and boundary faces (face, outside neighbour, new tetrahedron's vertices).
-    hkey, hval, hstamp : (2 ** h,) int64 ndarray
-        Hash table of the boundary edges.
+    htab : (2 ** h, 4) int64 ndarray
+        Hash table of the boundary edges: stamp, key, value (one row, one cache line per probe).
     state : (6,) int64 ndarray
         Slots used, free slots, last tetrahedron created, stamps, random state.
     stats : (3,) int64 ndarray
@@ -198,9 +135,8 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
     """
     m = P.shape[0] - 1
     inf = m
-    cap = tet.shape[0]
     nbuf = cav.shape[0]
-    hmask = hkey.shape[0] - 1
+    hmask = htab.shape[0] - 1
     nt = state[_NT]
     nfree = state[_NFREE]
     last = state[_LAST]
@@ -263,6 +199,10 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
                         if nc == nbuf:
                             full = True
                             break
+                        for kk in range(4):  # read when u's turn comes: fetch them meanwhile
+                            w = tet[u, 4 + kk] >> 2
+                            prefetch(tet, w)
+                            prefetch(mark, w)
                         mark[u] = s_in
                         cav[nc] = u
                         nc += 1
@@ -379,13 +319,13 @@ def _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, 
                     h = key * -7046029254386353131
                     h = (h ^ (h >> 29)) & hmask
                     while True:
-                        if hstamp[h] != hst:
-                            hstamp[h] = hst
-                            hkey[h] = key
-                            hval[h] = 4 * t + q
+                        if htab[h, 0] != hst:
+                            htab[h, 0] = hst
+                            htab[h, 1] = key
+                            htab[h, 2] = 4 * t + q
                             break
-                        if hkey[h] == key:
-                            o = hval[h]
+                        if htab[h, 1] == key:
+                            o = htab[h, 2]
                             tet[t, 4 + q] = o
                             tet[o >> 2, 4 + (o & 3)] = 4 * t + q
                             break

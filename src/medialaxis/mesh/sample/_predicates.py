@@ -293,6 +293,19 @@ def _insphere(P, a, b, c, d, e):  # type: ignore[no-untyped-def]
     clift = cex * cex + cey * cey + cez * cez
     dlift = dex * dex + dey * dey + dez * dez
     det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd)
+    # a cheaper bound first: every |coordinate difference| is at most big, so the permanent is at most
+    # 72 big**5 (4 lifts of at most 3 big**2, times 6 products of at most big**3); 80 covers its rounding
+    big = max(
+        max(max(abs(aex), abs(aey)), max(abs(aez), abs(bex))),
+        max(max(abs(bey), abs(bez)), max(abs(cex), abs(cey))),
+        max(max(abs(cez), abs(dex)), max(abs(dey), abs(dez))),
+    )
+    big2 = big * big
+    coarse = (80.0 * _ISP_ERR) * (big2 * big2 * big)
+    if det < -coarse:
+        return 1
+    if det > coarse:
+        return -1
     aezp, bezp, cezp, dezp = abs(aez), abs(bez), abs(cez), abs(dez)
     aexbeyp, bexaeyp, bexceyp, cexbeyp = abs(aexbey), abs(bexaey), abs(bexcey), abs(cexbey)
     cexdeyp, dexceyp, dexaeyp, aexdeyp = abs(cexdey), abs(dexcey), abs(dexaey), abs(aexdey)

@@ -86,8 +86,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from medialaxis._jit import njit, prange
+from medialaxis._jit import njit
 from medialaxis.errors import ComputationError, InvalidInputError, ResourceLimitError
+from medialaxis.mesh.sample._delaunay_extract import _finite_keys, _morton, _sorted_tetrahedra
 from medialaxis.mesh.sample._delaunay_kernels import (
     _COLLINEAR,
     _DONE,
@@ -100,7 +101,7 @@ from medialaxis.mesh.sample._delaunay_kernels import (
     _initial,
     _insert,
 )
-from medialaxis.mesh.sample._predicates import _FACE_OUT, _GRID
+from medialaxis.mesh.sample._predicates import _GRID
 from medialaxis.mesh.sample._rows import first_of_rows, radix_argsort
 
 __all__ = ["delaunay_tetrahedra", "JOGGLE"]
@@ -124,116 +125,58 @@ _HASH = 1024
 def _triangulate(P: np.ndarray, order: np.ndarray, seed: int, jog: float) -> tuple[np.ndarray, int, np.ndarray]:
     """Delaunay tetrahedralisation of ``P[:-1]`` (the last row stands for the vertex at infinity).
 
-    Returns the tetrahedra (``(cap, 8)``: vertices, then neighbours as
-    ``4 * tet + face``; ``-1`` in free slots), the number of slots used, and
+    Returns the tetrahedra (``(n, 8)``: vertices, then neighbours as
+    ``4 * tet + face``; ``-1`` in free slots; the rows from the number of
+    slots used on are not set), the number of slots used, and
     the statistics (status, points given up, extra moves, tetrahedra taken
     out of a cavity).
     """
     m = len(P) - 1
     stats = np.zeros(4, np.int64)
+    # The insertion's random walks depend on the capacity it is resumed at, so that starts as it always
+    # did; the arrays are made twice as large (np.empty: the pages never used are never touched) so that
+    # the first doubling copies nothing (the uv ellipsoid's 2.1M slots need it).
     cap = int(_SLOTS_PER_POINT * m) + 64
-    tet = np.full((cap, 8), -1, np.int32)
+    tet = np.empty((2 * cap, 8), np.int32)
     status, a, b, c, d = _initial(P, order, tet, m)
     if status != _OK:
         stats[0] = status
         return tet, 0, stats
     order = order.copy()
     order[np.isin(order, (a, b, c, d))] = -1
-    mark = np.zeros(cap, np.int32)
-    free = np.empty(cap, np.int32)
+    mark = np.zeros(len(tet), np.int32)
+    free = np.empty(len(tet), np.int32)
     nbuf = _BUFFER
     cav = np.empty(nbuf, np.int32)
     bf = np.empty((nbuf, 6), np.int32)
-    hkey, hval, hstamp = np.empty(_HASH, np.int64), np.empty(_HASH, np.int64), np.zeros(_HASH, np.int64)
+    htab = np.zeros((_HASH, 4), np.int64)
     state = np.zeros(6, np.int64)
     state[_NT] = 5
     state[_RNG] = 2 * seed + 1
     start = 0
     while True:
-        start, why = _insert(P, order, start, jog, tet, mark, free, cav, bf, hkey, hval, hstamp, state, stats[1:])
+        start, why = _insert(P, order, start, jog, tet, cap, mark, free, cav, bf, htab, state, stats[1:])
         if why == _DONE:
             break
         if why == _GROW_TETS:
             cap *= 2
-            tet = np.concatenate([tet, np.full((cap - len(tet), 8), -1, np.int32)])
-            mark = np.concatenate([mark, np.zeros(cap - len(mark), np.int32)])
-            free = np.concatenate([free, np.empty(cap - len(free), np.int32)])
+            if cap > len(tet):
+                tet = np.concatenate([tet, np.empty((cap - len(tet), 8), np.int32)])
+                mark = np.concatenate([mark, np.zeros(cap - len(mark), np.int32)])
+                free = np.concatenate([free, np.empty(cap - len(free), np.int32)])
         elif why == _GROW_BUFFERS:
             nbuf *= 2
             cav = np.empty(nbuf, np.int32)
             bf = np.empty((nbuf, 6), np.int32)
         else:
-            size = 2 * len(hkey)
-            hkey, hval, hstamp = np.empty(size, np.int64), np.empty(size, np.int64), np.zeros(size, np.int64)
+            htab = np.zeros((2 * len(htab), 4), np.int64)
             state[_HSTAMP] = 0
     return tet, int(state[_NT]), stats
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def _extract(tet, nt, inf):  # type: ignore[no-untyped-def]
-    """Finite tetrahedra, their neighbours (-1 across the hull) and the outward hull triangles (in that order)."""
-    index = np.empty(nt, np.int64)
-    for t in prange(nt):
-        finite = tet[t, 0] >= 0 and tet[t, 0] != inf and tet[t, 1] != inf and tet[t, 2] != inf and tet[t, 3] != inf
-        index[t] = 1 if finite else 0
-    count = 0
-    for t in range(nt):  # running count: the rank of each finite tetrahedron, -1 for the others
-        if index[t]:
-            index[t] = count
-            count += 1
-        else:
-            index[t] = -1
-    simplices = np.empty((count, 4), np.int64)
-    neighbors = np.empty((count, 4), np.int64)
-    n_hull = np.zeros(count + 1, np.int64)
-    for t in prange(nt):
-        i = index[t]
-        if i < 0:
-            continue
-        for k in range(4):
-            simplices[i, k] = tet[t, k]
-            u = index[tet[t, 4 + k] >> 2]
-            neighbors[i, k] = u
-            if u < 0:
-                n_hull[i + 1] += 1
-    for i in range(count):
-        n_hull[i + 1] += n_hull[i]
-    hull = np.empty((n_hull[count], 3), np.int64)
-    for i in prange(count):
-        h = n_hull[i]
-        for k in range(4):
-            if neighbors[i, k] < 0:
-                for j in range(3):
-                    hull[h, j] = simplices[i, _FACE_OUT[k, j]]
-                h += 1
-    return simplices, neighbors, hull
 
 
 # ----------------------------------------------------------------------------
 # preparation: duplicates, insertion order
 # ----------------------------------------------------------------------------
-
-
-@njit(cache=True, nogil=True)
-def _spread16(v):  # type: ignore[no-untyped-def]
-    """Bits of a 16-bit integer moved to every third position."""
-    v &= 0xFFFF
-    v = (v | (v << 16)) & 0x0000FF0000FF
-    v = (v | (v << 8)) & 0x00F00F00F00F
-    v = (v | (v << 4)) & 0x0C30C30C30C3
-    v = (v | (v << 2)) & 0x249249249249
-    return v
-
-
-@njit(cache=True, nogil=True)
-def _morton(x, y, z):  # type: ignore[no-untyped-def]
-    """Morton (Z-order) code of a point of ``[-0.5, 0.5]^3`` on a 2^16 grid per axis."""
-    top = (1 << 16) - 1
-    code = 0
-    for axis, value in enumerate((x, y, z)):
-        c = min(max(int((value + 0.5) * top), 0), top)
-        code |= _spread16(c) << axis
-    return code
 
 
 @njit(cache=True, nogil=True)
@@ -253,38 +196,6 @@ def _brio_order(Q, perm, base):  # type: ignore[no-untyped-def]
             s *= 2
         key[i] = (r << 50) | _morton(Q[i, 0], Q[i, 1], Q[i, 2])
     return np.argsort(key)
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def _centroid_keys(Q, simplices):  # type: ignore[no-untyped-def]
-    """Morton codes of the tetrahedra's centroids (``Q`` in ``[-0.5, 0.5]^3``)."""
-    key = np.empty(simplices.shape[0], np.int64)
-    for t in prange(simplices.shape[0]):
-        a, b, c, d = simplices[t, 0], simplices[t, 1], simplices[t, 2], simplices[t, 3]
-        key[t] = _morton(
-            0.25 * (Q[a, 0] + Q[b, 0] + Q[c, 0] + Q[d, 0]),
-            0.25 * (Q[a, 1] + Q[b, 1] + Q[c, 1] + Q[d, 1]),
-            0.25 * (Q[a, 2] + Q[b, 2] + Q[c, 2] + Q[d, 2]),
-        )
-    return key
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def _renumber(simplices, neighbors, perm, keep):  # type: ignore[no-untyped-def]
-    """Tetrahedra in the order ``perm``, neighbours renumbered to match, vertices mapped through ``keep``."""
-    n = perm.shape[0]
-    rank = np.empty(n, np.int64)
-    for i in prange(n):
-        rank[perm[i]] = i
-    out_s = np.empty((n, 4), np.int64)
-    out_n = np.empty((n, 4), np.int64)
-    for i in prange(n):
-        t = perm[i]
-        for k in range(4):
-            out_s[i, k] = keep[simplices[t, k]]
-            nb = neighbors[t, k]
-            out_n[i, k] = rank[nb] if nb >= 0 else -1
-    return out_s, out_n
 
 
 # ----------------------------------------------------------------------------
@@ -388,13 +299,13 @@ def _delaunay(
             break
     else:
         raise ComputationError(f"the 3D Delaunay tetrahedralisation failed: {stats[1]} points could not be inserted")
-    simplices, neighbors, hull = _extract(tet, nt, m)
     # numbered along a Z-order curve of their centroids (the insertion leaves them scattered):
     # walks over neighbours afterwards stay in the cache (the Voronoi route's inside test,
     # edge rings and compaction: 10.1-10.7 -> 8.5-8.8 s on the 100k-vertex torus)
-    order = radix_argsort(_centroid_keys(pts, simplices))  # ties by index (stable); NumPy's: 0.22 s for 0.10 s
-    simplices, neighbors = _renumber(simplices, neighbors, order, keep)
+    slot, rank, keys = _finite_keys(tet, nt, m, pts)
+    order = radix_argsort(keys)  # ties by slot (stable); NumPy's: 0.22 s for 0.10 s
+    simplices, neighbors, hull = _sorted_tetrahedra(tet, slot, rank, order, keep)
     joggled = np.full(x.shape, np.nan)
     joggled[keep] = pts[:m]
     info = {"moved": int(stats[2]), "shrunk": int(stats[3]), "retries": retry, "joggle": jog, "joggled": joggled}
-    return simplices, neighbors, keep[hull], info
+    return simplices, neighbors, hull, info
