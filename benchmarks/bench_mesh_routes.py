@@ -69,7 +69,11 @@ spacing taken out at each pinch of the cut solid where it fits
 (``mesh.solid.pinches``, fc6b298; the truth taken without the balls):
 tuning 25 of 26 (cow right; seahorse (1,7,0), its ball does not fit among
 its bars), check 27 of 28 (orc (1,7,5), one of its pinches opened), at
-load 9-11.
+load 9-11. Where the inner set is mended through a thick tetrahedron of air
+(``inner_set.POCKET_FLAT``), a second sample three times finer around it
+(``voronoi.REFINE_FACTOR``), and a ball of half a spacing where one does not
+fit: tuning 26 of 26 (seahorse (1,10,0); 6 models sampled twice), check 28
+of 28 (orc (1,8,4); 3 sampled twice), the refused ones as before, at load 3-5.
 
 Run it single-threaded and one model at a time so as to share the machine::
 
@@ -234,6 +238,7 @@ def worker(path: str, method: str, check_points: int) -> dict:
     out["betti"] = [int(b) for b in ma.betti]
     out["betti_seconds"] = round(time.perf_counter() - t0, 2)
     out["points"] = int(len(ma.points))
+    out["refine_seconds"] = round(float(ma.metadata.get("timings", {}).get("refine", 0.0)), 2)  # voronoi: a finer pass
     out["faces"] = int(len(ma.faces)) if getattr(ma, "faces", None) is not None else 0
     out["solid"] = solid_topology(path)  # flow too: a flow-only run has the loader's solid as its truth
     if method == "voronoi" and check_points:

@@ -7,7 +7,10 @@
    Voronoi diagram (:mod:`medialaxis.mesh.medial.voronoi_diagram`).
 3. Keep the Voronoi facets dual to Delaunay edges at least ``lam`` long
    (contact set at least ``lam`` wide) whose vertices all lie inside the
-   solid; triangulate them as fans over shared vertices.
+   solid; triangulate them as fans over shared vertices. Where the inner
+   tetrahedra must be mended through air thicker than a sliver (the sample
+   does not resolve the solid there), sample those places more finely and
+   start once more (``REFINE_FACTOR``).
 
 Inside/outside and the radii refer to the input mesh, not to the samples:
 each candidate Voronoi vertex gets its closest point on the mesh (searched
@@ -48,6 +51,7 @@ from medialaxis.mesh.sample.sample_delaunay import tetrahedralised_sample
 from medialaxis.mesh.sample.sampling import (
     adaptive_spacing,
     lfs_estimate,
+    local_caps,
     pseudo_normals,
     sample_count,
     sample_surface,
@@ -70,6 +74,11 @@ VOLUME_TOLERANCE = 2e-3
 #: reach further into a ball empty of samples; 2 allows for epsilon being
 #: measured on random points, from below).
 EMPTY_BALL_SLACK = 2.0
+#: Where :func:`~medialaxis.mesh.medial.inner_set.unpinch` fills a thick pocket, the faces within
+#: ``REFINE_REACH`` longest edges of it get ``REFINE_FACTOR`` times the finest spacing at its corners,
+#: and the sample is tetrahedralised once more.
+REFINE_REACH = 1.0
+REFINE_FACTOR = 1.0 / 3.0
 
 
 def _solid_of(src: MeshInput, pairs: np.ndarray, force: bool = False) -> MeshInput:
@@ -130,7 +139,10 @@ def voronoi_medial_axis(
         solid lacks, cut where they ran through points that are not medial:
         :mod:`~medialaxis.mesh.medial.stray_cycles`), ``timings`` (seconds
         per step; ``epsilon`` is the wait for the work done beside the Delaunay
-        insertion: the thin-part check, the crossing check, epsilon, the closest-point structure),
+        insertion: the thin-part check, the crossing check, epsilon, the closest-point structure;
+        ``refine``, if present, the second sample, finer where the first did not resolve the solid
+        (``REFINE_FACTOR``: its sampling, Delaunay insertion and inside test; ``delaunay`` and
+        ``epsilon`` are then the second's),
         ``delaunay_share`` and ``defects`` (crossings, holes). The compact complex keeps a subset
         of these points (extras follow them) and adds ``compact`` (the
         collapse rule that ran), ``compact_tolerance``, ``full_points`` and
@@ -260,6 +272,14 @@ def voronoi_medial_axis(
     t0, n_tets = time.perf_counter(), len(dt.simplices)
     signed = np.full(n_tets, np.inf)  # of the circumcentres queried (negative inside)
     closest = np.full((n_tets, 3), np.nan)
+    finer: list[np.ndarray] = []
+
+    def refine(tets: np.ndarray) -> bool:
+        """Where a thick pocket is filled the sample is too coarse for the solid: finer around it, once."""
+        corners = dt.simplices[tets]
+        finer.append(local_caps(work, spacing, tet_centroids(dt.points, corners), REFINE_REACH * dt.longest[tets],
+                                REFINE_FACTOR * point_spacing[corners].min(axis=1)))
+        return True
 
     def medial(tets: np.ndarray) -> np.ndarray:
         """Circumcentres inside, bounded, and at least as far from the mesh as their samples, up to epsilon."""
@@ -275,7 +295,20 @@ def voronoi_medial_axis(
 
     solid_numbers_beside = Beside(solid_betti, src.mesh)  # needs the mesh only: beside the serial collapses
     # thin parts narrower than lam keep their sheets
-    cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing)
+    cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing, refine=refine)
+    if cx is None:  # once more on a sample finer where the first did not resolve the solid (lam stays)
+        t1, spacing = time.perf_counter(), finer[0]
+        smp = sample_surface(work, spacing, normals)
+        dt, _, _, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings)
+        if isinstance(dt, MedialAxisError):
+            raise dt
+        inner = inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
+        union_volume, point_spacing = float(dt.volume[inner].sum()), np.asarray(spacing)[smp.face]
+        n_tets = len(dt.simplices)
+        signed, closest = np.full(n_tets, np.inf), np.full((n_tets, 3), np.nan)
+        timings["refine"] = time.perf_counter() - t1
+        cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing)
+        assert cx is not None
     if len(cx.faces) == 0:
         raise ComputationError(
             f"no Voronoi facet with a contact set of at least lam={lam_used:.4g} lies inside the mesh; "

@@ -48,7 +48,7 @@ from medialaxis.mesh.medial._ring_kernels import (
     ring_side_ids,
     take,
 )
-from medialaxis.mesh.medial._voronoi_kernels import minor_star_groups, small_cavities
+from medialaxis.mesh.medial.inner_set import CAVITY_SHARE, unpinch
 from medialaxis.mesh.medial.voronoi_diagram import Tetrahedralisation, edge_rings
 from medialaxis.mesh.sample._rows import radix_argsort
 
@@ -62,15 +62,6 @@ THIN_SPACINGS = 2.5
 #: circumradius of its Voronoi vertices: 2 sin(70 deg), contact points 140
 #: degrees or more apart (a plate: 180; a fin into a right-angled edge: 90).
 THIN_SPAN = 1.88
-#: Rounds of :func:`unpinch` at most.
-UNPINCH_ROUNDS = 5
-#: A cavity of the inner union (outer tetrahedra it encloses) holding at most
-#: this share of its longest edge cubed is filled by :func:`unpinch`: a
-#: cavity the sample resolves is at least a few spacings across (a gap this
-#: thin between two shells is a hundredth of their sampling spacing).
-CAVITY_SHARE = 0.01
-
-
 @dataclasses.dataclass(frozen=True)
 class MedialComplex:
     """A medial complex over Delaunay tetrahedra (its points are their circumcentres).
@@ -140,66 +131,6 @@ def fan_triangles(ring_ptr: np.ndarray, ring_tets: np.ndarray) -> tuple[np.ndarr
 
 def _select(ring_ptr: np.ndarray, ring_tets: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return gather_rings(ring_ptr, ring_tets, np.flatnonzero(keep))
-
-
-def unpinch(dt: Tetrahedralisation, inner: np.ndarray) -> np.ndarray:
-    """Inner tetrahedra whose union is not pinched at a sample point.
-
-    Around a sample point on the surface, flat tetrahedra whose centroids
-    lie a hair inside or outside can alternate: the union of the inner ones
-    is pinched there, and its dual complex, which joins tetrahedra only
-    through shared triangles, gains cycles that the solid does not have. In
-    each round, around every point, inner tetrahedra outside the point's
-    largest inner group (by volume) become outer, and outer tetrahedra
-    outside its largest outer group (the one reaching beyond the convex
-    hull) become inner, and so do the cavities of the union too small for
-    the sampling (``CAVITY_SHARE``: sliver tetrahedra a hair outside, enclosed
-    by others a hair inside where the surface is noisy; 61 of them on a uv
-    ellipsoid whose vertices were moved along it by a tenth of their
-    shortest edge, each a void of the medial complex). Rounds repeat until nothing changes
-    (``UNPINCH_ROUNDS`` at most). A pinch along an edge is a pinch at both
-    its points, and is mended there: dropping all but the largest run of
-    inner tetrahedra around such an edge as well (the rule until now) cut
-    thin bridges and gave extra cycles on a scanned cow and a perforated
-    plate (at 20k-80k samples: (1, 2, 0) for (1, 1, 0), (1, 25, 0) for
-    (1, 24, 0)), while no model of ``benchmarks/bench_mesh_routes.py``
-    needed it.
-
-    Parameters
-    ----------
-    dt : Tetrahedralisation
-    inner : (t,) bool ndarray
-
-    Returns
-    -------
-    (t,) bool ndarray
-        A corrected copy.
-    """
-    inner = np.array(inner, dtype=bool, copy=True)
-    volume = dt.volume
-    # A point's groups depend on its star alone: a call needs to look only at the points with a
-    # tetrahedron written since the same call last ran (a flag set back counts: pockets filled
-    # and strays dropped can alternate on the same tetrahedra round after round).
-    written_stray, written_pocket = np.ones(len(inner), bool), np.ones(len(inner), bool)
-    for _ in range(UNPINCH_ROUNDS):
-        # around a point, the inner tetrahedra must be one group and the
-        # outer ones one group: drop inner strays, fill outer pockets
-        stray = minor_star_groups(dt.simplices, dt.neighbors, inner, volume, len(dt.points), False, written_stray)
-        written_stray[:] = False
-        inner[stray] = False
-        written_stray |= stray
-        written_pocket |= stray
-        pocket = minor_star_groups(dt.simplices, dt.neighbors, ~inner, volume, len(dt.points), True, written_pocket)
-        written_pocket[:] = False
-        inner[pocket] = True
-        # cavities of the union too small for the sampling (sliver tetrahedra on a noisy surface)
-        cavity = small_cavities(dt.neighbors, inner, volume, dt.longest, CAVITY_SHARE)
-        inner[cavity] = True
-        for flags in (written_stray, written_pocket):
-            flags |= pocket | cavity
-        if not stray.any() and not pocket.any() and not cavity.any():
-            break
-    return inner
 
 
 def open_cells(
@@ -311,7 +242,8 @@ def medial_complex(
     lam: float,
     topology: Literal["preserve", "lambda"] = "preserve",
     spacing: np.ndarray | None = None,
-) -> MedialComplex:
+    refine: Callable[[np.ndarray], bool] | None = None,
+) -> MedialComplex | None:
     """Build the medial complex from inner tetrahedra (see the module docstring).
 
     Parameters
@@ -340,10 +272,14 @@ def medial_complex(
         ``lam`` keep their balls; the spikes of the sampling noise (adjacent
         samples) and the fins into convex edges (contacts about 90 degrees
         apart) do not pass.
+    refine : callable, optional
+        ``refine(tets)`` with the thick pockets :func:`unpinch` fills
+        (``inner_set.POCKET_FLAT``), if any: when it returns True, nothing
+        is built and None is returned (the caller samples those places more finely).
 
     Returns
     -------
-    MedialComplex
+    MedialComplex or None
     """
     if topology not in TOPOLOGY_MODES:
         raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
@@ -354,9 +290,12 @@ def medial_complex(
         medial[tets] = centre_inside(tets)
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, tets, lam)
     else:  # the serial unpinching runs beside the parallel ring walks, which need none of it (0.3 s on the uv ellipsoid)
-        unpinched = Beside(unpinch, dt, inner)
+        thick = np.zeros(n_tets, bool)
+        unpinched = Beside(unpinch, dt, inner, thick)
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
         inner = unpinched.result() if len(ring_tets) else inner  # no inner edge: nothing to unpinch
+        if refine is not None and thick.any() and refine(np.flatnonzero(thick)):
+            return None
     member = medial if topology == "lambda" else inner
     keep = ring_all(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
     if topology != "lambda":

@@ -35,6 +35,7 @@ __all__ = [
     "lfs_estimate",
     "adaptive_spacing",
     "shell_spacing",
+    "local_caps",
     "sample_count",
 ]
 
@@ -329,6 +330,33 @@ def shell_spacing(mesh: Any, spacing: np.ndarray) -> np.ndarray:
     edge_length = np.bincount(shell, half_perimeter, n)  # each edge once on a closed piece
     wanted = np.maximum(np.sqrt(_LATTICE * area / MIN_SHELL_SAMPLES), edge_length / MIN_SHELL_SAMPLES)
     return np.minimum(spacing, wanted[shell])
+
+
+def local_caps(mesh: Any, spacing: np.ndarray, centres: np.ndarray, reach: np.ndarray, caps: np.ndarray) -> np.ndarray:
+    """Per-face ``spacing``, at most ``caps[i]`` on the faces within ``reach[i]`` of ``centres[i]``.
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> box = trimesh.creation.box()
+    >>> h = local_caps(box, np.ones(12), np.array([[0.5, 0.0, 0.0]]), np.array([0.1]), np.array([0.25]))
+    >>> int((h == 0.25).sum()), float(h.max())
+    (2, 1.0)
+    """
+    from trimesh.triangles import closest_point
+
+    tri = np.asarray(mesh.triangles, np.float64)
+    mid = tri.mean(axis=1)
+    size = float(np.linalg.norm(tri - mid[:, None], axis=2).max(initial=0.0))
+    spacing = np.array(spacing, np.float64, copy=True)
+    near = cKDTree(mid).query_ball_point(np.asarray(centres, np.float64), np.asarray(reach) + size)
+    for i, faces in enumerate(near):
+        faces = np.asarray(faces, np.int64)
+        if len(faces):
+            dist = np.linalg.norm(closest_point(tri[faces], np.broadcast_to(centres[i], (len(faces), 3))) - centres[i], axis=1)
+            faces = faces[dist <= reach[i]]
+            spacing[faces] = np.minimum(spacing[faces], caps[i])
+    return spacing
 
 
 def sample_count(samples: Any, n_vertices: int) -> int:

@@ -17,7 +17,7 @@ over the part ``L`` of the sphere around ``p`` that it holds, the interior
 near ``p`` is ``L`` times an interval, and the solid minus ``B`` keeps
 ``L`` times an interval too, with ``p`` gone. So :func:`carve_pinches` takes
 out, at each such point, a ball of the spacing of the default sample (so
-that the sample resolves it) where the surface in the ball is one disk
+that the sample resolves it), or of half that, where the surface in the ball is one disk
 around each of the point's fans (the ball reaches no other sheet and cuts
 through no bar: either would change more than the pinch).
 
@@ -37,12 +37,14 @@ from scipy.sparse import csgraph
 
 __all__ = ["pinch_points", "carve_pinches", "CARVE_SPACINGS"]
 
-#: Radius of the ball taken out at a pinch, in spacings of the default sample
-#: (``sampling.sample_count``'s default count, spread evenly). A
-#: smaller ball is not resolved by the sample: a scanned seahorse, whose
-#: pinch lies among bars thinner than that, lost a handle more with a ball of
-#: half a spacing; where this one does not fit the pinch is left.
-CARVE_SPACINGS = 1.0
+#: Radii of the ball taken out at a pinch, the first that fits, in spacings of
+#: the default sample (``sampling.sample_count``'s default count, spread
+#: evenly); where none fits the pinch is left. A ball of half a spacing is not
+#: resolved by that sample: a scanned seahorse, whose pinch lies among bars
+#: thinner than a spacing, lost a handle more with it, until the Voronoi
+#: route sampled more finely where the inner set fills such air
+#: (``inner_set.POCKET_FLAT``); then it gets its handle there.
+CARVE_SPACINGS = (1.0, 0.5)
 
 
 def pinch_points(vertices: np.ndarray) -> np.ndarray:
@@ -101,10 +103,10 @@ def carve_pinches(mesh: Any) -> tuple[Any, int]:
     """``mesh`` with a ball of air taken out at each point where it touches itself, and how many were.
 
     ``mesh``: a closed, outward-oriented surface (a cut solid's, pinches kept
-    as two vertex ids at one position). The ball's radius is
-    ``CARVE_SPACINGS`` spacings of the default sample; a pinch where the
-    faces within it are not one disk around each of its fans
-    (:func:`_cones_only`) is left. The
+    as two vertex ids at one position). The ball's radius is the first of
+    ``CARVE_SPACINGS`` spacings of the default sample within which the faces
+    are one disk around each of the pinch's fans (:func:`_cones_only`); a
+    pinch where none is, is left. The
     difference is the solid where the winding number of the surface and of
     the balls turned inward is at least 1/2
     (:func:`~medialaxis.mesh.solid.arrangement.solid_surface`).
@@ -136,8 +138,10 @@ def carve_pinches(mesh: Any) -> tuple[Any, int]:
         return mesh, 0
     tri = v[f]
     spacing = float(np.sqrt(2.0 / np.sqrt(3.0) * mesh.area / sample_count(None, len(v))))
-    r = CARVE_SPACINGS * spacing
-    balls = [(p, r) for p in points if _cones_only(f, tri, p, r)]
+    balls = []
+    for p in points:
+        fits = [k * spacing for k in CARVE_SPACINGS if _cones_only(f, tri, p, k * spacing)]
+        balls += [(p, fits[0])] if fits else []
     if not balls:
         return mesh, 0
     import trimesh
