@@ -72,9 +72,17 @@ Design (and why)
   ``4 * tet + face`` so the face seen from the other side is known without
   a search; a stack of free slots; stamps instead of cleared flags; a small
   open addressing hash table, keyed by the cavity-boundary edge, to connect
-  the new tetrahedra across their faces through the new point. The kernel
+  the new tetrahedra across their faces through the new point (a row of
+  stamp, key and value per entry: one cache line per probe). The kernel
   allocates nothing: when an array is full it returns, the caller doubles
   it and calls again (arrays reassigned inside the loop cost 13%).
+* **Memory waits.** The insertion mostly waits for rows (the cavity search
+  49% and the walk 21% of its cycles on the uv ellipsoid's samples, 140-160
+  cycles per tetrahedron tested). Both ask for the next rows ahead
+  (``_delaunay_locate.prefetch``), the points are renumbered in insertion
+  order, and the arrays start at twice the capacity the insertion runs at,
+  so the first doubling copies nothing (all three: 1.43 -> 1.16 s on those
+  samples, the same tetrahedra bit for bit).
 
 Duplicates (exactly equal coordinates; ``-0.0 == 0.0``) are dropped before
 the joggle: the first one (lowest index) is kept, the others are in no

@@ -50,8 +50,9 @@ def tetrahedralised_sample(work: Any, smp: Any, rng: Any, tree: Any, normals: An
 
     That runs on the core the serial Delaunay insertion leaves idle (the
     thin-part check, the crossing check, epsilon and the closest-point
-    structures: about 2 s beside the uv ellipsoid's 2.7 s insertion, one
-    thread each).
+    structures: 1.4-1.7 s of CPU beside the 1.6 s of the uv ellipsoid's
+    Delaunay, one thread each; as long, so a faster or parallel insertion
+    alone would not shorten this step).
     """
     t0 = time.perf_counter()
     side = Beside(_beside_delaunay, work, smp.points, rng, tree, normals, thin)
