@@ -11,7 +11,8 @@ counts the same). A ball of one spacing around the pinch reaches the
 cavity's ceiling, so it was left out and the sample closed the pinch (a
 scanned seahorse lost a handle so); half a spacing fits. The air of a ball
 that small is thinner than the sample: where :func:`~medialaxis.mesh.medial.inner_set.unpinch`
-would fill it, the route samples it more finely (``voronoi.REFINE_FACTOR``).
+fills it and the complex loses the solid's topology, the route samples it
+more finely (``voronoi.REFINE_FACTOR``; not needed here).
 """
 
 from __future__ import annotations

@@ -8,9 +8,10 @@
 3. Keep the Voronoi facets dual to Delaunay edges at least ``lam`` long
    (contact set at least ``lam`` wide) whose vertices all lie inside the
    solid; triangulate them as fans over shared vertices. Where the inner
-   tetrahedra must be mended through air thicker than a sliver (the sample
-   does not resolve the solid there), sample those places more finely and
-   start once more (``REFINE_FACTOR``).
+   tetrahedra were mended through air thicker than a sliver and the complex
+   lacks the solid's Euler characteristic (the sample does not resolve the
+   solid there), sample those places more finely and start once more
+   (``REFINE_FACTOR``).
 
 Inside/outside and the radii refer to the input mesh, not to the samples:
 each candidate Voronoi vertex gets its closest point on the mesh (searched
@@ -74,9 +75,11 @@ VOLUME_TOLERANCE = 2e-3
 #: reach further into a ball empty of samples; 2 allows for epsilon being
 #: measured on random points, from below).
 EMPTY_BALL_SLACK = 2.0
-#: Where :func:`~medialaxis.mesh.medial.inner_set.unpinch` fills a thick pocket, the faces within
-#: ``REFINE_REACH`` longest edges of it get ``REFINE_FACTOR`` times the finest spacing at its corners,
-#: and the sample is tetrahedralised once more.
+#: Where :func:`~medialaxis.mesh.medial.inner_set.unpinch` fills a thick pocket and the complex then
+#: lacks the solid's Euler characteristic, the faces within ``REFINE_REACH`` longest edges of each such
+#: pocket get ``REFINE_FACTOR`` times the finest spacing at its corners, and the route starts once more
+#: from the sample. (Refining wherever a thick pocket is filled, 9 of 54 models, sampled ogre's thin
+#: cavity walls three times finer and its compact complex grew from 2,930 points to 84,000.)
 REFINE_REACH = 1.0
 REFINE_FACTOR = 1.0 / 3.0
 
@@ -272,14 +275,14 @@ def voronoi_medial_axis(
     t0, n_tets = time.perf_counter(), len(dt.simplices)
     signed = np.full(n_tets, np.inf)  # of the circumcentres queried (negative inside)
     closest = np.full((n_tets, 3), np.nan)
-    finer: list[np.ndarray] = []
+    finer: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
 
-    def refine(tets: np.ndarray) -> bool:
-        """Where a thick pocket is filled the sample is too coarse for the solid: finer around it, once."""
-        corners = dt.simplices[tets]
-        finer.append(local_caps(work, spacing, tet_centroids(dt.points, corners), REFINE_REACH * dt.longest[tets],
-                                REFINE_FACTOR * point_spacing[corners].min(axis=1)))
-        return True
+    def refine(tets: np.ndarray) -> None:
+        """Where a thick pocket is filled the sample may be too coarse for the solid: the caps around it (once)."""
+        if not finer:
+            corners = dt.simplices[tets]
+            finer.append((tet_centroids(dt.points, corners), REFINE_REACH * dt.longest[tets],
+                          REFINE_FACTOR * point_spacing[corners].min(axis=1)))
 
     def medial(tets: np.ndarray) -> np.ndarray:
         """Circumcentres inside, bounded, and at least as far from the mesh as their samples, up to epsilon."""
@@ -294,39 +297,39 @@ def voronoi_medial_axis(
         return out
 
     solid_numbers_beside = Beside(solid_betti, src.mesh)  # needs the mesh only: beside the serial collapses
-    # thin parts narrower than lam keep their sheets
-    cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing, refine=refine)
-    if cx is None:  # once more on a sample finer where the first did not resolve the solid (lam stays)
-        t1, spacing = time.perf_counter(), finer[0]
+    while True:
+        # thin parts narrower than lam keep their sheets
+        cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing, thick_pockets=refine)
+        if len(cx.faces) == 0:
+            raise ComputationError(
+                f"no Voronoi facet with a contact set of at least lam={lam_used:.4g} lies inside the mesh; "
+                "lower lam or raise samples"
+            )
+        used = cx.tets
+        todo = used[~np.isfinite(signed[used])]
+        signed[todo], closest[todo] = sd.query(dt.centres[todo], smp.face[dt.simplices[todo]])
+        solid_numbers = solid_numbers_beside.result()
+        faces, edges, n_curve, n_cut = cx.faces, cx.edges, cx.n_curve_edges, 0
+        chi = euler_characteristic(len(used), faces, edges)
+        if topology == "preserve":  # cycles the solid lacks, run out through flat tetrahedra on the surface
+            medial_point = (signed[used] < 0) & (dt.radii[used] + signed[used] <= EMPTY_BALL_SLACK * eps)
+            one_sided = dt.longest[used] < -signed[used]  # its four contacts within 60 degrees, seen from its centre
+            used, faces, edges, n_curve, n_cut = without_stray_cycles(
+                used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid_numbers,
+                lambda dt=dt, cx=cx: complement_voids(dt.simplices, dt.neighbors, cx.facet_ij), chi)
+            chi += n_cut
+        if not finer or "refine" in timings or chi == solid_numbers[0] - solid_numbers[1] + solid_numbers[2]:
+            break
+        # The solid's topology is lost where thick air was filled: once more on a sample finer there (lam stays)
+        t1, spacing = time.perf_counter(), local_caps(work, spacing, *finer[0])
         smp = sample_surface(work, spacing, normals)
         dt, _, _, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings)
         if isinstance(dt, MedialAxisError):
             raise dt
         inner = inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
         union_volume, point_spacing = float(dt.volume[inner].sum()), np.asarray(spacing)[smp.face]
-        n_tets = len(dt.simplices)
-        signed, closest = np.full(n_tets, np.inf), np.full((n_tets, 3), np.nan)
+        signed, closest = np.full(len(dt.simplices), np.inf), np.full((len(dt.simplices), 3), np.nan)
         timings["refine"] = time.perf_counter() - t1
-        cx = medial_complex(dt, inner, medial, lam_used, topology, spacing=point_spacing)
-        assert cx is not None
-    if len(cx.faces) == 0:
-        raise ComputationError(
-            f"no Voronoi facet with a contact set of at least lam={lam_used:.4g} lies inside the mesh; "
-            "lower lam or raise samples"
-        )
-    used = cx.tets
-    todo = used[~np.isfinite(signed[used])]
-    signed[todo], closest[todo] = sd.query(dt.centres[todo], smp.face[dt.simplices[todo]])
-    solid_numbers = solid_numbers_beside.result()
-    faces, edges, n_curve, n_cut = cx.faces, cx.edges, cx.n_curve_edges, 0
-    chi = euler_characteristic(len(used), faces, edges)
-    if topology == "preserve":  # cycles the solid lacks, run out through flat tetrahedra on the surface
-        medial_point = (signed[used] < 0) & (dt.radii[used] + signed[used] <= EMPTY_BALL_SLACK * eps)
-        one_sided = dt.longest[used] < -signed[used]  # its four contacts within 60 degrees, seen from its centre
-        used, faces, edges, n_curve, n_cut = without_stray_cycles(
-            used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid_numbers,
-            lambda: complement_voids(dt.simplices, dt.neighbors, cx.facet_ij), chi)
-        chi += n_cut
     stray = used[(signed[used] >= 0) | (dt.radii[used] >= diag)]  # kept for topology, its circumcentre out or far
     if len(stray):  # the centroid of its (inner) tetrahedron stands for it: far circumcentres broke compaction
         dt.centres[stray] = tet_centroids(dt.points, dt.simplices[stray])

@@ -242,8 +242,8 @@ def medial_complex(
     lam: float,
     topology: Literal["preserve", "lambda"] = "preserve",
     spacing: np.ndarray | None = None,
-    refine: Callable[[np.ndarray], bool] | None = None,
-) -> MedialComplex | None:
+    thick_pockets: Callable[[np.ndarray], None] | None = None,
+) -> MedialComplex:
     """Build the medial complex from inner tetrahedra (see the module docstring).
 
     Parameters
@@ -272,14 +272,13 @@ def medial_complex(
         ``lam`` keep their balls; the spikes of the sampling noise (adjacent
         samples) and the fins into convex edges (contacts about 90 degrees
         apart) do not pass.
-    refine : callable, optional
-        ``refine(tets)`` with the thick pockets :func:`unpinch` fills
-        (``inner_set.POCKET_FLAT``), if any: when it returns True, nothing
-        is built and None is returned (the caller samples those places more finely).
+    thick_pockets : callable, optional
+        Called with the thick pockets :func:`unpinch` fills
+        (``inner_set.POCKET_FLAT``), if any: air the sample may not resolve.
 
     Returns
     -------
-    MedialComplex or None
+    MedialComplex
     """
     if topology not in TOPOLOGY_MODES:
         raise InvalidInputError(f"topology must be one of {TOPOLOGY_MODES}, got {topology!r}")
@@ -294,8 +293,8 @@ def medial_complex(
         unpinched = Beside(unpinch, dt, inner, thick)
         edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
         inner = unpinched.result() if len(ring_tets) else inner  # no inner edge: nothing to unpinch
-        if refine is not None and thick.any() and refine(np.flatnonzero(thick)):
-            return None
+        if thick_pockets is not None and thick.any():
+            thick_pockets(np.flatnonzero(thick))
     member = medial if topology == "lambda" else inner
     keep = ring_all(ring_ptr, ring_tets, member) & (np.diff(ring_ptr) >= 3)
     if topology != "lambda":
