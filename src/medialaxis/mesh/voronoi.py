@@ -28,6 +28,7 @@ import dataclasses
 import time
 import warnings
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -316,7 +317,7 @@ def voronoi_medial_axis(
             one_sided = dt.longest[used] < -signed[used]  # its four contacts within 60 degrees, seen from its centre
             used, faces, edges, n_curve, n_cut = without_stray_cycles(
                 used, faces, edges, n_curve, ~medial_point | one_sided | (dt.radii[used] >= diag), solid_numbers,
-                lambda dt=dt, cx=cx: complement_voids(dt.simplices, dt.neighbors, cx.facet_ij), chi)
+                partial(complement_voids, dt.simplices, dt.neighbors, cx.facet_ij), chi)
             chi += n_cut
         if not finer or "refine" in timings or chi == solid_numbers[0] - solid_numbers[1] + solid_numbers[2]:
             break
