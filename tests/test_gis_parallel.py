@@ -114,6 +114,56 @@ def test_ctrl_c_stops_the_workers_and_raises_cancelled(lakes, scheduler, python_
     assert threading.active_count() == threads  # nor a thread
 
 
+HALF_MESSAGE = """
+import multiprocessing, os, struct, sys, threading, time
+from concurrent.futures import ProcessPoolExecutor
+
+def half_message(flag):
+    # in a worker: a 1000-byte result begun, 10 bytes of it written, then the stall of a worker ended mid-write
+    frame = sys._getframe()
+    while "result_queue" not in frame.f_locals:
+        frame = frame.f_back
+    os.write(frame.f_locals["result_queue"]._writer.fileno(), struct.pack("!i", 1000) + b"x" * 10)
+    open(flag, "w").close()
+    time.sleep(600)
+
+if __name__ == "__main__":
+    from medialaxis.gis.parallel import _end_pool
+    pool = ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("forkserver"))
+    future = pool.submit(half_message, sys.argv[1])
+    while not os.path.exists(sys.argv[1]):
+        time.sleep(0.05)
+    time.sleep(0.5)  # the pool's manager thread now waits in its read for the other 990 bytes
+    processes = list(pool._processes.values())
+    for process in processes:
+        process.terminate()
+    if sys.argv[2] == "fixed":
+        closing = threading.Thread(target=_end_pool, args=(pool, processes), daemon=True)
+    else:
+        closing = threading.Thread(target=pool.shutdown, kwargs={"wait": True, "cancel_futures": True}, daemon=True)
+    closing.start()
+    closing.join(10)
+    print("hangs" if closing.is_alive() else type(future.exception(0)).__name__, flush=True)
+    os._exit(0)
+"""
+
+
+@pytest.mark.parametrize("fixed", [True, False])
+def test_a_worker_ended_mid_result_does_not_hang_the_pool(tmp_path, fixed):
+    """The CI hang of 2026-11-28: Ctrl-C ended a worker while it wrote its result, and ``shutdown`` waited forever.
+
+    With ``shutdown`` as it is (the control case) CPython's pool does hang on this input.
+    """
+    import subprocess
+    import sys
+
+    script = tmp_path / "half.py"
+    script.write_text(HALF_MESSAGE)
+    run = subprocess.run([sys.executable, str(script), str(tmp_path / "flag"), "fixed" if fixed else "as is"],
+                         capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert run.stdout.strip() == ("BrokenProcessPool" if fixed else "hangs"), run.stderr[-2000:]
+
+
 def test_cli_jobs_and_scheduler(lakes, serial, tmp_path):
     from medialaxis.cli import main
 

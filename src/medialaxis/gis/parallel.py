@@ -107,24 +107,53 @@ def _on_pool(pool: Executor, kind: str, chunks: list[Sequence[Any]], options: di
     """The chunks on a thread or process pool, a few per worker handed out at a time; rows in order."""
     results: list[Any] = [None] * len(chunks)
     pending: dict[Future, int] = {}
+    ended: list[Any] = []
     try:
         total = sum(len(chunk) for chunk in chunks)
         for _ in progress(_rows_done(pool, kind, chunks, options, step, 4 * workers, pending, results),
                           desc="features", total=total, show=show_progress):
             pass
     except BaseException as exc:
-        for fut in pending:
-            fut.cancel()
         # the chunks handed out to processes compute nothing that outlives them: stop them now rather
-        # than wait (ProcessPoolExecutor.terminate_workers from Python 3.14); threads end their feature
-        for process in list((getattr(pool, "_processes", None) or {}).values()):
+        # than wait (ProcessPoolExecutor.terminate_workers from Python 3.14); threads end their feature.
+        # The futures not started are cancelled by the shutdown (cancelled here, a pool that then finds
+        # its workers gone would fail them again, and its manager thread die of it)
+        ended = list((getattr(pool, "_processes", None) or {}).values())
+        for process in ended:
             process.terminate()
         if isinstance(exc, KeyboardInterrupt):
             raise Cancelled("features: cancelled") from exc
         raise
     finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+        if ended:
+            _end_pool(pool, ended)
+        else:
+            pool.shutdown(wait=True, cancel_futures=True)
     return [row for rows in results for row in rows]
+
+
+def _end_pool(pool: Executor, ended: list[Any]) -> None:
+    """``pool.shutdown(wait=True)`` once its worker processes ``ended`` were terminated, without hanging.
+
+    A worker ended while it wrote its result leaves part of a message in the result pipe, and the
+    pool's manager thread waits in its read for the rest, so ``shutdown`` never returns (a CI run
+    hung so in the Ctrl-C test, 2026-11-28). Once every worker is gone our own writing end of that
+    pipe is its last: closed, the read ends at end of file, which the pool takes as a worker lost
+    (it fails the futures left and ends by itself). Nothing is written to that pipe from this side.
+    """
+    manager = getattr(pool, "_executor_manager_thread", None)
+    queue = getattr(pool, "_result_queue", None)
+    pool.shutdown(wait=False, cancel_futures=True)  # wakes the manager; the pool lets go of both
+    for process in ended:
+        process.join(5.0)
+    if manager is None:
+        return
+    manager.join(2.0)
+    if manager.is_alive() and queue is not None and not any(process.is_alive() for process in ended):
+        queue._writer.close()
+        manager.join(10.0)
+    if queue is not None and not manager.is_alive():
+        queue.close()
 
 
 def _rows_done(pool: Executor, kind: str, chunks: list[Sequence[Any]], options: dict[str, Any],
