@@ -49,7 +49,7 @@ from medialaxis.mesh.medial.inner_set import inner_tets
 from medialaxis.mesh.medial.stray_cycles import complement_voids, without_stray_cycles
 from medialaxis.mesh.medial.voronoi_complex import euler_characteristic, medial_complex
 from medialaxis.mesh.options import MeshVoronoiOptions
-from medialaxis.mesh.sample.sample_delaunay import tetrahedralised_sample
+from medialaxis.mesh.sample.sample_delaunay import surface_structures, tetrahedralised_sample
 from medialaxis.mesh.sample.sampling import (
     adaptive_spacing,
     lfs_estimate,
@@ -59,7 +59,7 @@ from medialaxis.mesh.sample.sampling import (
     sample_surface,
 )
 from medialaxis.mesh.sample.signed_distance import SignedDistance
-from medialaxis.mesh.solid.crossings import crossing_pairs, shell_labels, solid_betti
+from medialaxis.mesh.solid.crossings import shell_labels, solid_betti
 from medialaxis.mesh.solid.inputs import MeshInput, load_mesh, resolve_solid, signed_volume
 
 __all__ = ["voronoi_medial_axis", "SignedDistance", "euler_characteristic", "LAM_FACTOR"]
@@ -220,6 +220,7 @@ def voronoi_medial_axis(
         diag = float(np.linalg.norm(np.ptp(np.asarray(work.vertices), axis=0)))
         t0 = time.perf_counter()
         normals = pseudo_normals(work)
+        surface = Beside(surface_structures, work, normals)  # the crossing faces, the signed distance: beside the sampling
         try:
             tree = lfs_estimate(work, max(count // 8, 2000), normals)
             spacing = adaptive_spacing(work, tree, count)
@@ -228,15 +229,17 @@ def voronoi_medial_axis(
             # with the default count, the check for thin parts runs beside the Delaunay insertion of the
             # sample it keeps on most meshes
             dt, more, pairs, eps, eps_lfs, sd = tetrahedralised_sample(
-                work, smp, rng, tree, normals, (count, spacing) if samples is None else None, timings)
+                work, smp, rng, tree, normals, (count, spacing) if samples is None else None, timings, surface)
             if more is not None and more[2]:
                 warnings.warn(more[2], MedialAxisWarning, stacklevel=2)
             if more is not None and (more[0] != count or not np.array_equal(more[1], spacing)):
                 count, spacing = more[0], more[1]  # more samples, for the plates of a thin part
-                smp = sample_surface(work, spacing, normals)
-                dt, _, pairs, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings)
+                if not len(pairs):  # (else the count holds for the solid, next round)
+                    smp = sample_surface(work, spacing, normals)
+                    dt, _, pairs, eps, eps_lfs, sd = tetrahedralised_sample(
+                        work, smp, rng, tree, normals, None, timings, surface)
         except MedialAxisError:
-            pairs = crossing_pairs(work)  # a surface through itself: its solid rather than what it broke
+            pairs = surface.result()[0]  # a surface through itself: its solid rather than what it broke
             if not len(pairs):
                 raise
             src = _solid_of(src, pairs)
@@ -324,7 +327,7 @@ def voronoi_medial_axis(
         # The solid's topology is lost where thick air was filled: once more on a sample finer there (lam stays)
         t1, spacing = time.perf_counter(), local_caps(work, spacing, *finer[0])
         smp = sample_surface(work, spacing, normals)
-        dt, _, _, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings)
+        dt, _, _, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings, surface)
         if isinstance(dt, MedialAxisError):
             raise dt
         inner = inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))

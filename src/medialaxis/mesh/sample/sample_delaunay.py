@@ -1,10 +1,12 @@
-"""The surface sample's Delaunay tetrahedralisation, and the work that needs the sample but not its tetrahedra.
+"""The surface sample's Delaunay tetrahedralisation, and the work that runs beside it.
 
 The Delaunay insertion (:func:`~medialaxis.mesh.medial.voronoi_diagram.tetrahedralise`)
-is serial; beside it, on the other core, run the check for thin parts of a
-default sample count (:func:`~medialaxis.mesh.sample.thin_parts.thin_part_count`, on
-most meshes keeping the sample being inserted), the crossing faces, the
-sampling density epsilon and the closest-point structures of the inside test.
+is serial; the core it leaves idle does the work that needs no tetrahedra. What needs
+the mesh only, the crossing faces and the closest-point structures of the inside test
+(:func:`surface_structures`), starts before the sampling and runs beside it; what needs
+the sample, the check for thin parts of a default sample count
+(:func:`~medialaxis.mesh.sample.thin_parts.thin_part_count`, on most meshes keeping the
+sample being inserted) and the sampling density epsilon, runs beside the insertion.
 """
 
 from __future__ import annotations
@@ -22,46 +24,63 @@ from medialaxis.mesh.sample.signed_distance import SignedDistance
 from medialaxis.mesh.sample.thin_parts import thin_part_count
 from medialaxis.mesh.solid.crossings import crossing_pairs
 
-__all__ = ["tetrahedralised_sample"]
+__all__ = ["tetrahedralised_sample", "surface_structures"]
+
+
+def surface_structures(work: Any, normals: Any) -> tuple[np.ndarray, SignedDistance | None]:
+    """The mesh's crossing face pairs and, if there are none, its signed distance (closest-point structures built).
+
+    Needs the mesh only: started with :class:`~medialaxis._jit.Beside` before the
+    sampling, it runs beside it and the Delaunay insertion, and serves every
+    sample of the same mesh (a larger count for thin parts, the finer second
+    sample). On the uv ellipsoid's 198k faces: 0.65 s and 0.2 s of CPU.
+    """
+    pairs = crossing_pairs(work)
+    if len(pairs):
+        return pairs, None  # the sample is of the wrong surface: the caller starts again
+    sd = SignedDistance(work, normals)
+    sd.prepare_exact(tree=True)  # for the sides in doubt and the compact complex's radii (0.3 s on 200k faces)
+    return pairs, sd
 
 
 def _beside_delaunay(
-    work: Any, points: np.ndarray, rng: np.random.Generator, tree: Any, normals: Any, thin: Any
-) -> tuple[Any, np.ndarray, float, float, SignedDistance | None]:
-    """What needs the sample but not its Delaunay: the thin-part check, the crossing faces, epsilon, the signed distance.
+    work: Any, points: np.ndarray, rng: np.random.Generator, tree: Any, normals: Any, thin: Any, surface: Beside
+) -> tuple[Any, float, float]:
+    """What needs the sample but not its Delaunay: the thin-part check, then epsilon.
 
     ``thin``: the sample's ``(count, spacing)``, checked first (:func:`thin_part_count`, whose
-    answer comes first); if that wants more samples, nothing else is done.
+    answer comes first); if that wants more samples, or the surface crosses itself
+    (``surface``'s answer), epsilon is not measured (it draws from ``rng``).
     """
+    crossing = len(surface.result()[0])  # first, so that no third thread competes with the insertion
     more = None if thin is None else thin_part_count(work, thin[1], thin[0], normals)
-    if more is not None and (more[0] != thin[0] or not np.array_equal(more[1], thin[1])):
-        return more, np.empty((0, 2), np.int64), 0.0, 0.0, None
-    pairs = crossing_pairs(work)
-    if len(pairs):
-        return more, pairs, 0.0, 0.0, None  # the sample is of the wrong surface: the caller starts again
+    if crossing or more is not None and (more[0] != thin[0] or not np.array_equal(more[1], thin[1])):
+        return more, 0.0, 0.0
     eps, eps_lfs = measure_epsilon(work, points, rng, 100_000, lambda x: tree.query(x, workers=-1)[0])
-    sd = SignedDistance(work, normals)
-    sd.prepare_exact(tree=True)  # for the sides in doubt and the compact complex's radii (0.3 s on 200k faces)
-    return more, pairs, eps, eps_lfs, sd
+    return more, eps, eps_lfs
 
 
-def tetrahedralised_sample(work: Any, smp: Any, rng: Any, tree: Any, normals: Any, thin: Any, timings: dict[str, float]) -> tuple[Any, ...]:
-    """The sample's Delaunay tetrahedralisation (or the error it raised), then what :func:`_beside_delaunay` gives.
+def tetrahedralised_sample(
+    work: Any, smp: Any, rng: Any, tree: Any, normals: Any, thin: Any, timings: dict[str, float], surface: Beside
+) -> tuple[Any, ...]:
+    """The sample's Delaunay tetrahedralisation (or the error it raised), ``more``, the crossing pairs, epsilon, epsilon/lfs, the signed distance.
 
-    That runs on the core the serial Delaunay insertion leaves idle (the
-    thin-part check, the crossing check, epsilon and the closest-point
-    structures: 1.4-1.7 s of CPU beside the 1.6 s of the uv ellipsoid's
-    Delaunay, one thread each; as long, so a faster or parallel insertion
-    alone would not shorten this step).
+    Beside the serial insertion run the thin-part check and epsilon
+    (:func:`_beside_delaunay`; about 1 s of CPU beside the 1.5 s of the uv
+    ellipsoid's insertion, one thread each) and what is left of
+    ``surface`` (a :class:`~medialaxis._jit.Beside` of :func:`surface_structures`
+    for ``work``). The pairs and the signed distance are ``surface``'s;
+    epsilon is 0 when ``more`` asks for another sample or there are pairs.
     """
     t0 = time.perf_counter()
-    side = Beside(_beside_delaunay, work, smp.points, rng, tree, normals, thin)
+    side = Beside(_beside_delaunay, work, smp.points, rng, tree, normals, thin, surface)
     try:
         dt = tetrahedralise(smp.points)
     except MedialAxisError as exc:
         dt = exc
     timings["delaunay"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    found = side.result()
+    more, eps, eps_lfs = side.result()
+    pairs, sd = surface.result()
     timings["epsilon"] = time.perf_counter() - t0
-    return (dt, *found)
+    return dt, more, pairs, eps, eps_lfs, sd
