@@ -32,6 +32,8 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import csgraph
 
+from medialaxis.mesh.medial._collapse_kernels import complement_components
+
 __all__ = ["cut_stray_cycles", "complement_voids", "without_stray_cycles"]
 
 
@@ -162,21 +164,14 @@ def complement_voids(simplices: np.ndarray, neighbors: np.ndarray, facet_ij: np.
     >>> complement_voids(dt.simplices, dt.neighbors, np.array([[0, 4], [1, 4], [2, 4]]))
     0
     """
-    simplices = np.asarray(simplices, np.int64)
+    simplices = np.ascontiguousarray(simplices, np.int64)
     n = int(simplices.max()) + 1
-    lo = np.minimum(simplices[:, [0, 0, 0, 1, 1, 2]], simplices[:, [1, 2, 3, 2, 3, 3]]).ravel()
-    hi = np.maximum(simplices[:, [0, 0, 0, 1, 1, 2]], simplices[:, [1, 2, 3, 2, 3, 3]]).ravel()
-    kept = np.sort(facet_ij, axis=1) @ np.array([n, 1], np.int64) if len(facet_ij) else np.empty(0, np.int64)
-    free = ~np.isin(lo * n + hi, kept)
-    on_hull = np.unique(np.concatenate([np.delete(simplices[neighbors[:, k] < 0], k, axis=1).ravel() for k in range(4)]))
-    rows = np.concatenate([lo[free], on_hull])
-    cols = np.concatenate([hi[free], np.full(len(on_hull), n)])
-    graph = sparse.coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n + 1, n + 1))
-    label = csgraph.connected_components(graph, directed=False)[1]
-    present = np.zeros(n + 1, bool)
-    present[simplices.ravel()] = True
-    present[n] = True
-    return len(np.unique(label[present])) - 1
+    ends = np.sort(np.asarray(facet_ij, np.int64).reshape(-1, 2), axis=1)
+    ends = ends[np.argsort(ends[:, 0], kind="stable")]
+    kept_ptr = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(ends[:, 0], minlength=n), out=kept_ptr[1:])
+    return int(complement_components(simplices, np.ascontiguousarray(neighbors, np.int64), kept_ptr,
+                                     np.ascontiguousarray(ends[:, 1]))) - 1
 
 
 def without_stray_cycles(
