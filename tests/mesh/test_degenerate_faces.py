@@ -146,3 +146,32 @@ def test_a_mesh_without_degenerate_faces_is_left_as_it_is():
         loaded = load_mesh(sphere)
     assert loaded.repairs == ()
     assert np.array_equal(loaded.mesh.faces, sphere.faces)
+
+
+def test_many_caps_are_each_flipped_away():
+    # 40 T-junctions on an icosphere, each closed by a flat cap: every cap flipped, the surface as it was
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    vertices, faces = [*np.asarray(sphere.vertices)], [tuple(int(x) for x in f) for f in sphere.faces]
+    rng, used, caps = np.random.default_rng(3), set(), 0
+    for i in rng.permutation(len(faces)):
+        a, b, c = faces[i]
+        j = next(n for n, f in enumerate(faces) if (b, a) in {(f[0], f[1]), (f[1], f[2]), (f[2], f[0])})
+        if {i, j} & used:
+            continue
+        used |= {i, j}
+        m = len(vertices)
+        vertices.append(0.5 * (vertices[a] + vertices[b]))
+        faces[i] = (a, m, c)
+        faces += [(m, b, c), (a, b, m)]  # the cap: zero area, its third vertex on its longest edge
+        caps += 1
+        if caps == 40:
+            break
+    v = np.array(vertices)
+    mesh = trimesh.Trimesh(v, np.array(faces), process=False)
+    _closed_with_zero_area(mesh)
+    out, flipped, collapsed, kept = remove_degenerate_faces(v, np.array(faces), coordinate_accuracy(v))
+    assert (flipped, collapsed, kept) == (40, 0, 0)
+    assert len(degenerate_faces(v, out, coordinate_accuracy(v))) == 0
+    result = trimesh.Trimesh(v, out, process=False)
+    assert result.is_watertight and result.is_winding_consistent and result.euler_number == 2
+    assert result.volume == pytest.approx(sphere.volume, rel=1e-12)
