@@ -31,13 +31,24 @@ def boundary_loops(faces: np.ndarray) -> list[np.ndarray] | None:
     vertex becomes a manifold one. ``None`` where an edge is used twice in
     the same direction or three holes or more meet at a vertex.
     """
-    f = np.asarray(faces, np.int64)
+    f = np.asarray(faces, np.int64).reshape(-1, 3)
     directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
     third = np.concatenate([f[:, 2], f[:, 0], f[:, 1]])  # the corner opposite each directed edge
-    face_of = {(int(u), int(v)): int(w) for (u, v), w in zip(directed, third)}
-    if len(face_of) < len(directed):
+    n = int(f.max(initial=-1)) + 1
+    order = np.argsort(directed[:, 0] * n + directed[:, 1], kind="stable")
+    keys = (directed[:, 0] * n + directed[:, 1])[order]  # sorted: an edge's corner by binary search, no dict of them all
+    if len(keys) and (keys[1:] == keys[:-1]).any():
         return None
-    boundary = [(u, v) for (u, v) in face_of if (v, u) not in face_of]
+
+    def corner(u: int, v: int) -> int | None:
+        """The corner opposite the directed edge ``u -> v``, if a face has it."""
+        at = int(np.searchsorted(keys, u * n + v))
+        return int(third[order[at]]) if at < len(keys) and keys[at] == u * n + v else None
+
+    reverse = directed[:, 1] * n + directed[:, 0]
+    at = np.minimum(np.searchsorted(keys, reverse), max(len(keys) - 1, 0))
+    open_edge = np.flatnonzero(keys[at] != reverse) if len(keys) else np.empty(0, np.int64)
+    boundary = [(int(u), int(v)) for u, v in directed[open_edge]]
     leaving: dict[int, list[int]] = {}
     for u, v in boundary:
         leaving.setdefault(u, []).append(v)
@@ -52,9 +63,9 @@ def boundary_loops(faces: np.ndarray) -> list[np.ndarray] | None:
         # two holes at v: turning about v through the faces from the one of u -> v (v -> w, across it the
         # next face, ...) reaches the boundary edge on the same fan, of the other hole; u -> v's hole goes on
         # along the other fan's edge
-        w, guard = face_of[(u, v)], 0
-        while (w, v) in face_of and guard < len(face_of):
-            w, guard = face_of[(w, v)], guard + 1
+        w, guard = corner(u, v), 0
+        while (nw := corner(w, v)) is not None and guard < len(keys):  # type: ignore[arg-type]
+            w, guard = nw, guard + 1
         if w not in heads:
             return None
         nxt[(u, v)] = (v, heads[1 - heads.index(w)])
