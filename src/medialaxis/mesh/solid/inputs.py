@@ -27,6 +27,7 @@ from medialaxis.errors import (
 )
 from medialaxis.mesh.solid.contour import contoured
 from medialaxis.mesh.solid.crossings import inside_out_shells
+from medialaxis.mesh.solid.orientation import fix_winding
 
 __all__ = ["MeshInput", "load_mesh", "resolve_solid", "signed_volume"]
 
@@ -287,8 +288,8 @@ def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, i
             return contoured(work, f"the mesh is not watertight ({open_edges} open edges, {crowded} edges of more than "
                              "two faces that do not pair up in opposite directions)", repairs, found)
         return _touching_solids(work, crowded, repairs, found)
-    if not work.is_winding_consistent:  # trimesh's fix_winding works on open surfaces too
-        require("trimesh", "medialaxis[mesh]").repair.fix_winding(work)
+    if not work.is_winding_consistent:  # on open surfaces too
+        fix_winding(work)
     loops = boundary_loops(np.asarray(work.faces))
     if not loops:
         return contoured(work, f"the mesh is not watertight ({open_edges} open edges; three holes or more touch at a "
@@ -394,7 +395,7 @@ def load_mesh(mesh: Any, *, watertight: bool = True, repair: bool = False, cross
         if not _closed(work):
             work = _close_holes(work, repair, repairs, found)
         if not work.is_winding_consistent:
-            trimesh.repair.fix_winding(work)
+            fix_winding(work)
             repairs.append("made face winding consistent")
         work = _take_out_degenerate(work, repairs)
         volume = signed_volume(work.triangles)

