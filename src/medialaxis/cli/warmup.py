@@ -48,6 +48,11 @@ def _mesh() -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", MedialAxisWarning)
         mx.medial_axis(crossing, samples=2000)  # the arrangement and winding-number kernels
+    from medialaxis.mesh.medial.stray_cycles import complement_voids
+    from medialaxis.mesh.medial.voronoi_diagram import tetrahedralise
+
+    dt = tetrahedralise(np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, 4], [1, 1, 1.0]]))
+    complement_voids(dt.simplices, dt.neighbors, np.array([[0, 4], [1, 4]]))  # only where a complex has extra cycles
 
 
 def _volume() -> None:
