@@ -288,8 +288,7 @@ def _close_holes(work: Any, repair: bool, repairs: list[str], found: dict[str, i
             return contoured(work, f"the mesh is not watertight ({open_edges} open edges, {crowded} edges of more than "
                              "two faces that do not pair up in opposite directions)", repairs, found)
         return _touching_solids(work, crowded, repairs, found)
-    if not work.is_winding_consistent:  # on open surfaces too
-        fix_winding(work)
+    fix_winding(work)  # on open surfaces too; nothing to do where the winding agrees
     loops = boundary_loops(np.asarray(work.faces))
     if not loops:
         return contoured(work, f"the mesh is not watertight ({open_edges} open edges; three holes or more touch at a "

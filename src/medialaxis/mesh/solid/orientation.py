@@ -40,6 +40,8 @@ def fix_winding(mesh: Any) -> int:
     Pairs of faces with all three corners in common (a face given twice) are
     left to trimesh, whose choice of their shared edge is then used.
     """
+    if mesh.is_winding_consistent:
+        return 0
     faces = np.asarray(mesh.faces, np.int64)
     pairs = np.asarray(mesh.face_adjacency, np.int64).reshape(-1, 2)
     if not len(pairs):
