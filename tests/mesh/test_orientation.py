@@ -83,3 +83,11 @@ def test_a_moebius_band_is_walked_and_left_with_one_seam():
     disagree = sum(bool(directed(f[a]) & directed(f[b])) for a, b in np.asarray(mesh.face_adjacency))  # same way
     assert not mesh.is_winding_consistent
     assert 1 <= disagree <= 2  # one seam across the band
+
+
+def test_faces_over_the_same_corners_are_left_to_trimesh():
+    # a pillow of two faces over three corners, both given the same way: which edge they share is not defined
+    mesh = trimesh.Trimesh(np.eye(3), np.array([[0, 1, 2], [0, 1, 2]]), process=False)
+    assert len(mesh.face_adjacency) and not mesh.is_winding_consistent
+    assert fix_winding(mesh) == 1
+    assert mesh.is_winding_consistent

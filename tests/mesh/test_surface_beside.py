@@ -92,3 +92,32 @@ def test_the_finer_second_sample_reuses_the_mesh_work(counted: dict[str, list[in
     assert "refine" in ma.metadata["timings"]
     assert len(counted["delaunay"]) >= 2
     assert len(counted["crossing"]) == 1 and len(counted["signed"]) == 1
+
+
+def test_thin_plates_through_each_other_measure_epsilon_once(counted, monkeypatch):
+    """Two crossing plates by default: the crossing is found first, the larger sample is taken of the solid only.
+
+    Epsilon draws from the route's random generator: it is measured for the
+    sample the complex is built on and for no other, as before the mesh's own
+    work moved ahead of the sampling.
+    """
+    draws = []
+    measure = sample_delaunay.measure_epsilon
+
+    def measure_epsilon(mesh, points, *args):  # type: ignore[no-untyped-def]
+        draws.append(len(points))
+        return measure(mesh, points, *args)
+
+    monkeypatch.setattr(sample_delaunay, "measure_epsilon", measure_epsilon)
+    a = trimesh.creation.box(extents=(6.0, 6.0, 0.3))
+    b = trimesh.creation.box(extents=(0.3, 6.0, 6.0))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ma = mx.medial_axis(trimesh.util.concatenate([a, b]), method="voronoi", compact=False)
+    assert any("passes through itself" in str(w.message) for w in caught)
+    assert len(counted["crossing"]) == 2 and counted["crossing"][0] == 24  # the mesh, then its solid
+    # the crossing mesh is not sampled again at the larger count its thin check asks (that was a third insertion,
+    # thrown away): the solid is sampled at it at once
+    assert len(counted["delaunay"]) == 2 and counted["delaunay"][1] > counted["delaunay"][0]
+    assert draws == counted["delaunay"][-1:]  # once, on the sample inserted last
+    assert ma.betti == (1, 0, 0)

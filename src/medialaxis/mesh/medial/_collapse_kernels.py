@@ -223,10 +223,10 @@ def complement_components(simplices, neighbors, kept_ptr, kept_hi):  # type: ign
     """Components of the samples joined by the Delaunay edges not kept, the hull's samples joined to infinity.
 
     ``kept_hi[kept_ptr[a]:kept_ptr[a + 1]]``: the higher ends of the kept
-    edges whose lower end is sample ``a`` (a few per sample at most). Each
-    tetrahedron's six edges are read in place: on a scanned ogre's 2.7M
-    tetrahedra, the edge list and the sparse graph made of it took 5.3 s and
-    over a gigabyte. Returns how many components the samples in a
+    edges whose lower end is sample ``a`` (a few per sample, usually; each
+    lookup scans them). Each tetrahedron's six edges are read in place: on a
+    scanned ogre's 2.7M tetrahedra, the edge list and the sparse graph made
+    of it took 5.3 s and half a gigabyte. Returns how many components the samples in a
     tetrahedron and the point at infinity (node ``len(kept_ptr) - 1``) form.
     """
     n = kept_ptr.shape[0] - 1

@@ -31,12 +31,13 @@ def boundary_loops(faces: np.ndarray) -> list[np.ndarray] | None:
     vertex becomes a manifold one. ``None`` where an edge is used twice in
     the same direction or three holes or more meet at a vertex.
     """
-    f = np.asarray(faces, np.int64).reshape(-1, 3)
+    f = np.asarray(faces, np.int64)
     directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
     third = np.concatenate([f[:, 2], f[:, 0], f[:, 1]])  # the corner opposite each directed edge
     n = int(f.max(initial=-1)) + 1
-    order = np.argsort(directed[:, 0] * n + directed[:, 1], kind="stable")
-    keys = (directed[:, 0] * n + directed[:, 1])[order]  # sorted: an edge's corner by binary search, no dict of them all
+    keys = directed[:, 0] * n + directed[:, 1]
+    order = np.argsort(keys, kind="stable")
+    keys = keys[order]  # sorted: an edge's corner by binary search, no dict of them all
     if len(keys) and (keys[1:] == keys[:-1]).any():
         return None
 

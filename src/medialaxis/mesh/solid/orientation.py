@@ -19,6 +19,8 @@ from typing import Any
 
 import numpy as np
 
+from medialaxis._optional import require
+
 __all__ = ["fix_winding"]
 
 
@@ -35,10 +37,32 @@ def _same_direction(faces: np.ndarray, pairs: np.ndarray) -> np.ndarray:
 
 
 def fix_winding(mesh: Any) -> int:
-    """Turn faces of ``mesh`` (a ``trimesh.Trimesh``, in place) so that adjacent faces agree; returns how many.
+    """Turn faces of ``mesh`` (in place) so that adjacent faces agree.
 
-    Pairs of faces with all three corners in common (a face given twice) are
-    left to trimesh, whose choice of their shared edge is then used.
+    Where two adjacent faces have three corners in common (a face with a
+    corner repeated beside another, or two faces over the same corners that
+    trimesh still pairs), which edge they share is not defined: the whole
+    mesh is then left to ``trimesh.repair.fix_winding`` (its walk's first
+    face decides each component).
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+
+    Returns
+    -------
+    int
+        How many faces were turned.
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> box = trimesh.creation.box()
+    >>> faces = box.faces.copy()
+    >>> faces[:3] = faces[:3, ::-1]
+    >>> mesh = trimesh.Trimesh(box.vertices, faces, process=False)
+    >>> fix_winding(mesh), bool((mesh.faces == box.faces).all())
+    (3, True)
     """
     if mesh.is_winding_consistent:
         return 0
@@ -47,10 +71,8 @@ def fix_winding(mesh: Any) -> int:
     if not len(pairs):
         return 0
     if ((faces[pairs[:, 0]][:, :, None] == faces[pairs[:, 1]][:, None, :]).any(axis=2).sum(axis=1) > 2).any():
-        import trimesh
-
         before = np.asarray(mesh.faces).copy()
-        trimesh.repair.fix_winding(mesh)
+        require("trimesh", "medialaxis[mesh]").repair.fix_winding(mesh)
         return int((np.asarray(mesh.faces) != before).any(axis=1).sum())
     same = _same_direction(faces, pairs)
     ends = np.concatenate([pairs, pairs[:, ::-1]])
