@@ -48,9 +48,10 @@ def _beside_delaunay(
 ) -> tuple[Any, float, float]:
     """What needs the sample but not its Delaunay: the thin-part check, then epsilon.
 
-    ``thin``: the sample's ``(count, spacing)``, checked first (:func:`thin_part_count`, whose
-    answer comes first); if that wants more samples, or the surface crosses itself
-    (``surface``'s answer), epsilon is not measured (it draws from ``rng``).
+    Waits for ``surface`` first (the crossing check), then checks ``thin``, the
+    sample's ``(count, spacing)`` (:func:`thin_part_count`). If the surface
+    crosses itself or the check wants more samples, epsilon is not measured
+    (it draws from ``rng``, as it did for this sample only before).
     """
     crossing = len(surface.result()[0])  # first, so that no third thread competes with the insertion
     more = None if thin is None else thin_part_count(work, thin[1], thin[0], normals)
