@@ -51,7 +51,7 @@ def _beside_delaunay(
     Waits for ``surface`` first (the crossing check), then checks ``thin``, the
     sample's ``(count, spacing)`` (:func:`thin_part_count`). If the surface
     crosses itself or the check wants more samples, epsilon is not measured
-    (it draws from ``rng``, as it did for this sample only before).
+    (it draws from ``rng``: only the sample the complex is built on draws).
     """
     crossing = len(surface.result()[0])  # first, so that no third thread competes with the insertion
     more = None if thin is None else thin_part_count(work, thin[1], thin[0], normals)
