@@ -238,11 +238,11 @@ def voronoi_medial_axis(
                     smp = sample_surface(work, spacing, normals)
                     dt, _, pairs, eps, eps_lfs, sd = tetrahedralised_sample(
                         work, smp, rng, tree, normals, None, timings, surface)
-        except MedialAxisError as exc:
+        except MedialAxisError:
             try:
                 pairs = surface.result()[0]  # a surface through itself: its solid rather than what it broke
-            except MedialAxisError:
-                raise exc from None  # what the sampling met, not what the mesh's own work met after it
+            except MedialAxisError:  # (the same error, or one after it) what the sampling met is raised, as it came
+                pairs = np.empty((0, 2), np.int64)
             if not len(pairs):
                 raise
             src = _solid_of(src, pairs)
