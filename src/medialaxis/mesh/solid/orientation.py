@@ -24,16 +24,9 @@ from medialaxis._optional import require
 __all__ = ["fix_winding"]
 
 
-def _same_direction(faces: np.ndarray, pairs: np.ndarray) -> np.ndarray:
-    """For each pair of adjacent faces, whether both run along their shared edge the same way (one needs turning)."""
-    a, b = faces[pairs[:, 0]], faces[pairs[:, 1]]
-    shared = (a[:, :, None] == b[:, None, :]).any(axis=2)  # corners of a that b has
-    # a's edge k runs from corner k to k + 1; the shared one is the edge whose two corners b has
-    edge = np.argmax(shared & np.roll(shared, -1, axis=1), axis=1)
-    rows = np.arange(len(pairs))
-    u, w = a[rows, edge], a[rows, (edge + 1) % 3]
-    along = ((b == u[:, None]) & (np.roll(b, -1, axis=1) == w[:, None])).any(axis=1)  # b runs u -> w too
-    return along
+def _runs(faces: np.ndarray, u: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """For each row, whether the face runs from ``u`` to ``w`` along one of its edges."""
+    return ((faces == u[:, None]) & (np.roll(faces, -1, axis=1) == w[:, None])).any(axis=1)
 
 
 def fix_winding(mesh: Any) -> int:
@@ -70,11 +63,13 @@ def fix_winding(mesh: Any) -> int:
     pairs = np.asarray(mesh.face_adjacency, np.int64).reshape(-1, 2)
     if not len(pairs):
         return 0
-    if ((faces[pairs[:, 0]][:, :, None] == faces[pairs[:, 1]][:, None, :]).any(axis=2).sum(axis=1) > 2).any():
+    a, b = faces[pairs[:, 0]], faces[pairs[:, 1]]
+    if ((a[:, :, None] == b[:, None, :]).any(axis=2).sum(axis=1) > 2).any():
         before = np.asarray(mesh.faces).copy()
         require("trimesh", "medialaxis[mesh]").repair.fix_winding(mesh)
         return int((np.asarray(mesh.faces) != before).any(axis=1).sum())
-    same = _same_direction(faces, pairs)
+    u, w = np.asarray(mesh.face_adjacency_edges, np.int64).T  # the edge each pair shares
+    same = _runs(a, u, w) == _runs(b, u, w)  # both run along it the same way: one needs turning
     ends = np.concatenate([pairs, pairs[:, ::-1]])
     order = np.argsort(ends[:, 0], kind="stable")
     n = len(faces)
