@@ -6,13 +6,15 @@ arrays of millions of distinct keys is far slower than sorting: 2.6 s against
 0.04 s for 4 million int64 keys, 2 million distinct (NumPy 2.4.6). The
 pipelines build such key arrays (edges of Delaunay complexes, voxel indices)
 at every step.
+
+:class:`SparseRows` holds rows for a few of millions of items.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["unique_ints"]
+__all__ = ["unique_ints", "SparseRows"]
 
 
 def unique_ints(values: np.ndarray, nearly_sorted: bool = False) -> np.ndarray:
@@ -27,3 +29,37 @@ def unique_ints(values: np.ndarray, nearly_sorted: bool = False) -> np.ndarray:
     if len(flat) == 0:
         return flat
     return flat[np.r_[True, flat[1:] != flat[:-1]]]
+
+
+class SparseRows:
+    """Rows set for a few of ``n`` items, read back by item: a dense ``(n, k)`` array's job in a fraction of its memory.
+
+    ``rows[index] = values`` sets them (a later setting wins); ``rows[index]``
+    reads them, NaN where none was set. The closest points of the Voronoi
+    vertices queried, a few percent of a scanned ogre's 2.7M tetrahedra,
+    took 66 MB as a dense array.
+
+    Examples
+    --------
+    >>> rows = SparseRows(5, 2)
+    >>> rows[np.array([3, 1])] = np.array([[3.0, 3.0], [1.0, 1.0]])
+    >>> rows[np.array([1])] = np.array([[9.0, 9.0]])
+    >>> rows[np.array([1, 2, 3])].tolist()
+    [[9.0, 9.0], [nan, nan], [3.0, 3.0]]
+    """
+
+    def __init__(self, n: int, k: int) -> None:
+        self._slot = np.full(n, -1, np.int64 if n >= 2**31 else np.int32)
+        self._parts: list[np.ndarray] = [np.full((1, k), np.nan)]  # slot -1 reads the last row: NaN
+        self._size = 0
+
+    def __setitem__(self, index: np.ndarray, values: np.ndarray) -> None:
+        values = np.asarray(values, np.float64)
+        self._slot[index] = self._size + np.arange(len(values))
+        self._parts.insert(len(self._parts) - 1, values)
+        self._size += len(values)
+
+    def __getitem__(self, index: np.ndarray) -> np.ndarray:
+        if len(self._parts) > 2:  # once read, one part
+            self._parts = [np.concatenate(self._parts[:-1]), self._parts[-1]]
+        return np.concatenate(self._parts)[self._slot[index]]

@@ -35,6 +35,8 @@ import numpy as np
 
 from medialaxis._jit import Beside
 from medialaxis._progress import Progress, check_cancel
+from medialaxis.core.arrays import SparseRows
+from medialaxis.core.memory import release_freed_memory
 from medialaxis.core.options import make_options, takes_options
 from medialaxis.core.result import MedialAxis
 from medialaxis.core.validate import check_number
@@ -213,6 +215,7 @@ def voronoi_medial_axis(
         check_simplify(simplify, simplify_mode)
     stages = ["sampling", "inside", "facets"] + ["compact"] * bool(compact) + ["simplify"] * (simplify is not None)
     def stage(name: str) -> None:
+        release_freed_memory()  # the last stage's arrays: ogre's 2.7M tetrahedra left 0.26 GB in the heap
         check_cancel(callback, Progress("voronoi", name, stages.index(name), len(stages)))
 
     stage("sampling")
@@ -235,6 +238,7 @@ def voronoi_medial_axis(
             if more is not None and (more[0] != count or not np.array_equal(more[1], spacing)):
                 count, spacing = more[0], more[1]  # more samples, for the plates of a thin part
                 if not len(pairs):  # (else the count holds for the solid, next round)
+                    del dt  # the first one freed before the next is made
                     smp = sample_surface(work, spacing, normals)
                     dt, _, pairs, eps, eps_lfs, sd = tetrahedralised_sample(
                         work, smp, rng, tree, normals, None, timings, surface)
@@ -281,7 +285,7 @@ def voronoi_medial_axis(
     stage("facets")
     t0, n_tets = time.perf_counter(), len(dt.simplices)
     signed = np.full(n_tets, np.inf)  # of the circumcentres queried (negative inside)
-    closest = np.full((n_tets, 3), np.nan)
+    closest = SparseRows(n_tets, 3)  # of the few circumcentres queried
     finer: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
 
     def refine(tets: np.ndarray) -> None:
@@ -329,13 +333,14 @@ def voronoi_medial_axis(
             break
         # The solid's topology is lost where thick air was filled: once more on a sample finer there (lam stays)
         t1, spacing = time.perf_counter(), local_caps(work, spacing, *finer[0])
+        del dt, signed, closest, cx  # freed before the next ones are made
         smp = sample_surface(work, spacing, normals)
         dt, _, _, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings, surface)
         if isinstance(dt, MedialAxisError):
             raise dt
         inner = inner_tets(dt, smp, sd, 1e-6 * float(spacing.min()))
         union_volume, point_spacing = float(dt.volume[inner].sum()), np.asarray(spacing)[smp.face]
-        signed, closest = np.full(len(dt.simplices), np.inf), np.full((len(dt.simplices), 3), np.nan)
+        signed, closest = np.full(len(dt.simplices), np.inf), SparseRows(len(dt.simplices), 3)
         timings["refine"] = time.perf_counter() - t1
     stray = used[(signed[used] >= 0) | (dt.radii[used] >= diag)]  # kept for topology, its circumcentre out or far
     if len(stray):  # the centroid of its (inner) tetrahedron stands for it: far circumcentres broke compaction
@@ -383,13 +388,14 @@ def voronoi_medial_axis(
         "inside": inside,
         "contacts": dt.points[dt.simplices[used]],
     }
+    contact_faces = smp.face[dt.simplices[used]]  # the faces of each sphere's four samples, for the compaction
+    del dt, signed, closest, cx, inner  # the tetrahedra's arrays, freed before the result's copies are made
     result = MedialAxis(points, radii, edges, faces, extras=extras, metadata=metadata, shape=src.mesh)
     if compact:
         from medialaxis.mesh.medial.compact import COMPACT_TOLERANCE, compact_medial_axis
 
         stage("compact")
         t0 = time.perf_counter()
-        contact_faces = smp.face[dt.simplices[used]]  # the faces of each sphere's four samples
         result = compact_medial_axis(
             result, COMPACT_TOLERANCE * eps, exact=sd.exact, shells=int(shell_labels(work).max()) + 1,
             signed=lambda x, near: sd.query(x, contact_faces[near].reshape(len(x), -1))[0],

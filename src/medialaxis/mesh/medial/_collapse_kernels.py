@@ -79,7 +79,7 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
     """
     n_facets = facet_ptr.shape[0] - 1
     n_sides = side_facet_ptr.shape[0] - 1
-    count = np.zeros(n_sides, np.int64)
+    count = np.zeros(n_sides, np.int32)  # a triangle lies on three Delaunay edges: at most three facets
     for k in range(facet_sides.shape[0]):
         count[facet_sides[k]] += 1
     facet_alive = np.ones(n_facets, np.bool_)
@@ -144,7 +144,7 @@ def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: 
     side_alive : (s,) bool ndarray
     side_used : (s,) bool ndarray
         True where a remaining facet uses the side (never removed).
-    side_ends : (s, 2) int64 ndarray
+    side_ends : (s, 2) int32 or int64 ndarray
     n_vertices : int
 
     Returns
@@ -153,7 +153,7 @@ def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: 
         The sides still present.
     """
     alive = side_alive.copy()
-    degree = np.zeros(n_vertices, np.int64)
+    degree = np.zeros(n_vertices, np.int32)
     for s in range(alive.shape[0]):
         if alive[s]:
             degree[side_ends[s, 0]] += 1
@@ -166,7 +166,7 @@ def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: 
     for v in range(n_vertices):
         ptr[v + 1] += ptr[v]
     fill = ptr[:-1].copy()
-    inc = np.empty(ptr[-1], np.int64)
+    inc = np.empty(ptr[-1], np.int32)  # side numbers: int32, as the ring entries
     for s in range(alive.shape[0]):
         for e in range(2):
             v = side_ends[s, e]

@@ -17,15 +17,27 @@ from medialaxis._jit import njit, prange
 __all__ = [
     "all_edge_rings",
     "ring_side_ids",
+    "ring_side_slots",
     "csr_transpose",
     "ring_all",
     "ring_max",
     "edge_order",
     "gather_rings",
     "flagged_sides",
-    "take",
     "odd_sides",
 ]
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _side_after(neighbors, ring_ptr, ring_tets, start, stop, q):  # type: ignore[no-untyped-def]
+    """The id ``4 * lo + k`` of the triangle between ring entry ``q`` and the next (see :func:`ring_side_ids`)."""
+    a = ring_tets[q]
+    b = ring_tets[q + 1] if q + 1 < stop else ring_tets[start]
+    lo, hi = min(a, b), max(a, b)
+    for k in range(4):
+        if neighbors[lo, k] == hi:
+            return 4 * lo + k
+    return -1
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -35,33 +47,47 @@ def ring_side_ids(ring_ptr, ring_tets, neighbors):  # type: ignore[no-untyped-de
     ``lo`` is the lower of the two tetrahedra and ``k`` the face of ``lo``
     across which the other lies (``neighbors[lo, k]``), so the same triangle
     gets the same id from every ring through it; -1 if the two are not
-    neighbours (rings of one or two tetrahedra).
+    neighbours (rings of one or two tetrahedra). Int32: ``4 * t`` fits it for any tetrahedralisation
+    that fits in memory (:func:`~medialaxis.mesh.medial.voronoi_diagram.edge_rings` checks).
     """
-    out = np.empty(ring_tets.shape[0], np.int64)
+    out = np.empty(ring_tets.shape[0], np.int32)
     for r in prange(ring_ptr.shape[0] - 1):
         start, stop = ring_ptr[r], ring_ptr[r + 1]
         for q in range(start, stop):
-            a = ring_tets[q]
-            b = ring_tets[q + 1] if q + 1 < stop else ring_tets[start]
-            lo, hi = min(a, b), max(a, b)
-            out[q] = -1
-            for k in range(4):
-                if neighbors[lo, k] == hi:
-                    out[q] = 4 * lo + k
-                    break
+            out[q] = _side_after(neighbors, ring_ptr, ring_tets, start, stop, q)
+    return out
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def ring_side_slots(ring_ptr, ring_tets, neighbors, slot):  # type: ignore[no-untyped-def]
+    """``slot[ring_side_ids(ring_ptr, ring_tets, neighbors)]`` in one pass, -1 where there is no triangle.
+
+    The ids themselves (a ring-sized array) are never made: the medial
+    complex needs them only for the few rings that survive its collapses.
+    """
+    out = np.empty(ring_tets.shape[0], slot.dtype)
+    for r in prange(ring_ptr.shape[0] - 1):
+        start, stop = ring_ptr[r], ring_ptr[r + 1]
+        for q in range(start, stop):
+            side = _side_after(neighbors, ring_ptr, ring_tets, start, stop, q)
+            out[q] = slot[side] if side >= 0 else -1
     return out
 
 
 @njit(cache=True, nogil=True)
 def csr_transpose(ptr, idx, n_cols):  # type: ignore[no-untyped-def]
-    """Transpose of the incidence ``row -> idx[ptr[row]:ptr[row + 1]]``: rows of each column, ascending."""
-    tptr = np.zeros(n_cols + 1, np.int64)
+    """Transpose of the incidence ``row -> idx[ptr[row]:ptr[row + 1]]``: rows of each column, ascending.
+
+    The pointers and rows come in the dtype of ``idx`` (int32 ring entries give int32 ones: there are fewer
+    rows than entries, and the entries number less than ``2**31``).
+    """
+    tptr = np.zeros(n_cols + 1, idx.dtype)
     for q in range(idx.shape[0]):
         tptr[idx[q] + 1] += 1
     for c in range(n_cols):
         tptr[c + 1] += tptr[c]
     fill = tptr[:-1].copy()
-    rows = np.empty(idx.shape[0], np.int64)
+    rows = np.empty(idx.shape[0], idx.dtype)
     for r in range(ptr.shape[0] - 1):
         for q in range(ptr[r], ptr[r + 1]):
             c = idx[q]
@@ -114,12 +140,12 @@ def edge_order(edge_ij, n_points):  # type: ignore[no-untyped-def]
 
 @njit(cache=True, nogil=True, parallel=True)
 def gather_rings(ring_ptr, ring_tets, rows):  # type: ignore[no-untyped-def]
-    """Rings ``rows`` (in that order) as a new ``(ptr, tets)`` pair."""
+    """Rings ``rows`` (in that order) as a new ``(ptr, tets)`` pair, the tetrahedra in the dtype given."""
     n = rows.shape[0]
     ptr = np.zeros(n + 1, np.int64)
     for k in range(n):
         ptr[k + 1] = ptr[k] + ring_ptr[rows[k] + 1] - ring_ptr[rows[k]]
-    out = np.empty(ptr[n], np.int64)
+    out = np.empty(ptr[n], ring_tets.dtype)
     for k in prange(n):
         src = ring_ptr[rows[k]]
         for q in range(ptr[k + 1] - ptr[k]):
@@ -144,9 +170,9 @@ def flagged_sides(neighbors, flag):  # type: ignore[no-untyped-def]
 
     Returns
     -------
-    slot : (4 t,) int64 ndarray
+    slot : (4 t,) int32 ndarray
         Number of each triangle id, -1 where the triangle is not such a side.
-    ends : (s, 2) int64 ndarray
+    ends : (s, 2) int32 ndarray
         The two tetrahedra of each side, the lower first.
     """
     n = neighbors.shape[0]
@@ -163,8 +189,8 @@ def flagged_sides(neighbors, flag):  # type: ignore[no-untyped-def]
         count[b + 1] = c
     for b in range(n_blocks):
         count[b + 1] += count[b]
-    slot = np.empty(4 * n, np.int64)
-    ends = np.empty((count[n_blocks], 2), np.int64)
+    slot = np.empty(4 * n, np.int32)
+    ends = np.empty((count[n_blocks], 2), np.int32)
     for b in prange(n_blocks):
         c = count[b]
         for t in range(b * n // n_blocks, (b + 1) * n // n_blocks):
@@ -177,15 +203,6 @@ def flagged_sides(neighbors, flag):  # type: ignore[no-untyped-def]
                 else:
                     slot[4 * t + k] = -1
     return slot, ends
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def take(values, index):  # type: ignore[no-untyped-def]
-    """``values[index]`` for a 1-d ``values``, on all cores (a random gather of millions)."""
-    out = np.empty(index.shape[0], values.dtype)
-    for q in prange(index.shape[0]):
-        out[q] = values[index[q]]
-    return out
 
 
 @njit(cache=True, nogil=True)
@@ -261,12 +278,13 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
         Sample indices of each edge, ``i < j``, ascending (the facets of a
         sample come together: output files compress better).
     ring_ptr : (e + 1,) int64 ndarray
-    ring : (r,) int64 ndarray
-        Tetrahedra of edge ``k`` at ``ring[ring_ptr[k]:ring_ptr[k + 1]]``.
+    ring : (r,) int32 ndarray
+        Tetrahedra of edge ``k`` at ``ring[ring_ptr[k]:ring_ptr[k + 1]]`` (int32: the ring entries, about
+        six per tetrahedron, are the largest arrays of the medial complex).
     length : (e,) float64 ndarray
     """
     n = tets.shape[0]
-    size = np.zeros(6 * n, np.int64)
+    size = np.zeros(6 * n, np.int16)  # a ring closes within 4096 steps
     none = np.zeros(0, np.int64)
     for q in prange(n):
         t = tets[q]
@@ -295,18 +313,19 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
         edge_ij[k, 0], edge_ij[k, 1] = min(i, j), max(i, j)
     # written in the order of the edges, so no copy reorders them, walked in the order of the
     # tetrahedra, which keeps them in the cache (0.2 s of 1.07 on the uv ellipsoid, one thread)
-    order = edge_order(edge_ij, points.shape[0])
+    order = edge_order(edge_ij, points.shape[0])  # edge_ij dies here: the walks read each edge from its slot again
     rank = np.empty(m, np.int64)
     ring_ptr = np.zeros(m + 1, np.int64)
     for k in range(m):
         rank[order[k]] = k
         ring_ptr[k + 1] = ring_ptr[k] + size[owned[order[k]]]
-    ring = np.empty(ring_ptr[-1], np.int64)
+    ring = np.empty(ring_ptr[-1], np.int32)
     sorted_ij = np.empty((m, 2), np.int64)
     length = np.empty(m, np.float64)
     for k in prange(m):
         t = tets[owned[k] // 6]
-        i, j = edge_ij[k, 0], edge_ij[k, 1]
+        i, j = _slot_edge(simplices, tets, owned[k])
+        i, j = min(i, j), max(i, j)
         _walk_ring(simplices, neighbors, t, i, j, t, ring, ring_ptr[rank[k]])
         sorted_ij[rank[k], 0], sorted_ij[rank[k], 1] = i, j
         d0, d1, d2 = points[i, 0] - points[j, 0], points[i, 1] - points[j, 1], points[i, 2] - points[j, 2]

@@ -15,6 +15,7 @@ import dataclasses
 
 import numpy as np
 
+from medialaxis.errors import ResourceLimitError
 from medialaxis.mesh.medial._ring_kernels import all_edge_rings
 from medialaxis.mesh.medial._voronoi_kernels import tet_geometry
 from medialaxis.mesh.sample.delaunay import delaunay_tetrahedra
@@ -93,12 +94,16 @@ def edge_rings(
     edge_ij : (e, 2) int64 ndarray
         Sample indices of each bounded facet's Delaunay edge (hull edges are dropped), ascending.
     ring_ptr : (e + 1,) int64 ndarray
-    ring_tets : (r,) int64 ndarray
+    ring_tets : (r,) int32 ndarray
         Tetrahedra of facet ``k`` in angular order around its edge:
         ``ring_tets[ring_ptr[k]:ring_ptr[k + 1]]``.
     length : (e,) float64 ndarray
         Length of each facet's Delaunay edge (the contact-set lower bound).
     """
-    tets = np.sort(np.asarray(tets, np.int64), kind="stable")  # often all of them, in order: 0.11 -> 0.003 s for 2M
+    if len(dt.simplices) >= 2**28:  # the ring kernels' int32: triangles 4 * t + k, and 6 t ring entries
+        raise ResourceLimitError(f"{len(dt.simplices):,} tetrahedra: at most {2**28 - 1:,} are supported")
+    tets = np.asarray(tets, np.int64)
+    if len(tets) > 1 and not bool((tets[1:] > tets[:-1]).all()):  # often all of them, in order: no sorted copy
+        tets = np.sort(tets, kind="stable")
     return all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, float(min_length))  # type: ignore[no-any-return]
 
