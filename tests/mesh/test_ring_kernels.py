@@ -28,7 +28,7 @@ def _delaunay(n=300, seed=0):
 
 def test_every_interior_edge_has_its_ring_of_scipys_tetrahedra_in_cyclic_order():
     points, simplices, neighbors = _delaunay()
-    edge_ij, ptr, ring, length = all_edge_rings(simplices, neighbors, points, np.arange(len(simplices)), 0.0)
+    edge_ij, ptr, ring, length = all_edge_rings(simplices, neighbors, points, np.arange(len(simplices)), False, 0.0)
     assert ring.dtype == np.int32 and len(ptr) == len(edge_ij) + 1
     # the truth: the tetrahedra holding both ends, by brute force; hull edges (open rings) are left out
     hull = {tuple(sorted(e)) for f in Delaunay(points).convex_hull for e in ((f[0], f[1]), (f[1], f[2]), (f[0], f[2]))}
@@ -46,11 +46,15 @@ def test_every_interior_edge_has_its_ring_of_scipys_tetrahedra_in_cyclic_order()
         for a, b in zip(tets, np.roll(tets, -1)):  # each shares a triangle with the next
             assert len(set(simplices[a]) & set(simplices[b])) == 3
         assert np.isclose(length[k], np.linalg.norm(points[i] - points[j]))
+    # every=True reads no index array: the same rings
+    for got, want in zip(all_edge_rings(simplices, neighbors, points, np.zeros(0, np.int64), True, 0.0),
+                         (edge_ij, ptr, ring, length)):
+        np.testing.assert_array_equal(got, want)
 
 
 def test_side_slots_are_the_slots_of_the_side_ids():
     points, simplices, neighbors = _delaunay(seed=1)
-    _, ptr, ring, _ = all_edge_rings(simplices, neighbors, points, np.arange(len(simplices)), 0.0)
+    _, ptr, ring, _ = all_edge_rings(simplices, neighbors, points, np.arange(len(simplices)), False, 0.0)
     flag = np.random.default_rng(2).random(len(simplices)) < 0.7
     slot, ends = flagged_sides(neighbors, flag)
     ids = ring_side_ids(ptr, ring, neighbors)

@@ -238,7 +238,7 @@ def voronoi_medial_axis(
             if more is not None and (more[0] != count or not np.array_equal(more[1], spacing)):
                 count, spacing = more[0], more[1]  # more samples, for the plates of a thin part
                 if not len(pairs):  # (else the count holds for the solid, next round)
-                    del dt  # the first one freed before the next is made
+                    dt = None  # the first one freed before the next is made
                     smp = sample_surface(work, spacing, normals)
                     dt, _, pairs, eps, eps_lfs, sd = tetrahedralised_sample(
                         work, smp, rng, tree, normals, None, timings, surface)
@@ -333,7 +333,7 @@ def voronoi_medial_axis(
             break
         # The solid's topology is lost where thick air was filled: once more on a sample finer there (lam stays)
         t1, spacing = time.perf_counter(), local_caps(work, spacing, *finer[0])
-        del dt, signed, closest, cx  # freed before the next ones are made
+        dt = signed = closest = cx = None  # type: ignore[assignment]  # freed before the next ones are made
         smp = sample_surface(work, spacing, normals)
         dt, _, _, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings, surface)
         if isinstance(dt, MedialAxisError):
@@ -389,7 +389,7 @@ def voronoi_medial_axis(
         "contacts": dt.points[dt.simplices[used]],
     }
     contact_faces = smp.face[dt.simplices[used]]  # the faces of each sphere's four samples, for the compaction
-    del dt, signed, closest, cx, inner  # the tetrahedra's arrays, freed before the result's copies are made
+    dt = signed = closest = cx = inner = None  # type: ignore[assignment]  # the tetrahedra's, freed before the copies
     result = MedialAxis(points, radii, edges, faces, extras=extras, metadata=metadata, shape=src.mesh)
     if compact:
         from medialaxis.mesh.medial.compact import COMPACT_TOLERANCE, compact_medial_axis

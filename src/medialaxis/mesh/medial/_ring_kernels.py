@@ -263,13 +263,14 @@ def _walk_ring(simplices, neighbors, t, i, j, lowest, out, pos):  # type: ignore
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ignore[no-untyped-def]
+def all_edge_rings(simplices, neighbors, points, tets, every, min_length):  # type: ignore[no-untyped-def]
     """The tetrahedra around every bounded Delaunay edge of ``tets``, in cyclic order.
 
     Each edge at least ``min_length`` long is walked from every tetrahedron
     of ``tets`` holding it, and kept by the one of lowest index in its ring
     (so each edge comes once, and only if its whole ring is in ``tets``
     when ``tets`` is sorted and holds every tetrahedron with such an edge).
+    ``every``: all tetrahedra, ``tets`` unread (no index array of millions).
     Edges on the convex hull (whose Voronoi facets are unbounded) are left out.
 
     Returns
@@ -283,11 +284,11 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
         six per tetrahedron, are the largest arrays of the medial complex).
     length : (e,) float64 ndarray
     """
-    n = tets.shape[0]
+    n = simplices.shape[0] if every else tets.shape[0]
     size = np.zeros(6 * n, np.int16)  # a ring closes within 4096 steps
     none = np.zeros(0, np.int64)
     for q in prange(n):
-        t = tets[q]
+        t = np.int64(q) if every else tets[q]
         for a in range(3):
             for b in range(a + 1, 4):
                 # the two tetrahedra next to t around the edge (across its faces through it) are in
@@ -305,16 +306,23 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
                     if d0 * d0 + d1 * d1 + d2 * d2 < min_length * min_length:
                         continue
                 size[6 * q + a * (7 - a) // 2 + b - a - 1] = _walk_ring(simplices, neighbors, t, i, j, t, none, 0)
-    owned = np.flatnonzero(size)
-    m = owned.shape[0]
+    m = 0
+    for q in range(size.shape[0]):
+        m += size[q] > 0
+    owned = np.empty(m, np.int32)  # slots 6 q + e (edge_rings keeps 6 t under 2**31); int32 at the peak below
+    m = 0
+    for q in range(size.shape[0]):
+        if size[q] > 0:
+            owned[m] = q
+            m += 1
     edge_ij = np.empty((m, 2), np.int64)
     for k in prange(m):
-        i, j = _slot_edge(simplices, tets, owned[k])
+        i, j = _slot_edge(simplices, tets, every, owned[k])
         edge_ij[k, 0], edge_ij[k, 1] = min(i, j), max(i, j)
     # written in the order of the edges, so no copy reorders them, walked in the order of the
     # tetrahedra, which keeps them in the cache (0.2 s of 1.07 on the uv ellipsoid, one thread)
     order = edge_order(edge_ij, points.shape[0])  # edge_ij dies here: the walks read each edge from its slot again
-    rank = np.empty(m, np.int64)
+    rank = np.empty(m, np.int32)
     ring_ptr = np.zeros(m + 1, np.int64)
     for k in range(m):
         rank[order[k]] = k
@@ -323,8 +331,8 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
     sorted_ij = np.empty((m, 2), np.int64)
     length = np.empty(m, np.float64)
     for k in prange(m):
-        t = tets[owned[k] // 6]
-        i, j = _slot_edge(simplices, tets, owned[k])
+        t = np.int64(owned[k] // 6) if every else tets[owned[k] // 6]
+        i, j = _slot_edge(simplices, tets, every, owned[k])
         i, j = min(i, j), max(i, j)
         _walk_ring(simplices, neighbors, t, i, j, t, ring, ring_ptr[rank[k]])
         sorted_ij[rank[k], 0], sorted_ij[rank[k], 1] = i, j
@@ -334,9 +342,9 @@ def all_edge_rings(simplices, neighbors, points, tets, min_length):  # type: ign
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _slot_edge(simplices, tets, slot):  # type: ignore[no-untyped-def]
+def _slot_edge(simplices, tets, every, slot):  # type: ignore[no-untyped-def]
     """The edge ``(i, j)`` (unordered) of slot ``6 q + e`` of :func:`all_edge_rings`: edge ``e`` of tetrahedron ``tets[q]``."""
-    t, e = tets[slot // 6], slot % 6
+    t, e = np.int64(slot // 6) if every else tets[slot // 6], slot % 6
     a = 0 if e < 3 else (1 if e < 5 else 2)
     b = e - (a * (7 - a) // 2) + a + 1
     return simplices[t, a], simplices[t, b]

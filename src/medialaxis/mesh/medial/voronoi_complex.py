@@ -293,7 +293,7 @@ def medial_complex(
     else:  # the serial unpinching runs beside the parallel ring walks, which need none of it (0.3 s on the uv ellipsoid)
         thick = np.zeros(n_tets, bool)
         unpinched = Beside(unpinch, dt, inner, thick)
-        edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, np.arange(n_tets), 0.0)
+        edge_ij, ring_ptr, ring_tets, length = edge_rings(dt, None, 0.0)
         inner = unpinched.result() if len(ring_tets) else inner  # no inner edge: nothing to unpinch
         if thick_pockets is not None and thick.any():
             thick_pockets(np.flatnonzero(thick))

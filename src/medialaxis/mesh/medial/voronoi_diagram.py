@@ -75,15 +75,15 @@ def tetrahedralise(points: np.ndarray) -> Tetrahedralisation:
 
 
 def edge_rings(
-    dt: Tetrahedralisation, tets: np.ndarray, min_length: float
+    dt: Tetrahedralisation, tets: np.ndarray | None, min_length: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Voronoi facets dual to the Delaunay edges of ``tets`` at least ``min_length`` long.
 
     Parameters
     ----------
     dt : Tetrahedralisation
-    tets : (s,) int64 ndarray
-        The tetrahedra to consider. A facet is returned when the tetrahedron
+    tets : (s,) int64 ndarray or None
+        The tetrahedra to consider (None: all). A facet is returned when the tetrahedron
         of lowest index around its edge is in ``tets``: every facet of an
         edge at least ``min_length`` long when ``tets`` holds all tetrahedra
         with such an edge.
@@ -102,8 +102,7 @@ def edge_rings(
     """
     if len(dt.simplices) >= 2**28:  # the ring kernels' int32: triangles 4 * t + k, and 6 t ring entries
         raise ResourceLimitError(f"{len(dt.simplices):,} tetrahedra: at most {2**28 - 1:,} are supported")
-    tets = np.asarray(tets, np.int64)
-    if len(tets) > 1 and not bool((tets[1:] > tets[:-1]).all()):  # often all of them, in order: no sorted copy
-        tets = np.sort(tets, kind="stable")
-    return all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, float(min_length))  # type: ignore[no-any-return]
+    every = tets is None
+    tets = np.zeros(0, np.int64) if tets is None else np.sort(np.asarray(tets, np.int64), kind="stable")
+    return all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, every, float(min_length))  # type: ignore[no-any-return]
 
