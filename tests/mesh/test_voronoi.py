@@ -308,20 +308,17 @@ def test_collapse_kernels_match_python_and_keep_euler():
             sides += [side(v[k], v[(k + 1) % 4]) for k in range(4)]
             ptr.append(len(sides))
     ptr, sides = np.array(ptr), np.array(sides)
-    rows = np.repeat(np.arange(9), 4)
-    order = np.argsort(sides, kind="stable")
-    sptr = np.r_[0, np.cumsum(np.bincount(sides, minlength=len(ends)))]
     length = np.arange(9, dtype=float)
     protected = np.zeros(9, bool)
     protected[4] = True
-    out = collapse_facets(ptr, sides, sptr, rows[order], length, protected)
-    ref = collapse_facets.py_func(ptr, sides, sptr, rows[order], length, protected)
+    out = collapse_facets(ptr, sides, len(ends), length, protected)
+    ref = collapse_facets.py_func(ptr, sides, len(ends), length, protected)
     assert all(np.array_equal(a, b) for a, b in zip(out, ref))
     assert out[0].sum() == 1 and out[0][4]
     # priorities not in ascending order (the kernel sorts them; ascending ones it takes as they come)
     shuffled = np.random.default_rng(0).permutation(9).astype(float)
-    mixed = collapse_facets(ptr, sides, sptr, rows[order], shuffled, protected)
-    assert all(np.array_equal(a, b) for a, b in zip(mixed, collapse_facets.py_func(ptr, sides, sptr, rows[order], shuffled, protected)))
+    mixed = collapse_facets(ptr, sides, len(ends), shuffled, protected)
+    assert all(np.array_equal(a, b) for a, b in zip(mixed, collapse_facets.py_func(ptr, sides, len(ends), shuffled, protected)))
     end_arr = np.array(sorted(ends, key=ends.get))
     used = np.zeros(len(ends), bool)
     used[sides[4 * 4 : 5 * 4]] = True
@@ -329,6 +326,45 @@ def test_collapse_kernels_match_python_and_keep_euler():
     assert np.array_equal(alive, collapse_free_sides.py_func(out[1], used, end_arr, 16))
     assert np.array_equal(alive, used)  # every dangling side went
 
+
+
+def _collapse_by_definition(ptr, sides, n_sides, length, protected):
+    """Elementary collapses by their definition, slowly: the present unprotected facet of least (length, index)
+    with a free side (one no other present facet uses) goes, with the first such side, until none is left."""
+    alive, side_alive = np.ones(len(ptr) - 1, bool), np.ones(n_sides, bool)
+    while True:
+        count = np.bincount(np.concatenate([sides[ptr[f]:ptr[f + 1]] for f in np.flatnonzero(alive)] or [[]]).astype(int),
+                            minlength=n_sides)
+        best = None
+        for f in np.flatnonzero(alive & ~protected):
+            free = [s for s in sides[ptr[f]:ptr[f + 1]] if side_alive[s] and count[s] == 1]
+            if free and (best is None or (length[f], f) < (length[best[0]], best[0])):
+                best = (f, free[0])
+        if best is None:
+            return alive, side_alive
+        alive[best[0]], side_alive[best[1]] = False, False
+
+
+def test_collapse_facets_is_the_collapse_by_its_definition():
+    # the rings of a random Delaunay's inner edges (facets are polygons, sides the triangles between tetrahedra)
+    from scipy.spatial import Delaunay
+
+    from medialaxis.mesh.medial._ring_kernels import all_edge_rings, flagged_sides, ring_side_slots
+
+    rng = np.random.default_rng(4)
+    for trial in range(4):
+        points = rng.normal(size=(60, 3))
+        dt = Delaunay(points)
+        simplices, neighbors = dt.simplices.astype(np.int64), dt.neighbors.astype(np.int64)
+        _, ptr, ring, length = all_edge_rings(simplices, neighbors, points, np.zeros(0, np.int64), True, 0.0)
+        slot, ends = flagged_sides(neighbors, np.ones(len(simplices), bool))
+        sides = ring_side_slots(ptr, ring, neighbors, slot)
+        length = np.round(length, 1)  # ties, broken by index
+        protected = rng.random(len(length)) < 0.05 * trial
+        got = collapse_facets(ptr, sides, len(ends), length, protected)
+        want = _collapse_by_definition(ptr, sides, len(ends), length, protected)
+        np.testing.assert_array_equal(got[0], want[0])
+        np.testing.assert_array_equal(got[1], want[1])
 
 def test_reach_lattice_of_the_compaction():
     # the spheres the compaction's reach check samples over a triangle and an edge (corners left out)
@@ -487,3 +523,21 @@ def test_slab_distance_kernels_against_a_dense_grid():
         grid = np.sqrt(((seg - s[0]) ** 2).sum(axis=1).min())
         exact = np.sqrt(_segment_distance2(s, 0, 1, 2))
         assert grid - np.linalg.norm(s[2] - s[1]) / 2000 <= exact <= grid + 1e-12
+
+
+def test_collapse_free_sides_peels_every_dangling_side_by_its_definition():
+    # a random graph: sides a facet uses stay; any other side with an end of degree one goes, until none
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        n = int(rng.integers(2, 40))
+        ends = rng.integers(0, n, (int(rng.integers(1, 60)), 2))
+        ends = ends[ends[:, 0] != ends[:, 1]].astype(np.int32)
+        alive, used = rng.random(len(ends)) < 0.9, rng.random(len(ends)) < 0.3
+        want = alive.copy()
+        while True:
+            degree = np.bincount(ends[want].ravel(), minlength=n)
+            leaf = np.flatnonzero(want & ~used & ((degree[ends[:, 0]] == 1) | (degree[ends[:, 1]] == 1)))
+            if not len(leaf):
+                break
+            want[leaf[0]] = False
+        np.testing.assert_array_equal(collapse_free_sides(alive, used, ends, n), want)

@@ -47,7 +47,7 @@ def _pop_lowest(words, tops, top):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True, nogil=True)
-def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, length, protected):  # type: ignore[no-untyped-def]
+def collapse_facets(facet_ptr, facet_sides, n_sides, length, protected):  # type: ignore[no-untyped-def]
     """Topology-preserving collapse of a 2-complex of polygons, shortest contacts first.
 
     An unprotected facet is removed together with one of its free sides (a
@@ -57,15 +57,16 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
     two-level bitmap. A waiting facet keeps its free side until it is taken
     (only its own collapse can remove that side), so this is the order a
     heap of candidates gives, in half the time (1.1 -> 0.5 s for 1.5M
-    facets).
+    facets). The facet left on a side is the XOR of the facets on it still
+    present (a facet names a side once): no side-to-facets incidence is
+    built (0.4 s and 90 MB on the 2M tetrahedra of a uv ellipsoid).
 
     Parameters
     ----------
     facet_ptr : (f + 1,) int64 ndarray
-    facet_sides : (r,) int64 ndarray
-        Side ids of facet ``k``: ``facet_sides[facet_ptr[k]:facet_ptr[k + 1]]``.
-    side_facet_ptr, side_facet_idx : int64 ndarray
-        The transposed incidence (facets of each side).
+    facet_sides : (r,) int32 or int64 ndarray
+        Side ids of facet ``k``: ``facet_sides[facet_ptr[k]:facet_ptr[k + 1]]``, each once.
+    n_sides : int
     length : (f,) float64 ndarray
         Removal priority (smallest first).
     protected : (f,) bool ndarray
@@ -78,10 +79,12 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
         when no facet uses them any more).
     """
     n_facets = facet_ptr.shape[0] - 1
-    n_sides = side_facet_ptr.shape[0] - 1
     count = np.zeros(n_sides, np.int32)  # a triangle lies on three Delaunay edges: at most three facets
-    for k in range(facet_sides.shape[0]):
-        count[facet_sides[k]] += 1
+    left = np.zeros(n_sides, np.int64)  # XOR of the facets present on each side
+    for f in range(n_facets):
+        for k in range(facet_ptr[f], facet_ptr[f + 1]):
+            count[facet_sides[k]] += 1
+            left[facet_sides[k]] ^= f
     facet_alive = np.ones(n_facets, np.bool_)
     side_alive = np.ones(n_sides, np.bool_)
     # candidates by rank in (length, index) order; the next one is the smallest rank set. The
@@ -126,12 +129,12 @@ def collapse_facets(facet_ptr, facet_sides, side_facet_ptr, side_facet_idx, leng
         for k in range(facet_ptr[f], facet_ptr[f + 1]):
             s = facet_sides[k]
             count[s] -= 1
+            left[s] ^= f
             if side_alive[s] and count[s] == 1:
-                for j in range(side_facet_ptr[s], side_facet_ptr[s + 1]):
-                    g = side_facet_idx[j]
-                    if facet_alive[g] and not protected[g]:
-                        _set(words, tops, rank[g])
-                        top = min(top, rank[g] >> 12)
+                g = left[s]  # the one facet present on it
+                if not protected[g]:
+                    _set(words, tops, rank[g])
+                    top = min(top, rank[g] >> 12)
     return facet_alive, side_alive
 
 
@@ -158,20 +161,23 @@ def collapse_free_sides(side_alive, side_used, side_ends, n_vertices):  # type: 
         if alive[s]:
             degree[side_ends[s, 0]] += 1
             degree[side_ends[s, 1]] += 1
-    # vertex -> sides incidence
+    # vertex -> sides incidence, of the sides that may go only: at a vertex of degree one whose side a facet
+    # uses, the peeling finds none and stops, as it would on finding that side (a fraction of the sides)
     ptr = np.zeros(n_vertices + 1, np.int64)
     for s in range(alive.shape[0]):
-        ptr[side_ends[s, 0] + 1] += 1
-        ptr[side_ends[s, 1] + 1] += 1
+        if alive[s] and not side_used[s]:
+            ptr[side_ends[s, 0] + 1] += 1
+            ptr[side_ends[s, 1] + 1] += 1
     for v in range(n_vertices):
         ptr[v + 1] += ptr[v]
     fill = ptr[:-1].copy()
     inc = np.empty(ptr[-1], np.int32)  # side numbers: int32, as the ring entries
     for s in range(alive.shape[0]):
-        for e in range(2):
-            v = side_ends[s, e]
-            inc[fill[v]] = s
-            fill[v] += 1
+        if alive[s] and not side_used[s]:
+            for e in range(2):
+                v = side_ends[s, e]
+                inc[fill[v]] = s
+                fill[v] += 1
     # the leaf peeling of the planar pruning: a side a remaining facet uses is never removed
     peel_leaves_kernel(ptr, inc, inc, degree, side_ends, ~side_used, alive)
     return alive

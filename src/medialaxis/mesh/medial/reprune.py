@@ -101,9 +101,7 @@ def _collapsed(full: MedialAxis, lam: float) -> MedialAxis:
     order = np.argsort(width, kind="stable")
     fptr = np.arange(0, 3 * k + 1, 3, dtype=np.int64)
     fsides = tri_sides[order].ravel()
-    sptr = np.bincount(fsides + 1, minlength=len(sides) + 1).cumsum()
-    sidx = np.argsort(fsides, kind="stable") // 3
-    alive_sorted, side_alive = collapse_facets(fptr, fsides, sptr, sidx, width[order], protected[order])
+    alive_sorted, side_alive = collapse_facets(fptr, fsides, len(sides), width[order], protected[order])
     alive = np.empty(k, bool)
     alive[order] = alive_sorted
     uses = np.bincount(tri_sides[alive].ravel(), minlength=len(sides))

@@ -39,7 +39,6 @@ from medialaxis.mesh.medial._collapse_kernels import (
     spanning_forest_edges,
 )
 from medialaxis.mesh.medial._ring_kernels import (
-    csr_transpose,
     flagged_sides,
     gather_rings,
     odd_sides,
@@ -321,13 +320,12 @@ def medial_complex(
         # nearly in sequence (1.7 -> 1.1 s on 1.5M facets); the result is the same
         by_length = radix_argsort(length.view(np.int64))  # stable; lengths >= 0 sort as their bits (0.15 -> 0.07 s)
         fptr, fsides = gather_rings(ring_ptr, facet_sides, by_length)
-        sptr, sidx = csr_transpose(fptr, fsides, n_sides)
         del slot
         medial[tets] = asked.result()
     certified = wide & ring_all(ring_ptr, ring_tets, medial)
     if topology == "preserve":
-        alive_sorted, side_alive = collapse_facets(fptr, fsides, sptr, sidx, length[by_length], certified[by_length])
-        del fptr, fsides, sptr, sidx  # ring-sized: freed before the next ones are made
+        alive_sorted, side_alive = collapse_facets(fptr, fsides, n_sides, length[by_length], certified[by_length])
+        del fptr, fsides  # ring-sized: freed before the next ones are made
         facet_alive = np.empty_like(alive_sorted)
         facet_alive[by_length] = alive_sorted
         side_used = np.zeros(n_sides, bool)
