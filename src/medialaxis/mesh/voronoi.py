@@ -391,6 +391,7 @@ def voronoi_medial_axis(
     contact_faces = smp.face[dt.simplices[used]]  # the faces of each sphere's four samples, for the compaction
     dt = signed = closest = cx = inner = None  # type: ignore[assignment]  # the tetrahedra's, freed before the copies
     result = MedialAxis(points, radii, edges, faces, extras=extras, metadata=metadata, shape=src.mesh)
+    del points, radii, edges, faces, extras, inside  # the result holds its own copies
     if compact:
         from medialaxis.mesh.medial.compact import COMPACT_TOLERANCE, compact_medial_axis
 
