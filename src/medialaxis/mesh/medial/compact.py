@@ -73,6 +73,7 @@ from scipy.spatial import cKDTree
 from medialaxis.core.arrays import unique_ints
 from medialaxis.core.homology import betti_numbers, void_faces
 from medialaxis.core.result import MedialAxis
+from medialaxis.errors import ResourceLimitError
 from medialaxis.mesh.medial._compact_kernels import costs, feature_lines, link_ok, moves, select, structure
 from medialaxis.mesh.medial._compact_round_kernels import (
     merge_into,
@@ -241,6 +242,8 @@ def compact_complex(
     blocked = np.empty(0, np.int64)
     all_edges = complex_edges(name[faces], edges, n)[0] if all_edges is None else all_edges
     all_edges = _relabelled(all_edges, label, n)
+    if max(n, len(all_edges)) >= 2**31:  # structure() numbers them in int32
+        raise ResourceLimitError(f"a complex of {n:,} points and {len(all_edges):,} edges is too large to compact")
     rounds = 0
     while rounds < MAX_ROUNDS:
         rounds += 1
