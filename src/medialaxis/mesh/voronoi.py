@@ -388,7 +388,7 @@ def voronoi_medial_axis(
         "inside": inside,
         "contacts": dt.points[dt.simplices[used]],
     }
-    contact_faces = smp.face[dt.simplices[used]]  # the faces of each sphere's four samples, for the compaction
+    contact_faces = smp.face[dt.simplices[used]] if compact else smp.face[:0]  # each sphere's samples' faces
     dt = signed = closest = cx = inner = None  # type: ignore[assignment]  # the tetrahedra's, freed before the copies
     result = MedialAxis(points, radii, edges, faces, extras=extras, metadata=metadata, shape=src.mesh)
     del points, radii, edges, faces, extras, inside  # the result holds its own copies
