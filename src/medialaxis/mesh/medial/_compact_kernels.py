@@ -34,7 +34,7 @@ def structure(n, edges, faces):  # pragma: no cover - compiled
     for v in range(n):
         ptr[v + 1] += ptr[v]
     fill = ptr[:-1].copy()
-    idx = np.empty(2 * m, np.int32)  # int32: the largest arrays of a round (a 98k-vertex plate's: 0.3 GB less)
+    idx = np.empty(2 * m, np.int32)  # int32: among a round's largest arrays (a 98k-vertex plate's peak 2.28 -> 2.18 GB)
     eid = np.empty(2 * m, np.int32)
     for e in range(m):  # lower neighbours w of u, for edges (w, u): w ascending
         u = edges[e, 1]

@@ -29,7 +29,7 @@ __all__ = [
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _side_after(neighbors, ring_ptr, ring_tets, start, stop, q):  # type: ignore[no-untyped-def]
+def _side_after(neighbors, ring_tets, start, stop, q):  # type: ignore[no-untyped-def]
     """The id ``4 * lo + k`` of the triangle between ring entry ``q`` and the next (see :func:`ring_side_ids`)."""
     a = ring_tets[q]
     b = ring_tets[q + 1] if q + 1 < stop else ring_tets[start]
@@ -54,7 +54,7 @@ def ring_side_ids(ring_ptr, ring_tets, neighbors):  # type: ignore[no-untyped-de
     for r in prange(ring_ptr.shape[0] - 1):
         start, stop = ring_ptr[r], ring_ptr[r + 1]
         for q in range(start, stop):
-            out[q] = _side_after(neighbors, ring_ptr, ring_tets, start, stop, q)
+            out[q] = _side_after(neighbors, ring_tets, start, stop, q)
     return out
 
 
@@ -69,7 +69,7 @@ def ring_side_slots(ring_ptr, ring_tets, neighbors, slot):  # type: ignore[no-un
     for r in prange(ring_ptr.shape[0] - 1):
         start, stop = ring_ptr[r], ring_ptr[r + 1]
         for q in range(start, stop):
-            side = _side_after(neighbors, ring_ptr, ring_tets, start, stop, q)
+            side = _side_after(neighbors, ring_tets, start, stop, q)
             out[q] = slot[side] if side >= 0 else -1
     return out
 
