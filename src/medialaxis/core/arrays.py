@@ -60,6 +60,4 @@ class SparseRows:
         self._size += len(values)
 
     def __getitem__(self, index: np.ndarray) -> np.ndarray:
-        if len(self._parts) > 2:  # once read, one part
-            self._parts = [np.concatenate(self._parts[:-1]), self._parts[-1]]
         return np.concatenate(self._parts)[self._slot[index]]
