@@ -155,7 +155,10 @@ def _face_points(tri: np.ndarray, spacing: np.ndarray) -> tuple[np.ndarray, np.n
     torus within the figures above, but a spheroid's simplified tip ball
     came 0.19 from its pole (0.177 exact, 0.005 allowed), two of its balls
     touched one side, a capsule at ``simplify=20`` gave 11 spheres; a
-    fiftieth still left a spheroid ball touching one side.
+    fiftieth still left a spheroid ball touching one side. On the 54 real
+    models, whose samples are in general position already (6.1-6.9
+    tetrahedra per sample; the uv ellipsoid 9.3, the torus 18.2), it added
+    11% tetrahedra and changed one full complex's Betti numbers.
     """
     area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
     counts = np.floor(_LATTICE * area / spacing**2).astype(np.int64)
