@@ -54,6 +54,7 @@ from medialaxis.mesh.options import MeshVoronoiOptions
 from medialaxis.mesh.sample.sample_delaunay import surface_structures, tetrahedralised_sample
 from medialaxis.mesh.sample.sampling import (
     adaptive_spacing,
+    degenerate,
     lfs_estimate,
     local_caps,
     pseudo_normals,
@@ -235,11 +236,12 @@ def voronoi_medial_axis(
                 work, smp, rng, tree, normals, (count, spacing) if samples is None else None, timings, surface)
             if more is not None and more[2]:
                 warnings.warn(more[2], MedialAxisWarning, stacklevel=2)
-            if more is not None and (more[0] != count or not np.array_equal(more[1], spacing)):
-                count, spacing = more[0], more[1]  # more samples, for the plates of a thin part
+            jitter = not isinstance(dt, MedialAxisError) and degenerate(len(dt.simplices), len(smp.points))
+            if more is not None and (more[0] != count or not np.array_equal(more[1], spacing)) or jitter:
+                count, spacing = (count, spacing) if more is None else more[:2]  # more, for the plates of a thin part
                 if not len(pairs):  # (else the count holds for the solid, next round)
                     dt = None  # the first one freed before the next is made
-                    smp = sample_surface(work, spacing, normals)
+                    smp = sample_surface(work, spacing, normals, jitter=jitter)  # cospherical fans broken
                     dt, _, pairs, eps, eps_lfs, sd = tetrahedralised_sample(
                         work, smp, rng, tree, normals, None, timings, surface)
         except MedialAxisError:
@@ -334,7 +336,7 @@ def voronoi_medial_axis(
         # The solid's topology is lost where thick air was filled: once more on a sample finer there (lam stays)
         t1, spacing = time.perf_counter(), local_caps(work, spacing, *finer[0])
         dt = signed = closest = cx = None  # type: ignore[assignment]  # freed before the next ones are made
-        smp = sample_surface(work, spacing, normals)
+        smp = sample_surface(work, spacing, normals, jitter=jitter)
         dt, _, _, eps, eps_lfs, sd = tetrahedralised_sample(work, smp, rng, tree, normals, None, timings, surface)
         if isinstance(dt, MedialAxisError):
             raise dt

@@ -37,6 +37,7 @@ __all__ = [
     "shell_spacing",
     "local_caps",
     "sample_count",
+    "degenerate",
 ]
 
 #: Samples per unit area at spacing h on a triangular lattice: 2 / (sqrt(3) h^2).
@@ -53,6 +54,13 @@ ADAPTIVE_RANGE = 4.0
 #: boolean left apart) is sampled at least this densely, so that the
 #: Delaunay step resolves it; larger pieces have more samples already.
 MIN_SHELL_SAMPLES = 50
+#: A sample whose Delaunay tetrahedralisation has more tetrahedra per point than this is in
+#: cospherical groups (a regular mesh's: float32 tori 11.9-18.2; 54 real models 6.1-6.9, the uv ellipsoid 9.3):
+#: it is taken again with its edge and face points moved by up to ``JITTER`` of their spacing, at random
+#: (seeded: ``JITTER_SEED``); see :func:`_face_points`.
+DEGENERATE_TETRAHEDRA = 10.0
+JITTER = 0.1
+JITTER_SEED = 20261128
 #: Cell of the grids that thin the medial points of the local feature size
 #: estimate, relative to their radius (see :func:`lfs_estimate`).
 LFS_CELL = 0.05
@@ -118,24 +126,34 @@ def pseudo_normals(mesh: Any) -> PseudoNormals:
     return PseudoNormals(fn, _unit(vn), _unit(en), fe)
 
 
-def _edge_points(v: np.ndarray, edges: np.ndarray, counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Interior points splitting each edge into ``counts`` equal parts, and their edge index."""
+def _edge_points(
+    v: np.ndarray, edges: np.ndarray, counts: np.ndarray, rng: np.random.Generator | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Interior points splitting each edge into ``counts`` equal parts (each moved along it by up to
+    ``JITTER`` of a part, given ``rng``), and their edge index."""
     inner = np.maximum(counts - 1, 0)
     owner = np.repeat(np.arange(len(edges)), inner)
     if len(owner) == 0:
         return np.empty((0, 3)), owner
     start = np.cumsum(inner) - inner
-    step = np.arange(len(owner)) - start[owner] + 1
+    step = np.arange(len(owner)) - start[owner] + 1.0
+    if rng is not None:
+        step += JITTER * rng.uniform(-1.0, 1.0, len(owner))
     t = (step / counts[owner])[:, None]
     return v[edges[owner, 0]] * (1 - t) + v[edges[owner, 1]] * t, owner
 
 
-def _face_points(tri: np.ndarray, spacing: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _face_points(
+    tri: np.ndarray, spacing: np.ndarray, rng: np.random.Generator | None
+) -> tuple[np.ndarray, np.ndarray]:
     """Interior points of each face, as many as its area needs at ``spacing``, and their face index.
 
     The points of a face follow the R2 low-discrepancy sequence (Roberts
     2018) folded into the triangle, so they spread evenly whatever the
-    triangle's shape.
+    triangle's shape. Given ``rng`` (a degenerate sample, see below), each
+    is moved within its face by up to ``JITTER`` of the spacing along each
+    of its two sides from the first corner (a point the move would take
+    out of the face stays).
 
     Every face starts the sequence at the same point, and edges are split
     into equal parts, on purpose: the sample of a symmetric mesh is then
@@ -145,20 +163,18 @@ def _face_points(tri: np.ndarray, spacing: np.ndarray) -> tuple[np.ndarray, np.n
     tetrahedra, 15% faster) but scattered the vertices: a capsule's axis
     up to 5.3% of its radius off its segment (3% allowed), a sphere's
     compact points up to 9.4% of its radius from its centre (6.8% allowed).
-    A smaller move (tried on 2026-11-28, branch ``wip/sample-jitter``):
-    edge points along their edge and face points within their face by up to
-    a tenth of the spacing, vertices kept. It breaks the cospherical fans of
-    regular meshes (a 40k-vertex float32 torus: 985k -> 581k tetrahedra, a
-    638k -> 275k-point full complex, the default call 1.15 -> 0.69 GB and
-    7.0 -> 4.0 s; the uv ellipsoid's full complex 385k -> 330k points,
-    6.2 -> 5.8 s) and keeps the axes of a capsule, a sphere and a
-    torus within the figures above, but a spheroid's simplified tip ball
-    came 0.19 from its pole (0.177 exact, 0.005 allowed), two of its balls
-    touched one side, a capsule at ``simplify=20`` gave 11 spheres; a
-    fiftieth still left a spheroid ball touching one side. On the 54 real
-    models, whose samples are in general position already (6.1-6.9
-    tetrahedra per sample; the uv ellipsoid 9.3, the torus 18.2), it added
-    11% tetrahedra and changed one full complex's Betti numbers.
+    A smaller move (tried on 2026-11-28): edge points along their edge and
+    face points within their face by up to a tenth of the spacing, vertices
+    kept. It breaks the cospherical fans of regular meshes (a 40k-vertex
+    float32 torus: 985k -> 581k tetrahedra, a 638k -> 275k-point full
+    complex, the default call 1.15 -> 0.69 GB and 7.0 -> 4.0 s) and keeps
+    the axes of a capsule, a sphere and a torus within the figures above,
+    but a spheroid's simplified tip ball came 0.19 from its pole (0.177
+    exact, 0.005 allowed), two of its balls touched one side; a fiftieth
+    still left one. On the 54 real models, whose samples are in general
+    position already, it added 11% tetrahedra. So the move is made only
+    where the sample is degenerate, by the count of its tetrahedra
+    (``DEGENERATE_TETRAHEDRA``), which the spheroid's (6.5) is not.
     """
     area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
     counts = np.floor(_LATTICE * area / spacing**2).astype(np.int64)
@@ -171,6 +187,12 @@ def _face_points(tri: np.ndarray, spacing: np.ndarray) -> tuple[np.ndarray, np.n
     v = np.mod(0.5 + step / phi**2, 1.0)
     fold = u + v > 1.0
     u[fold], v[fold] = 1.0 - u[fold], 1.0 - v[fold]
+    if rng is not None:  # in units of each side's length
+        reach = JITTER * spacing[owner] * rng.uniform(-1.0, 1.0, (2, len(owner)))
+        side = [np.maximum(np.linalg.norm(tri[owner, k] - tri[owner, 0], axis=1), 1e-300) for k in (1, 2)]
+        du, dv = reach[0] / side[0], reach[1] / side[1]
+        inside = (u + du > 0.0) & (v + dv > 0.0) & (u + du + v + dv < 1.0)
+        u, v = np.where(inside, u + du, u), np.where(inside, v + dv, v)
     a = tri[owner, 0]
     return a + u[:, None] * (tri[owner, 1] - a) + v[:, None] * (tri[owner, 2] - a), owner
 
@@ -183,7 +205,8 @@ def face_spacing_for_count(areas: np.ndarray, relative: np.ndarray, count: int) 
 
 
 def sample_surface(
-    mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None = None, *, limit: int = MAX_SURFACE_SAMPLES
+    mesh: Any, spacing: np.ndarray, normals: PseudoNormals | None = None, *, limit: int = MAX_SURFACE_SAMPLES,
+    jitter: bool = False,
 ) -> SurfaceSample:
     """Sample a mesh with a target spacing per face.
 
@@ -197,6 +220,9 @@ def sample_surface(
         Precomputed pseudo-normals.
     limit : int
         Most samples made; more is refused before any is made.
+    jitter : bool
+        Move the edge and face points a little, at random (seeded): for a
+        sample that :func:`degenerate` found in cospherical groups.
 
     Returns
     -------
@@ -223,8 +249,9 @@ def sample_surface(
             f"sampling the surface at this spacing needs {planned:.3g} points (at most {min(limit, MAX_SURFACE_SAMPLES):,}): "
             "some edges are far longer than the faces are wide (a needle, a spike or a stray vertex?)"
         )
-    ep, eo = _edge_points(v, edges, edge_counts.astype(np.int64))
-    fp, fo = _face_points(tri, spacing)
+    rng = np.random.default_rng(JITTER_SEED) if jitter else None  # the same mesh and spacing, the same sample
+    ep, eo = _edge_points(v, edges, edge_counts.astype(np.int64), rng)
+    fp, fo = _face_points(tri, spacing, rng)
     vertex_face = np.zeros(len(v), np.int64)
     vertex_face[f.ravel()] = np.repeat(np.arange(len(f)), 3)
     points = np.concatenate([v, ep, fp])
@@ -234,6 +261,11 @@ def sample_surface(
     grid = np.round(points / (1e-9 * float(np.min(spacing)))).astype(np.int64)
     first = first_of_rows(grid)
     return SurfaceSample(points[first], normal[first], face[first])
+
+
+def degenerate(tetrahedra: int, points: int) -> bool:
+    """Whether a sample's Delaunay tetrahedralisation is in cospherical fans (``DEGENERATE_TETRAHEDRA``)."""
+    return tetrahedra > DEGENERATE_TETRAHEDRA * points
 
 
 def random_surface_points(mesh: Any, count: int, rng: np.random.Generator) -> np.ndarray:
