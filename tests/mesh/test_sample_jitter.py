@@ -7,6 +7,8 @@ here come from outside the sampler: SciPy's Delaunay of the samples, the
 barycentric coordinates trimesh computes, the torus's own geometry.
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import trimesh
@@ -15,6 +17,8 @@ from scipy.spatial import Delaunay, cKDTree
 from medialaxis.mesh.sample import sampling
 from medialaxis.mesh.sample.sampling import JITTER, degenerate, face_spacing_for_count, sample_surface
 from medialaxis.mesh.voronoi import voronoi_medial_axis
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "meshes"
 
 
 def _float32_torus(minor: int) -> trimesh.Trimesh:
@@ -53,14 +57,14 @@ def test_scipy_finds_the_lattice_sample_degenerate_and_the_jittered_one_not(toru
     assert after < 0.75 * before
 
 
-def test_a_real_models_sample_is_not_degenerate():
-    # a mesh in general position (jittered vertices, as scans are): its sample stays as it is
-    mesh = trimesh.creation.icosphere(4)
-    rng = np.random.default_rng(1)
-    mesh.vertices += rng.normal(scale=0.002, size=mesh.vertices.shape)
+def test_a_scanned_models_sample_is_not_degenerate():
+    # a scan (tests/data/meshes: the kitten) is in general position: its sample stays as it is (the 57 real
+    # models of benchmarks/bench_mesh_routes.py: the same points, faces and Betti numbers as before)
+    mesh = trimesh.load(DATA / "kitten.off", process=False)
     spacing = face_spacing_for_count(np.asarray(mesh.area_faces), np.ones(len(mesh.faces)), 20_000)
     points = sample_surface(mesh, spacing).points
     assert not degenerate(len(Delaunay(points).simplices), len(points))
+    assert not voronoi_medial_axis(mesh, compact=False).metadata["sample_jittered"]
 
 
 def test_a_degenerate_torus_gets_a_smaller_full_complex_and_the_same_axis(monkeypatch):
@@ -70,6 +74,7 @@ def test_a_degenerate_torus_gets_a_smaller_full_complex_and_the_same_axis(monkey
     lattice = voronoi_medial_axis(mesh, compact=False)
     assert ma.betti == lattice.betti == (1, 1, 0)
     assert len(ma.points) < 0.6 * len(lattice.points)
+    assert ma.metadata["sample_jittered"] and not lattice.metadata["sample_jittered"]
     for result in (ma, default):  # the full complex and the default call
         core = np.hypot(np.hypot(result.points[:, 0], result.points[:, 1]) - 3.0, result.points[:, 2])
         assert np.percentile(core, 99) < 0.02 and core.max() < 0.05  # of the minor radius 1

@@ -362,7 +362,7 @@ def voronoi_medial_axis(
         "epsilon": eps,
         "epsilon_lfs": eps_lfs,
         "lam_bound": float(10.0 * (9.0 * diag**3 * eps) ** 0.25),
-        "n_samples": int(len(smp.points)),
+        "n_samples": int(len(smp.points)), "sample_jittered": bool(jitter),  # sampling.degenerate
         "n_tetrahedra": int(len(dt.simplices)),
         "mesh_vertices": int(len(src.mesh.vertices)),
         "mesh_faces": int(len(src.mesh.faces)),
