@@ -8,7 +8,9 @@ peak resident memory, GB per 100k vertices (the target: at most 2), and the
 Betti numbers of the axis against the solid's. The peer figure, from the same
 run, is the same solid given as the float64 mesh it was made from (the issue:
 1.8 GB for the float64 torus, past 24 GB for its float32 file), and the ratio
-of the peaks.
+of the peaks. Last, the Delaunay tetrahedra per sample of the Voronoi route
+("jittered" where the lattice sample was degenerate and taken again:
+``sampling.degenerate``).
 
 Run: ``PYTHONPATH=src python benchmarks/bench_mesh_memory.py [--sizes 2000 40000 100000]
 [--models torus box] [--method voronoi] [--format ply] [--limit-gb 8] [--no-float64]``
@@ -98,7 +100,10 @@ start = time.perf_counter()
 ma = medialaxis.medial_axis(shape, method=method)
 seconds = time.perf_counter() - start
 hwm = [int(line.split()[1]) for line in open("/proc/self/status") if line.startswith("VmHWM")]
-print(json.dumps(dict(seconds=seconds, betti=list(ma.betti), points=len(ma.points), peak_gb=hwm[0] / 1e6 if hwm else None)))
+meta = ma.raw.metadata if ma.raw is not None else ma.metadata
+per_sample = meta["n_tetrahedra"] / meta["n_samples"] if meta.get("n_samples") else None
+print(json.dumps(dict(seconds=seconds, betti=list(ma.betti), points=len(ma.points), peak_gb=hwm[0] / 1e6 if hwm else None,
+                      per_sample=per_sample, jittered=meta.get("sample_jittered"))))
 """
 
 
@@ -140,7 +145,7 @@ def main() -> None:
     print(f"method={args.method}, float32 {args.format} files, limit {args.limit_gb:g} GB per run")
     print(
         f"{'model':10} {'vertices':>8} {'seconds':>8} {'peak GB':>8} {'GB/100k':>8} {'betti':>10} {'expect':>10}"
-        f" {'f64 s':>7} {'f64 GB':>7} {'ratio':>6}"
+        f" {'f64 s':>7} {'f64 GB':>7} {'ratio':>6} {'tets/sample':>11}"
     )
     with tempfile.TemporaryDirectory() as folder:
         for name in args.models:
@@ -168,9 +173,11 @@ def _row(name: str, n: int, ours: dict[str, Any], peer: dict[str, Any], expect: 
     betti = ",".join(map(str, ours["betti"]))
     mark = "" if tuple(ours["betti"]) == expect else " !"
     ratio = f"{ours['peak_gb'] / peer['peak_gb']:6.2f}" if peer.get("peak_gb") and "error" not in peer else f"{'':>6}"
+    # tetrahedra per sample of the Voronoi route's sample, "jittered" where it was taken again (sampling.degenerate)
+    tets = f"{ours['per_sample']:5.1f}{' jittered' if ours.get('jittered') else ''}" if ours.get("per_sample") else ""
     return (
         f"{name:10} {n:8d} {ours['seconds']:8.1f} {ours['peak_gb']:8.2f} {per}"
-        f" {betti + mark:>10} {','.join(map(str, expect)):>10} {figures(peer)} {ratio}"
+        f" {betti + mark:>10} {','.join(map(str, expect)):>10} {figures(peer)} {ratio} {tets:>11}"
     )
 
 
