@@ -103,6 +103,8 @@ def edge_rings(
     if len(dt.simplices) >= 2**28:  # the ring kernels' int32: triangles 4 * t + k, and 6 t ring entries
         raise ResourceLimitError(f"{len(dt.simplices):,} tetrahedra: at most {2**28 - 1:,} are supported")
     every = tets is None
-    tets = np.zeros(0, np.int64) if tets is None else np.sort(np.asarray(tets, np.int64), kind="stable")
+    tets = np.zeros(0, np.int64) if tets is None else np.asarray(tets, np.int64)
+    if len(tets) > 1 and not bool((tets[1:] > tets[:-1]).all()):  # flatnonzero's are in order: no sorted copy
+        tets = np.sort(tets, kind="stable")
     return all_edge_rings(dt.simplices, dt.neighbors, dt.points, tets, every, float(min_length))  # type: ignore[no-any-return]
 
